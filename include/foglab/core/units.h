@@ -1,0 +1,45 @@
+// foglab — units of angular rate and the kind of an input record.
+//
+// Inside foglab every rate is in deg/h, every time in s, every temperature in
+// degC (SPEC.md "Conventions"). Inputs in other units are converted once, on
+// reading. An angle (phase) record is expressed in [rate unit x s]: deg for
+// deg/s, rad for rad/s, and (deg/h)*s for the default deg/h, so that the
+// rate is the angle's increment divided by the sample interval.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace foglab {
+
+/// Unit of an angular-rate record.
+enum class RateUnit {
+  deg_per_hour,    ///< "deg/h" (foglab's internal unit)
+  deg_per_second,  ///< "deg/s"
+  rad_per_second,  ///< "rad/s"
+};
+
+/// "deg/h", "deg/s" or "rad/s".
+std::string_view to_string(RateUnit unit);
+/// Parses "deg/h", "deg/s", "rad/s" (also "dph", "dps", "rps");
+/// throws UsageError listing the accepted names otherwise.
+RateUnit rate_unit_from_string(std::string_view text);
+/// Factor that converts a value in `unit` to deg/h.
+double to_deg_per_hour(RateUnit unit);
+
+/// What the samples of a record are.
+enum class InputKind {
+  rate,   ///< angular rate samples (the analogue of fractional frequency)
+  phase,  ///< integrated angle samples (the analogue of phase/time error)
+};
+
+/// "rate" or "phase".
+std::string_view to_string(InputKind kind);
+/// Parses "rate" or "phase" (also "angle"); throws UsageError otherwise.
+InputKind input_kind_from_string(std::string_view text);
+
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kSecondsPerHour = 3600.0;
+inline constexpr double kDegPerRad = 180.0 / kPi;
+
+}  // namespace foglab

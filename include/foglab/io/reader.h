@@ -1,0 +1,84 @@
+// foglab — reading gyro records: MAT files, text tables, raw binary, stdin.
+//
+// Supported inputs (SPEC.md Part A, CLI.md):
+//   * MAT files v4, v5, v7 (compressed) and v7.3 (HDF5), read through matio.
+//     Variables are chosen by name; the lab's layout is `f` (sample rate,
+//     Hz), `t` (time, s), `Y1`, `Y2` (rate, deg/h), `T1`, `T2` (degC).
+//   * Text: CSV, TSV or whitespace-separated columns, an optional header
+//     line of names, `#` comment lines; a column is chosen by header name or
+//     by 1-based index.
+//   * Raw little-endian float32/float64 (`.f32`/`.f64` or an explicit
+//     format); these carry no sample rate, so one must be given.
+//   * "-" reads text (or raw, with an explicit format) from standard input.
+//
+// The sample rate comes, in this order, from ReadOptions::sample_rate_hz,
+// from a MAT variable `f`, or from a uniformly sampled time column (`t`,
+// `time` or `time_s`; gaps and non-monotonic time are data errors).
+//
+// Errors: an unusable option is a UsageError (exit 2); unusable content is a
+// DataError (exit 3) whose message names the file and the variable, line,
+// column or sample index, and what was expected.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "foglab/core/units.h"
+
+namespace foglab::io {
+
+/// The container format of an input file.
+enum class InputFormat {
+  automatic,  ///< by extension: .mat -> mat, .f32/.f64 -> raw, otherwise text
+  mat,        ///< MATLAB MAT-file v4/v5/v7/v7.3
+  text,       ///< CSV/TSV/whitespace text
+  f32,        ///< raw little-endian IEEE float32
+  f64,        ///< raw little-endian IEEE float64
+};
+
+/// "auto", "mat", "text", "f32", "f64".
+std::string_view to_string(InputFormat format);
+/// Parses the names above (also "csv", "tsv", "float32", "float64");
+/// throws UsageError listing them otherwise.
+InputFormat input_format_from_string(std::string_view text);
+
+/// How to read one channel of a record.
+struct ReadOptions {
+  /// Variable (MAT) or column (text: header name or 1-based index). Empty:
+  /// the only data channel; with several, `Y1` if present, else an error
+  /// listing the candidates.
+  std::string channel;
+  /// [Hz] Sample rate; overrides the file's `f` or time column. Must be > 0.
+  std::optional<double> sample_rate_hz;
+  InputFormat format = InputFormat::automatic;
+  /// Unit of the samples; they are converted to deg/h (phase: (deg/h)*s).
+  RateUnit unit = RateUnit::deg_per_hour;
+  /// Time variable/column; empty: `t`, `time` or `time_s` when present.
+  std::string time_channel;
+};
+
+/// One channel read from a file, converted to foglab's units.
+struct Series {
+  std::string path;             ///< as given; "-" for standard input
+  std::string channel;          ///< name of the chosen variable or column
+  std::vector<double> values;   ///< samples [deg/h] (phase records: [(deg/h)*s])
+  double sample_rate_hz = 0.0;  ///< [Hz]
+  /// Where the sample rate came from: "option --fs", "variable f" or
+  /// "time column t" (with the actual name).
+  std::string sample_rate_source;
+  /// Every data channel the file holds (for messages and listings).
+  std::vector<std::string> available_channels;
+};
+
+/// Reads one channel. Checks that the values are finite (a NaN or Inf is a
+/// DataError naming the 1-based sample index) and that there is at least one
+/// sample. Throws UsageError / DataError as described above.
+Series read_series(const std::string& path, const ReadOptions& options);
+
+/// Names of the data channels (variables or columns) in a file.
+std::vector<std::string> list_channels(const std::string& path,
+                                       InputFormat format = InputFormat::automatic);
+
+}  // namespace foglab::io
