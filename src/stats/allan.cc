@@ -1,1 +1,348 @@
-// placeholder: filled in by the work on issue 2
+#include "foglab/stats/allan.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
+#include "foglab/stats/confidence.h"
+#include "foglab/stats/edf.h"
+#include "foglab/stats/noise_id.h"
+
+namespace foglab::stats {
+namespace {
+
+constexpr std::array<AllanKind, 7> kKinds = {AllanKind::adev,  AllanKind::oadev, AllanKind::mdev,
+                                             AllanKind::hdev,  AllanKind::ohdev, AllanKind::tdev,
+                                             AllanKind::totdev};
+
+// Positions handled together: every offset stream of a block stays in the
+// L2 cache while all averaging factors use it, so each distinct offset is
+// read from memory once per pass (see bench/RESULTS.md).
+constexpr std::int64_t kBlock = 4096;
+constexpr auto kChunk = static_cast<std::int64_t>(kChunkSamples);
+
+std::int64_t chunk_count(std::int64_t n, std::int64_t chunk) { return (n + chunk - 1) / chunk; }
+
+// Sum over i = 0 .. N - D m - 1 of the squared D-th difference at lag m, for
+// every m at once (D = 2: Allan, D = 3: Hadamard).
+template <int D>
+std::vector<double> overlapping_sums(std::span<const double> x,
+                                     std::span<const std::int64_t> factors) {
+  const auto n = static_cast<std::int64_t>(x.size());
+  const auto k_count = static_cast<std::int64_t>(factors.size());
+  const std::int64_t chunks = chunk_count(n, kChunk);
+  std::vector<double> partial(static_cast<std::size_t>(chunks * k_count), 0.0);
+  const double* p = x.data();
+#pragma omp parallel for schedule(dynamic, 2)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::int64_t c_end = std::min(n, (c + 1) * kChunk);
+    for (std::int64_t b = c * kChunk; b < c_end; b += kBlock) {
+      const std::int64_t b_end = std::min(c_end, b + kBlock);
+      for (std::int64_t k = 0; k < k_count; ++k) {
+        const std::int64_t m = factors[k];
+        const std::int64_t end = std::min(b_end, n - D * m);
+        double s = 0.0;
+        if constexpr (D == 2) {
+#pragma omp simd reduction(+ : s)
+          for (std::int64_t i = b; i < end; ++i) {
+            const double d = p[i + 2 * m] - 2.0 * p[i + m] + p[i];
+            s += d * d;
+          }
+        } else {
+#pragma omp simd reduction(+ : s)
+          for (std::int64_t i = b; i < end; ++i) {
+            const double d = p[i + 3 * m] - 3.0 * p[i + 2 * m] + 3.0 * p[i + m] - p[i];
+            s += d * d;
+          }
+        }
+        partial[c * k_count + k] += s;
+      }
+    }
+  }
+  std::vector<double> sums(factors.size());
+  for (std::int64_t k = 0; k < k_count; ++k) {
+    CompensatedSum total;
+    for (std::int64_t c = 0; c < chunks; ++c) total.add(partial[c * k_count + k]);
+    sums[k] = total.value();
+  }
+  return sums;
+}
+
+// Sum of the squared D-th differences at lag m taken at i = 0, m, 2m, ...
+// (`terms` of them).
+template <int D>
+double strided_sum(std::span<const double> x, std::int64_t m, std::int64_t terms) {
+  const std::int64_t chunks = chunk_count(terms, kChunk);
+  std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
+  const double* p = x.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    double s = 0.0;
+    const std::int64_t end = std::min(terms, (c + 1) * kChunk);
+    for (std::int64_t j = c * kChunk; j < end; ++j) {
+      const std::int64_t i = j * m;
+      double d;
+      if constexpr (D == 2) {
+        d = p[i + 2 * m] - 2.0 * p[i + m] + p[i];
+      } else {
+        d = p[i + 3 * m] - 3.0 * p[i + 2 * m] + 3.0 * p[i + m] - p[i];
+      }
+      s += d * d;
+    }
+    partial[c] = s;
+  }
+  CompensatedSum total;
+  for (const double s : partial) total.add(s);
+  return total.value();
+}
+
+// Modified Allan: sum over j = 0 .. n-1 of (sum_{i=j}^{j+m-1} d_i)^2 with
+// d_i = x_{i+2m} - 2 x_{i+m} + x_i, by a sliding window. Each chunk starts its
+// window afresh, so rounding never accumulates beyond one chunk; chunks are
+// at least m long, so the restarts cost at most one extra pass.
+double modified_sum(std::span<const double> x, std::int64_t m, std::int64_t terms) {
+  const std::int64_t chunk = std::max(kChunk, m);
+  const std::int64_t chunks = chunk_count(terms, chunk);
+  std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
+  const double* p = x.data();
+  auto d = [p, m](std::int64_t i) { return p[i + 2 * m] - 2.0 * p[i + m] + p[i]; };
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::int64_t begin = c * chunk;
+    const std::int64_t end = std::min(terms, begin + chunk);
+    double window = 0.0;
+    for (std::int64_t i = begin; i < begin + m; ++i) window += d(i);
+    double s = 0.0;
+    for (std::int64_t j = begin; j < end; ++j) {
+      s += window * window;
+      if (j + 1 < terms) window += d(j + m) - d(j);
+    }
+    partial[c] = s;
+  }
+  CompensatedSum total;
+  for (const double s : partial) total.add(s);
+  return total.value();
+}
+
+// Total variance: second differences at i = 1 .. N-2 of the record extended
+// by point reflection at both ends (SP1065 section 5.2.11).
+double total_sum(std::span<const double> x, std::int64_t m) {
+  const auto n = static_cast<std::int64_t>(x.size());
+  const double* p = x.data();
+  auto extended = [p, n](std::int64_t k) {
+    if (k < 0) return 2.0 * p[0] - p[-k];
+    if (k > n - 1) return 2.0 * p[n - 1] - p[2 * (n - 1) - k];
+    return p[k];
+  };
+  const std::int64_t terms_end = n - 1;  // i < N-1
+  const std::int64_t chunks = chunk_count(terms_end, kChunk);
+  std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::int64_t begin = std::max<std::int64_t>(1, c * kChunk);
+    const std::int64_t end = std::min(terms_end, (c + 1) * kChunk);
+    double s = 0.0;
+    for (std::int64_t i = begin; i < end; ++i) {
+      double d;
+      if (i >= m && i + m <= n - 1) {
+        d = p[i - m] - 2.0 * p[i] + p[i + m];
+      } else {
+        d = extended(i - m) - 2.0 * p[i] + extended(i + m);
+      }
+      s += d * d;
+    }
+    partial[c] = s;
+  }
+  CompensatedSum total;
+  for (const double s : partial) total.add(s);
+  return total.value();
+}
+
+std::int64_t term_count(AllanKind kind, std::int64_t n, std::int64_t m) {
+  switch (kind) {
+    case AllanKind::adev: return (n - 1) / m - 1;
+    case AllanKind::oadev: return n - 2 * m;
+    case AllanKind::mdev:
+    case AllanKind::tdev: return n - 3 * m + 1;
+    case AllanKind::hdev: return (n - 1) / m - 2;
+    case AllanKind::ohdev: return n - 3 * m;
+    case AllanKind::totdev: return n - 2;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string_view to_string(AllanKind kind) {
+  switch (kind) {
+    case AllanKind::adev: return "adev";
+    case AllanKind::oadev: return "oadev";
+    case AllanKind::mdev: return "mdev";
+    case AllanKind::hdev: return "hdev";
+    case AllanKind::ohdev: return "ohdev";
+    case AllanKind::tdev: return "tdev";
+    case AllanKind::totdev: return "totdev";
+  }
+  return "?";
+}
+
+AllanKind allan_kind_from_string(std::string_view text) {
+  for (const AllanKind kind : kKinds) {
+    if (to_string(kind) == text) return kind;
+  }
+  throw UsageError(fmt::format(
+      "unknown statistic '{}': expected adev, oadev, mdev, hdev, ohdev, tdev or totdev", text));
+}
+
+std::span<const AllanKind> all_allan_kinds() { return kKinds; }
+
+std::int64_t max_factor(AllanKind kind, std::int64_t phase_points) {
+  const std::int64_t n = phase_points;
+  switch (kind) {
+    case AllanKind::adev:
+    case AllanKind::oadev:
+    case AllanKind::totdev: return (n - 1) / 2;
+    case AllanKind::mdev:
+    case AllanKind::tdev: return n / 3;
+    case AllanKind::hdev:
+    case AllanKind::ohdev: return (n - 1) / 3;
+  }
+  return 0;
+}
+
+std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKind kind,
+                                          std::span<const std::int64_t> factors,
+                                          std::vector<std::int64_t>* terms) {
+  const auto n = static_cast<std::int64_t>(phase.size());
+  const std::int64_t limit = max_factor(kind, n);
+  std::vector<std::int64_t> counts(factors.size());
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    if (factors[k] < 1 || factors[k] > limit) {
+      throw DataError(fmt::format(
+          "{} at averaging factor {} needs more data: {} angle points allow factors 1 to {}",
+          to_string(kind), factors[k], n, limit));
+    }
+    counts[k] = term_count(kind, n, factors[k]);
+  }
+  std::vector<double> sums(factors.size());
+  switch (kind) {
+    case AllanKind::oadev: sums = overlapping_sums<2>(phase, factors); break;
+    case AllanKind::ohdev: sums = overlapping_sums<3>(phase, factors); break;
+    default:
+      for (std::size_t k = 0; k < factors.size(); ++k) {
+        const std::int64_t m = factors[k];
+        switch (kind) {
+          case AllanKind::adev: sums[k] = strided_sum<2>(phase, m, counts[k]); break;
+          case AllanKind::hdev: sums[k] = strided_sum<3>(phase, m, counts[k]); break;
+          case AllanKind::mdev:
+          case AllanKind::tdev: sums[k] = modified_sum(phase, m, counts[k]); break;
+          case AllanKind::totdev: sums[k] = total_sum(phase, m); break;
+          default: break;
+        }
+      }
+  }
+  // In tau0 = 1 units the tau^2 of the definitions is m^2 (allan.h).
+  std::vector<double> dev(factors.size());
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    const double m = static_cast<double>(factors[k]);
+    const double count = static_cast<double>(counts[k]);
+    double variance = 0.0;
+    switch (kind) {
+      case AllanKind::adev:
+      case AllanKind::oadev:
+      case AllanKind::totdev: variance = sums[k] / (2.0 * m * m * count); break;
+      case AllanKind::hdev:
+      case AllanKind::ohdev: variance = sums[k] / (6.0 * m * m * count); break;
+      case AllanKind::mdev:
+      case AllanKind::tdev: variance = sums[k] / (2.0 * m * m * m * m * count); break;
+    }
+    dev[k] = std::sqrt(variance);
+  }
+  if (terms != nullptr) *terms = std::move(counts);
+  return dev;
+}
+
+AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
+                            InputKind input, const AllanOptions& options) {
+  const std::vector<double> phase = to_phase(samples, sample_rate_hz, input);
+  const auto n = static_cast<std::int64_t>(phase.size());
+  const std::int64_t limit = max_factor(options.kind, n);
+  if (limit < 1) {
+    const std::int64_t needed = options.kind == AllanKind::adev ||
+                                        options.kind == AllanKind::oadev ||
+                                        options.kind == AllanKind::totdev
+                                    ? 3
+                                    : 4;  // angle points for averaging factor 1
+    throw DataError(fmt::format("{} needs at least {} {} samples, the record has {}",
+                                to_string(options.kind),
+                                input == InputKind::rate ? needed - 1 : needed,
+                                to_string(input), samples.size()));
+  }
+  AllanResult result;
+  result.kind = options.kind;
+  result.input = input;
+  result.sample_rate_hz = sample_rate_hz;
+  result.phase_points = n;
+  result.m = averaging_factors(options.grid, n, sample_rate_hz, limit);
+  if (result.m.empty()) {
+    throw DataError(fmt::format(
+        "{} {} samples are too few for {} with at least {} clusters per tau "
+        "({} samples needed); lower --min-clusters or give --taus explicitly",
+        samples.size(), to_string(input), to_string(options.kind), options.grid.min_clusters,
+        options.grid.min_clusters + (input == InputKind::rate ? 0 : 1)));
+  }
+  result.dev = deviations_from_phase(phase, options.kind, result.m, &result.n);
+  const std::size_t count = result.m.size();
+  const double tau0_s = 1.0 / sample_rate_hz;
+  result.tau_s.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    result.tau_s[k] = static_cast<double>(result.m[k]) * tau0_s;
+    if (options.kind == AllanKind::tdev) result.dev[k] *= result.tau_s[k] / std::sqrt(3.0);
+  }
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  result.alpha.assign(count, 0);
+  result.alpha_method.assign(count, "");
+  result.edf.assign(count, nan);
+  result.ci68_low.assign(count, nan);
+  result.ci68_high.assign(count, nan);
+  result.ci95_low.assign(count, nan);
+  result.ci95_high.assign(count, nan);
+  if (!options.confidence) return result;
+
+  const bool hadamard = options.kind == AllanKind::hdev || options.kind == AllanKind::ohdev;
+  int previous_alpha = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::int64_t m = result.m[k];
+    NoiseId id = identify_noise(phase, m, hadamard ? 3 : 2);
+    if (id.method == "none") id.alpha = previous_alpha;
+    previous_alpha = id.alpha;
+    result.alpha[k] = id.alpha;
+    result.alpha_method[k] = id.method;
+    double edf = nan;
+    switch (options.kind) {
+      case AllanKind::adev: edf = greenhall_edf(id.alpha, 2, m, n, false, false); break;
+      case AllanKind::oadev: edf = greenhall_edf(id.alpha, 2, m, n, true, false); break;
+      case AllanKind::mdev:
+      case AllanKind::tdev: edf = greenhall_edf(id.alpha, 2, m, n, true, true); break;
+      case AllanKind::hdev: edf = greenhall_edf(id.alpha, 3, m, n, false, false); break;
+      case AllanKind::ohdev: edf = greenhall_edf(id.alpha, 3, m, n, true, false); break;
+      case AllanKind::totdev: edf = totdev_edf(id.alpha, m, n); break;
+    }
+    result.edf[k] = edf;
+    const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);
+    const Interval ci95 = chi2_interval(result.dev[k], edf, kConfidence95);
+    result.ci68_low[k] = ci68.low;
+    result.ci68_high[k] = ci68.high;
+    result.ci95_low[k] = ci95.low;
+    result.ci95_high[k] = ci95.high;
+  }
+  return result;
+}
+
+}  // namespace foglab::stats

@@ -1,1 +1,192 @@
-// placeholder: filled in by the work on issue 2
+// Greenhall's general EDF algorithm. Notation and equation numbers follow
+// C. A. Greenhall and W. J. Riley, "Uncertainty of stability variances based
+// on finite differences", Proc. 35th PTTI Meeting (2003), and W. J. Riley,
+// NIST SP 1065 (2008) section 5.3.3.
+#include "foglab/stats/edf.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace foglab::stats {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kJmax = 100.0;
+
+// sw(t): the generalised autocovariance kernel of the phase for noise alpha (eq. 7).
+double sw(double t, int alpha) {
+  const double a = std::fabs(t);
+  switch (alpha) {
+    case 2: return -a;
+    case 1: return t == 0.0 ? 0.0 : t * t * std::log(a);
+    case 0: return a * a * a;
+    case -1: return t == 0.0 ? 0.0 : t * t * t * t * std::log(a);
+    case -2: return a * a * a * a * a;
+    case -3: return t == 0.0 ? 0.0 : std::pow(t, 6) * std::log(a);
+    case -4: return std::pow(a, 7);
+    default: return kNaN;
+  }
+}
+
+// sx(t): the kernel after the averaging filter of length 1/F (eq. 8).
+double sx(double t, double F, int alpha) {
+  if (std::isinf(F)) return sw(t, alpha + 2);
+  const double h = 1.0 / F;
+  if (alpha == 1 && h < 1e-3 && std::fabs(t) >= 0.5) {
+    // The second difference of t^2 ln|t| with a tiny step cancels
+    // catastrophically; use its Taylor expansion instead:
+    // F^2 (2 f(t) - f(t-h) - f(t+h)) = -(f'' + h^2 f''''/12) + O(h^4),
+    // f'' = 2 ln|t| + 3, f'''' = -2/t^2.
+    return -(2.0 * std::log(std::fabs(t)) + 3.0) + h * h / (6.0 * t * t);
+  }
+  return F * F * (2.0 * sw(t, alpha) - sw(t - h, alpha) - sw(t + h, alpha));
+}
+
+// sz(t): the kernel after the d-th difference (eq. 9), binomial weights
+// (-1)^k C(2d, d+k), k = -d .. d.
+double sz(double t, double F, int alpha, int d) {
+  static constexpr std::array<std::array<double, 4>, 4> kWeights = {{
+      {1, 0, 0, 0},
+      {2, -1, 0, 0},
+      {6, -4, 1, 0},
+      {20, -15, 6, -1},
+  }};
+  double sum = kWeights[d][0] * sx(t, F, alpha);
+  for (int k = 1; k <= d; ++k) {
+    sum += kWeights[d][k] * (sx(t - k, F, alpha) + sx(t + k, F, alpha));
+  }
+  return sum;
+}
+
+// BasicSum (eq. 10).
+double basic_sum(double J, double M, double S, double F, int alpha, int d) {
+  const double s0 = sz(0.0, F, alpha, d);
+  const double sJ = sz(J / S, F, alpha, d);
+  double sum = s0 * s0 + (1.0 - J / M) * sJ * sJ;
+  const auto j_end = static_cast<std::int64_t>(J);
+  for (std::int64_t j = 1; j < j_end; ++j) {
+    const double s = sz(static_cast<double>(j) / S, F, alpha, d);
+    sum += 2.0 * (1.0 - static_cast<double>(j) / M) * s * s;
+  }
+  return sum;
+}
+
+struct Coefficients {
+  double a0;
+  double a1;
+};
+
+// Table 1 (modified variances, F = 1) and Table 2 (unmodified, F = m),
+// rows alpha = +2 .. -4, columns d = 1, 2, 3; NaN where alpha + 2d <= 1.
+constexpr double kNa = kNaN;
+constexpr std::array<std::array<Coefficients, 3>, 7> kTable1 = {{
+    {{{2.0 / 3.0, 1.0 / 3.0}, {7.0 / 9.0, 1.0 / 2.0}, {22.0 / 25.0, 2.0 / 3.0}}},
+    {{{0.840, 0.345}, {0.997, 0.616}, {1.141, 0.843}}},
+    {{{1.079, 0.368}, {1.033, 0.607}, {1.184, 0.848}}},
+    {{{kNa, kNa}, {1.048, 0.534}, {1.180, 0.816}}},
+    {{{kNa, kNa}, {1.302, 0.535}, {1.175, 0.777}}},
+    {{{kNa, kNa}, {kNa, kNa}, {1.194, 0.703}}},
+    {{{kNa, kNa}, {kNa, kNa}, {1.489, 0.702}}},
+}};
+constexpr std::array<std::array<Coefficients, 3>, 7> kTable2 = {{
+    {{{3.0 / 2.0, 1.0 / 2.0}, {35.0 / 18.0, 1.0}, {231.0 / 100.0, 3.0 / 2.0}}},
+    {{{78.6, 25.2}, {790.0, 410.0}, {9950.0, 6520.0}}},
+    {{{2.0 / 3.0, 1.0 / 6.0}, {2.0 / 3.0, 1.0 / 3.0}, {7.0 / 9.0, 1.0 / 2.0}}},
+    {{{kNa, kNa}, {0.852, 0.375}, {0.997, 0.617}}},
+    {{{kNa, kNa}, {1.079, 0.368}, {1.033, 0.607}}},
+    {{{kNa, kNa}, {kNa, kNa}, {1.053, 0.553}}},
+    {{{kNa, kNa}, {kNa, kNa}, {1.302, 0.535}}},
+}};
+// Table 3: b0, b1 of the alpha = +1 normalisation b0 + b1 ln m, d = 1, 2, 3.
+constexpr std::array<Coefficients, 3> kTable3 = {{{6.0, 4.0}, {15.23, 12.0}, {47.8, 40.0}}};
+
+double binomial(int n, int k) {
+  double result = 1.0;
+  for (int i = 1; i <= k; ++i) result = result * (n - k + i) / i;
+  return result;
+}
+
+}  // namespace
+
+double greenhall_edf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
+                     bool modified) {
+  if (d < 1 || d > 3 || alpha > 2 || alpha < -4 || alpha + 2 * d <= 1 || m < 1) return kNaN;
+  const double md = static_cast<double>(m);
+  const double F = modified ? 1.0 : md;  // filter factor
+  const double S = overlapping ? md : 1.0;  // stride factor
+  const double L = md / F + md * d;  // length of the filter applied to the phase
+  const double M = 1.0 + std::floor(S * (static_cast<double>(n_phase) - L) / md);
+  if (M < 1.0) return kNaN;
+  const double J = std::min(M, (d + 1) * S);
+  const double r = M / S;
+  const std::size_t row = static_cast<std::size_t>(2 - alpha);
+  const std::size_t col = static_cast<std::size_t>(d - 1);
+
+  double inv_edf = kNaN;
+  if (modified) {  // case 1: modified variances, every alpha
+    if (J <= kJmax) {
+      const double s0 = sz(0.0, 1.0, alpha, d);
+      inv_edf = basic_sum(J, M, S, 1.0, alpha, d) / (s0 * s0 * M);
+    } else if (r > d + 1) {
+      const auto [a0, a1] = kTable1[row][col];
+      inv_edf = (a0 - a1 / r) / r;
+    } else {
+      const double s0 = sz(0.0, 1.0, alpha, d);
+      inv_edf = basic_sum(kJmax, kJmax, kJmax / r, 1.0, alpha, d) / (s0 * s0 * kJmax);
+    }
+  } else if (alpha <= 0) {  // case 2: unmodified, alpha <= 0
+    if (J <= kJmax) {
+      const double Fp = md * (d + 1) <= kJmax ? md : kInf;
+      const double s0 = sz(0.0, Fp, alpha, d);
+      inv_edf = basic_sum(J, M, S, Fp, alpha, d) / (s0 * s0 * M);
+    } else if (r > d + 1) {
+      const auto [a0, a1] = kTable2[row][col];
+      inv_edf = (a0 - a1 / r) / r;
+    } else {
+      const double s0 = sz(0.0, kInf, alpha, d);
+      inv_edf = basic_sum(kJmax, kJmax, kJmax / r, kInf, alpha, d) / (s0 * s0 * kJmax);
+    }
+  } else if (alpha == 1) {  // case 3: unmodified, flicker PM
+    if (J <= kJmax) {
+      const double s0 = sz(0.0, md, alpha, d);
+      inv_edf = basic_sum(J, M, S, md, alpha, d) / (s0 * s0 * M);
+    } else {
+      const auto [b0, b1] = kTable3[col];
+      const double norm = b0 + b1 * std::log(md);
+      if (r > d + 1) {
+        const auto [a0, a1] = kTable2[row][col];
+        inv_edf = (a0 - a1 / r) / (norm * norm * r);
+      } else {
+        const double mp = kJmax / r;
+        inv_edf = basic_sum(kJmax, kJmax, mp, mp, alpha, d) / (norm * norm * kJmax);
+      }
+    }
+  } else {  // case 4: unmodified, white PM
+    const double a0 = binomial(4 * d, 2 * d) / (binomial(2 * d, d) * binomial(2 * d, d));
+    const double a1 = d / 2.0;
+    if (std::ceil(r) > d || M > 1e6) {
+      inv_edf = (a0 - a1 / r) / M;
+    } else {
+      // Few terms: evaluate the exact sum (eq. 10) with J = M.
+      const double s0 = sz(0.0, md, alpha, d);
+      inv_edf = basic_sum(M, M, S, md, alpha, d) / (s0 * s0 * M);
+    }
+  }
+  if (!(inv_edf > 0.0) || !std::isfinite(inv_edf)) return kNaN;
+  return 1.0 / inv_edf;
+}
+
+double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase) {
+  // NIST SP 1065 Table 12: edf = b (T / tau) - c.
+  const double ratio = static_cast<double>(n_phase) / static_cast<double>(m);
+  switch (alpha) {
+    case 0: return 1.50 * ratio;
+    case -1: return 1.17 * ratio - 0.22;
+    case -2: return 0.93 * ratio - 0.36;
+    default: return greenhall_edf(alpha, 2, m, n_phase, true, false);
+  }
+}
+
+}  // namespace foglab::stats

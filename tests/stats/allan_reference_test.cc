@@ -1,1 +1,130 @@
-// placeholder: filled in by the work on issue 2
+// The Allan family against published numbers: NIST SP 1065's NBS14 tables
+// (to 1e-6 relative) and Stable32 1.60's results for PHASE.DAT (deviations to
+// 2e-4 relative, confidence bounds to 1 %).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "foglab/stats/allan.h"
+#include "support/reference_data.h"
+
+namespace foglab::stats {
+namespace {
+
+using test::Stable32Row;
+
+AllanResult compute(const std::vector<double>& data, InputKind input, AllanKind kind,
+                    const std::vector<std::int64_t>& factors, bool confidence) {
+  AllanOptions options;
+  options.kind = kind;
+  options.grid.kind = TauGridKind::list;
+  for (const auto m : factors) options.grid.taus_s.push_back(static_cast<double>(m));
+  options.confidence = confidence;
+  return allan_deviation(data, 1.0, input, options);
+}
+
+struct NbsCase {
+  AllanKind kind;
+  std::vector<double> expected;  // at m = 1, 10, 100
+};
+
+TEST(NistSp1065, Nbs14ThousandPointTableForEveryStatistic) {
+  const std::vector<double> y = test::nbs14_1000();
+  const std::vector<NbsCase> cases = {
+      {AllanKind::adev, {2.922319e-01, 9.965736e-02, 3.897804e-02}},
+      {AllanKind::oadev, {2.922319e-01, 9.159953e-02, 3.241343e-02}},
+      {AllanKind::mdev, {2.922319e-01, 6.172376e-02, 2.170921e-02}},
+      {AllanKind::totdev, {2.922319e-01, 9.134743e-02, 3.406530e-02}},
+      {AllanKind::hdev, {2.943883e-01, 1.052754e-01, 3.910860e-02}},
+      {AllanKind::ohdev, {2.943883e-01, 9.581083e-02, 3.237638e-02}},
+      {AllanKind::tdev, {1.687202e-01, 3.563623e-01, 1.253382e+00}},
+  };
+  for (const auto& c : cases) {
+    const AllanResult r = compute(y, InputKind::rate, c.kind, {1, 10, 100}, false);
+    ASSERT_EQ(r.dev.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_NEAR(r.dev[k] / c.expected[k], 1.0, 1e-6)
+          << to_string(c.kind) << " at m = " << r.m[k];
+    }
+  }
+}
+
+TEST(NistSp1065, Nbs14GeneratorMatchesCheckValues) {
+  const std::vector<double> y = test::nbs14_1000();
+  EXPECT_DOUBLE_EQ(y[1] * 2147483647.0, 395529916.0);
+  EXPECT_DOUBLE_EQ(y[2] * 2147483647.0, 1209410747.0);
+  EXPECT_DOUBLE_EQ(y[3] * 2147483647.0, 633705974.0);
+}
+
+TEST(NistSp1065, Nbs14TenPointTable) {
+  const std::vector<double> y = test::nbs14_10();
+  const std::vector<NbsCase> cases = {
+      {AllanKind::adev, {91.22945, 115.8082}},  {AllanKind::oadev, {91.22945, 85.95287}},
+      {AllanKind::mdev, {91.22945, 74.78849}},  {AllanKind::hdev, {70.80608, 116.7980}},
+      {AllanKind::ohdev, {70.80607, 85.61487}},
+  };
+  for (const auto& c : cases) {
+    const AllanResult r = compute(y, InputKind::rate, c.kind, {1, 2}, false);
+    for (std::size_t k = 0; k < 2; ++k) {
+      // The table prints 7 significant digits.
+      EXPECT_NEAR(r.dev[k] / c.expected[k], 1.0, 1e-6)
+          << to_string(c.kind) << " at m = " << r.m[k];
+    }
+  }
+}
+
+struct Stable32Case {
+  std::string file;
+  AllanKind kind;
+  bool has_intervals;
+};
+
+class Stable32PhaseDat : public ::testing::TestWithParam<Stable32Case> {};
+
+TEST_P(Stable32PhaseDat, DeviationsCountsAndIntervalsMatch) {
+  const Stable32Case& c = GetParam();
+  const std::vector<double> x = test::phase_dat();
+  ASSERT_EQ(x.size(), 1001u);
+  const std::vector<Stable32Row> rows = test::read_stable32(c.file);
+  ASSERT_FALSE(rows.empty());
+  std::vector<std::int64_t> factors;
+  for (const auto& row : rows) factors.push_back(row.af);
+  const AllanResult r = compute(x, InputKind::phase, c.kind, factors, true);
+  ASSERT_EQ(r.dev.size(), rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const Stable32Row& row = rows[k];
+    EXPECT_NEAR(r.dev[k] / row.sigma, 1.0, 2e-4) << c.file << " AF " << row.af;
+    EXPECT_EQ(r.n[k], row.n) << c.file << " AF " << row.af;
+    if (c.has_intervals) {
+      EXPECT_EQ(r.alpha[k], row.alpha) << c.file << " AF " << row.af;
+      EXPECT_NEAR(r.ci68_low[k] / row.min_sigma, 1.0, 0.01) << c.file << " AF " << row.af;
+      EXPECT_NEAR(r.ci68_high[k] / row.max_sigma, 1.0, 0.01) << c.file << " AF " << row.af;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllTables, Stable32PhaseDat,
+    ::testing::Values(Stable32Case{"phase_dat_adev.txt", AllanKind::adev, false},
+                      Stable32Case{"phase_dat_adev_octave.txt", AllanKind::adev, true},
+                      Stable32Case{"phase_dat_oadev.txt", AllanKind::oadev, false},
+                      Stable32Case{"phase_dat_oadev_octave.txt", AllanKind::oadev, true},
+                      Stable32Case{"phase_dat_mdev.txt", AllanKind::mdev, false},
+                      Stable32Case{"phase_dat_mdev_octave.txt", AllanKind::mdev, true},
+                      Stable32Case{"phase_dat_tdev.txt", AllanKind::tdev, false},
+                      Stable32Case{"phase_dat_tdev_octave.txt", AllanKind::tdev, true},
+                      Stable32Case{"phase_dat_hdev.txt", AllanKind::hdev, false},
+                      Stable32Case{"phase_dat_hdev_octave.txt", AllanKind::hdev, true},
+                      Stable32Case{"phase_dat_ohdev.txt", AllanKind::ohdev, false},
+                      Stable32Case{"phase_dat_ohdev_octave.txt", AllanKind::ohdev, true},
+                      Stable32Case{"phase_dat_totdev.txt", AllanKind::totdev, false},
+                      Stable32Case{"phase_dat_totdev_octave.txt", AllanKind::totdev, true}),
+    [](const ::testing::TestParamInfo<Stable32Case>& info) {
+      std::string name = info.param.file.substr(0, info.param.file.size() - 4);
+      return name;
+    });
+
+}  // namespace
+}  // namespace foglab::stats

@@ -1,0 +1,114 @@
+// foglab — the Allan family of stability statistics, with confidence intervals.
+//
+// Definitions (NIST SP 1065, W. J. Riley, "Handbook of Frequency Stability
+// Analysis", 2008, section 5.2; IEEE Std 952-1997 Annex C for gyros). With
+// phase (angle) samples x_i, i = 0 .. N-1, sample interval tau0, averaging
+// factor m and tau = m tau0:
+//
+//   ADEV   non-overlapping Allan deviation: second differences
+//          x_{i+2m} - 2 x_{i+m} + x_i at i = 0, m, 2m, ...,
+//          AVAR = sum / (2 tau^2 n),  n = floor((N-1)/m) - 1            (SP1065 eq. 7)
+//   OADEV  overlapping Allan deviation: the same at every i,
+//          n = N - 2m                                                   (eq. 11)
+//   MDEV   modified Allan deviation: second differences of m-sample phase
+//          averages, MVAR = sum_j (sum_{i=j}^{j+m-1} d_i)^2 / (2 m^2 tau^2 n),
+//          n = N - 3m + 1                                               (eq. 15)
+//   TDEV   time deviation, tau/sqrt(3) MDEV, in [deg/h * s]              (eq. 17)
+//   HDEV   non-overlapping Hadamard deviation: third differences
+//          x_{i+3m} - 3 x_{i+2m} + 3 x_{i+m} - x_i at i = 0, m, ...,
+//          HVAR = sum / (6 tau^2 n), n = floor((N-1)/m) - 2             (eq. 18)
+//   OHDEV  overlapping Hadamard deviation, n = N - 3m                   (eq. 20)
+//   TOTDEV total deviation: second differences at i = 1 .. N-2 of the record
+//          extended at both ends by reflection, x*_{-j} = 2 x_0 - x_j and
+//          x*_{N-1+j} = 2 x_{N-1} - x_{N-1-j};
+//          TOTVAR = sum / (2 tau^2 (N - 2))                              (eq. 25)
+//
+// A gyro RATE record y_k [deg/h] (k = 0 .. N-2) is the analogue of
+// fractional frequency: foglab integrates it to an angle record after
+// removing its mean with a compensated sum (the statistics are blind to a
+// constant rate, and removing it first keeps 10^9-sample records with a large
+// bias exact). An ANGLE record is the analogue of phase data.
+//
+// Slopes of ADEV/OADEV on log-log axes for the IEEE-952 gyro terms: angle
+// quantisation Q tau^-1, angle random walk N tau^-1/2, bias instability
+// (flicker) B tau^0, rate random walk K tau^+1/2, rate ramp R tau^+1.
+//
+// Confidence intervals: the power-law noise type alpha (S_y(f) ~ f^alpha) is
+// identified at each tau (noise_id.h), the equivalent degrees of freedom come
+// from Greenhall's general algorithm (edf.h; SP1065 Table 12 for TOTDEV),
+// and the interval from the chi-square distribution (confidence.h,
+// SP1065 eq. 45). Valid tau range: the default grids keep at least 10
+// clusters, floor((N-1)/m) >= 10, as the lab manual asks (L_m >= 10).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "foglab/core/units.h"
+#include "foglab/stats/tau_grid.h"
+
+namespace foglab::stats {
+
+/// Which statistic to compute.
+enum class AllanKind { adev, oadev, mdev, hdev, ohdev, tdev, totdev };
+
+/// "adev", "oadev", "mdev", "hdev", "ohdev", "tdev", "totdev".
+std::string_view to_string(AllanKind kind);
+/// Parses the names above; throws UsageError listing them otherwise.
+AllanKind allan_kind_from_string(std::string_view text);
+/// Every kind, in the order above.
+std::span<const AllanKind> all_allan_kinds();
+
+struct AllanOptions {
+  AllanKind kind = AllanKind::oadev;
+  TauGrid grid;            ///< averaging times (default: octave, >= 10 clusters)
+  bool confidence = true;  ///< identify noise, compute edf and intervals
+};
+
+/// One statistic over a tau grid. All vectors have one entry per tau.
+struct AllanResult {
+  AllanKind kind = AllanKind::oadev;
+  InputKind input = InputKind::rate;
+  double sample_rate_hz = 0.0;       ///< [Hz]
+  std::int64_t phase_points = 0;     ///< N, number of angle samples analysed
+  std::vector<std::int64_t> m;       ///< averaging factors, tau = m / fs
+  std::vector<double> tau_s;         ///< [s]
+  /// [deg/h] (TDEV: [deg/h * s], the analogue of a time deviation)
+  std::vector<double> dev;
+  std::vector<std::int64_t> n;       ///< number of terms in each estimate
+  std::vector<int> alpha;            ///< identified noise exponent, S_y ~ f^alpha
+  std::vector<std::string> alpha_method;  ///< "lag1_acf", "b1", "b1_rn" or "" (off)
+  std::vector<double> edf;           ///< equivalent degrees of freedom
+  std::vector<double> ci68_low, ci68_high;  ///< 68.27 % interval, same unit as dev
+  std::vector<double> ci95_low, ci95_high;  ///< 95 % interval
+};
+
+/// Computes one statistic of `samples` (rate [deg/h] or angle
+/// [(deg/h)*s], see units.h) sampled at `sample_rate_hz`.
+/// Throws UsageError for a bad sample rate or grid, DataError when the
+/// record is too short for the statistic at a requested tau.
+AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
+                            InputKind input, const AllanOptions& options = {});
+
+/// The angle record foglab analyses, in units where tau0 = 1: a rate record
+/// becomes x_0 = 0, x_{k+1} = x_k + (y_k - mean(y)) (length N+1); an angle
+/// record becomes x_k * fs minus the straight line through its end points.
+/// Exposed for tests and benchmarks.
+std::vector<double> to_phase(std::span<const double> samples, double sample_rate_hz,
+                             InputKind input);
+
+/// Deviation values only (no confidence intervals) on an angle record made by
+/// to_phase(), for the given averaging factors. Throws DataError if an
+/// averaging factor is too large for the statistic. The fast path used by
+/// allan_deviation(); exposed for benchmarks.
+std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKind kind,
+                                          std::span<const std::int64_t> factors,
+                                          std::vector<std::int64_t>* terms = nullptr);
+
+/// Largest averaging factor at which `kind` is defined for N phase points.
+std::int64_t max_factor(AllanKind kind, std::int64_t phase_points);
+
+}  // namespace foglab::stats

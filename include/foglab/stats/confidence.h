@@ -1,0 +1,24 @@
+// foglab — chi-square confidence intervals of a deviation.
+//
+// With edf degrees of freedom, edf * s^2 / sigma^2 is chi-square distributed
+// (NIST SP 1065 section 5.3.1, eq. 45), so the interval at confidence p is
+//   s * sqrt(edf / chi2_{(1+p)/2}(edf))  <=  sigma  <=  s * sqrt(edf / chi2_{(1-p)/2}(edf)).
+// Quantiles from Boost.Math.
+#pragma once
+
+namespace foglab::stats {
+
+/// The one-sigma confidence level, erf(1/sqrt(2)) = 0.682689...
+inline constexpr double kConfidence68 = 0.6826894921370859;
+inline constexpr double kConfidence95 = 0.95;
+
+struct Interval {
+  double low = 0.0;
+  double high = 0.0;
+};
+
+/// Interval of a deviation `dev` with `edf` degrees of freedom at confidence
+/// `p` in (0, 1). NaN bounds when edf is not a positive finite number.
+Interval chi2_interval(double dev, double edf, double p);
+
+}  // namespace foglab::stats

@@ -1,0 +1,33 @@
+// foglab — equivalent degrees of freedom of Allan-family estimates.
+//
+// The chi-square confidence interval of a variance estimate needs its
+// equivalent degrees of freedom (edf). foglab uses:
+//   * Greenhall's general algorithm for variances built on finite
+//     differences (C. A. Greenhall and W. J. Riley, "Uncertainty of
+//     stability variances based on finite differences", Proc. 35th PTTI
+//     Meeting, 2003; also NIST SP 1065 section 5.3.3): ADEV and OADEV (d = 2),
+//     MDEV and TDEV (d = 2, modified), HDEV and OHDEV (d = 3). It is exact
+//     for power-law noise up to a short sum, with the paper's Tables 1-3 for
+//     the asymptotic cases;
+//   * for TOTDEV, NIST SP 1065 Table 12: edf = b (T/tau) - c for white,
+//     flicker and random-walk FM, with T/tau = N/m; Greenhall's OADEV edf for
+//     the phase-noise types.
+#pragma once
+
+#include <cstdint>
+
+namespace foglab::stats {
+
+/// Greenhall's edf for a finite-difference variance.
+/// alpha: noise exponent (+2 .. -4) with alpha + 2 d > 1; d: difference order
+/// (1, 2 Allan, 3 Hadamard); m: averaging factor; n_phase: number of phase
+/// points; overlapping: stride 1 (true) or m; modified: the modified
+/// (phase-averaged) variance. Returns NaN when the case is outside the
+/// algorithm's domain.
+double greenhall_edf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
+                     bool modified);
+
+/// edf of TOTDEV (SP1065 Table 12, Greenhall's OADEV edf for alpha > 0).
+double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
+
+}  // namespace foglab::stats

@@ -1,0 +1,44 @@
+// foglab — identification of the dominant power-law noise at one tau.
+//
+// Power-law model S_y(f) = h_alpha f^alpha for the rate (fractional
+// frequency) record: alpha = +2 white PM (angle white noise: in a gyro,
+// quantisation), +1 flicker PM, 0 white FM (angle random walk), -1 flicker FM
+// (bias instability), -2 random-walk FM (rate random walk), and for the
+// Hadamard family -3, -4.
+//
+// Methods, as Stable32 uses them (NIST SP 1065 section 5.6):
+//   * lag-1 autocorrelation (W. J. Riley and C. A. Greenhall, "Power law
+//     noise identification using the lag 1 autocorrelation", Proc. 18th
+//     EFTF, 2004): the angle record is decimated by m, a quadratic removed,
+//     and it is differenced d = 0, 1, ... times until rho = r1/(1+r1) < 0.25
+//     or d = d_max; then alpha = 2 - 2 d - round(2 rho). Used while at least
+//     30 decimated points remain;
+//   * otherwise the B1 bias ratio (Barnes 1969; SP1065 eq. 73: standard
+//     variance over Allan variance of the m-sample averages) compared with
+//     its theoretical values at the geometric means between noise types,
+//     and the R(n) = MVAR/AVAR ratio to split white from flicker PM.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace foglab::stats {
+
+struct NoiseId {
+  int alpha = 0;        ///< identified integer exponent
+  std::string method;   ///< "lag1_acf", "b1" or "b1_rn"
+  double rho = 0.0;     ///< lag-1 method: the final rho estimate
+  int differences = 0;  ///< lag-1 method: number of differences taken
+};
+
+/// Identifies the noise at averaging factor m of an angle record (tau0 = 1
+/// units, as made by to_phase()). d_max = 2 for the Allan and modified
+/// families, 3 for Hadamard. The result is clamped to the exponents for which
+/// the statistic converges: [-2, 2] for d_max = 2, [-4, 2] for d_max = 3.
+NoiseId identify_noise(std::span<const double> phase, std::int64_t m, int d_max);
+
+/// Lag-1 autocorrelation r1 of a series (Riley & Greenhall eq. 2).
+double lag1_autocorrelation(std::span<const double> series);
+
+}  // namespace foglab::stats
