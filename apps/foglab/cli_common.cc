@@ -1,1 +1,81 @@
-// placeholder: filled in by the work on issue 2
+#include "cli_common.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "foglab/core/error.h"
+#include "foglab/io/sample.h"
+
+namespace foglab::cli {
+
+void add_input_options(CLI::App& command, InputOptions& options, bool file_optional) {
+  auto* file = command.add_option(
+      "FILE", options.path,
+      file_optional ? "record: .mat, text (.csv/.tsv/.txt), .f32/.f64 or - for stdin; "
+                      "omitted: the built-in sample"
+                    : "record: .mat, text (.csv/.tsv/.txt), .f32/.f64 or - for stdin");
+  if (!file_optional) file->required();
+  command.add_option("--channel", options.channel,
+                     "variable (MAT) or column name/1-based index (text); default: the only "
+                     "data channel, else Y1");
+  command.add_option("--fs", options.sample_rate_hz,
+                     "sample rate [Hz]; default: the file's f variable or time column");
+  command.add_option("--format", options.format, "auto, mat, text, f32 or f64")
+      ->capture_default_str();
+  command.add_option("--units", options.units, "unit of the samples: deg/h, deg/s or rad/s")
+      ->capture_default_str();
+  command.add_option("--time", options.time_channel,
+                     "time variable/column used for the sample rate (default t/time/time_s)");
+}
+
+io::Series load_input(const InputOptions& options) {
+  if (options.path.empty()) {
+    io::Series sample = io::builtin_sample();
+    note(fmt::format("no FILE given: using the built-in sample ({} samples at {} Hz, {} h)",
+                     sample.values.size(), sample.sample_rate_hz,
+                     io::BuiltinSample::kDurationS / 3600.0));
+    return sample;
+  }
+  io::ReadOptions read;
+  read.channel = options.channel;
+  read.sample_rate_hz = options.sample_rate_hz;
+  read.format = io::input_format_from_string(options.format);
+  read.unit = rate_unit_from_string(options.units);
+  read.time_channel = options.time_channel;
+  if (options.sample_rate_hz && !(*options.sample_rate_hz > 0.0 &&
+                                  std::isfinite(*options.sample_rate_hz))) {
+    throw UsageError(fmt::format("--fs {}: the sample rate must be a positive number of Hz",
+                                 *options.sample_rate_hz));
+  }
+  io::Series series = io::read_series(options.path, read);
+  if (options.channel.empty() && series.available_channels.size() > 1) {
+    note(fmt::format("'{}' has channels {}; using '{}' (choose with --channel)", options.path,
+                     fmt::join(series.available_channels, ", "), series.channel));
+  }
+  return series;
+}
+
+nlohmann::json number(double value) {
+  if (!std::isfinite(value)) return nullptr;
+  return value;
+}
+
+nlohmann::json numbers(const std::vector<double>& values) {
+  nlohmann::json array = nlohmann::json::array();
+  for (const double v : values) array.push_back(number(v));
+  return array;
+}
+
+nlohmann::json input_json(const io::Series& series) {
+  return {{"path", series.path},
+          {"channel", series.channel},
+          {"sample_rate_hz", series.sample_rate_hz},
+          {"sample_rate_source", series.sample_rate_source},
+          {"samples", series.values.size()}};
+}
+
+void note(const std::string& text) { std::cerr << "foglab: note: " << text << "\n"; }
+
+}  // namespace foglab::cli

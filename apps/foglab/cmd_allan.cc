@@ -1,1 +1,126 @@
-// placeholder: filled in by the work on issue 2
+// foglab allan — one statistic of the Allan family with confidence intervals.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "foglab/core/output.h"
+#include "foglab/core/version.h"
+#include "foglab/stats/allan.h"
+
+namespace foglab::cli {
+namespace {
+
+struct AllanCommand {
+  InputOptions input;
+  std::string kind = "oadev";
+  std::string taus = "octave";
+  std::int64_t min_clusters = 10;
+  std::string input_kind = "rate";
+  bool no_ci = false;
+  std::string csv_path;
+  std::string json_path;
+};
+
+std::string dev_unit(stats::AllanKind kind, InputKind input) {
+  (void)input;
+  return kind == stats::AllanKind::tdev ? "deg/h*s" : "deg/h";
+}
+
+nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
+                       const AllanCommand& c) {
+  return {{"kind", std::string(stats::to_string(r.kind))},
+          {"input", std::string(to_string(r.input))},
+          {"unit", dev_unit(r.kind, r.input)},
+          {"tau_s", r.tau_s},
+          {"dev", numbers(r.dev)},
+          {"n", r.n},
+          {"m", r.m},
+          {"alpha", r.alpha},
+          {"alpha_method", r.alpha_method},
+          {"edf", numbers(r.edf)},
+          {"ci68_low", numbers(r.ci68_low)},
+          {"ci68_high", numbers(r.ci68_high)},
+          {"ci95_low", numbers(r.ci95_low)},
+          {"ci95_high", numbers(r.ci95_high)},
+          {"taus", c.taus},
+          {"min_clusters", c.min_clusters},
+          {"source", input_json(series)},
+          {"foglab_version", std::string(version())}};
+}
+
+std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
+
+std::string to_csv(const stats::AllanResult& r) {
+  const std::string u = dev_unit(r.kind, r.input) == "deg/h" ? "deg_h" : "deg_h_s";
+  std::string out = fmt::format(
+      "tau_s,m,n,dev_{0},alpha,edf,ci68_low_{0},ci68_high_{0},ci95_low_{0},ci95_high_{0}\n", u);
+  for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+    out += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{}\n", r.tau_s[k], r.m[k], r.n[k],
+                       cell(r.dev[k]), r.alpha[k], cell(r.edf[k]), cell(r.ci68_low[k]),
+                       cell(r.ci68_high[k]), cell(r.ci95_low[k]), cell(r.ci95_high[k]));
+  }
+  return out;
+}
+
+std::string to_table(const stats::AllanResult& r, const io::Series& series) {
+  const std::string unit = dev_unit(r.kind, r.input);
+  std::string out = fmt::format("{} of '{}' channel {} ({} samples at {} Hz, {})\n",
+                                stats::to_string(r.kind), series.path, series.channel,
+                                series.values.size(), series.sample_rate_hz,
+                                to_string(r.input));
+  out += fmt::format("{:>12} {:>10} {:>14} {:>6} {:>14} {:>14}\n", "tau [s]", "n",
+                     fmt::format("dev [{}]", unit), "alpha", "95% low", "95% high");
+  for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+    out += fmt::format("{:>12.6g} {:>10} {:>14.6g} {:>6} {:>14.6g} {:>14.6g}\n", r.tau_s[k],
+                       r.n[k], r.dev[k], r.alpha[k], r.ci95_low[k], r.ci95_high[k]);
+  }
+  return out;
+}
+
+void run(const AllanCommand& c) {
+  stats::AllanOptions options;
+  options.kind = stats::allan_kind_from_string(c.kind);
+  options.grid = stats::parse_tau_grid(c.taus);
+  options.grid.min_clusters = c.min_clusters;
+  options.confidence = !c.no_ci;
+  const InputKind input = input_kind_from_string(c.input_kind);
+  const io::Series series = load_input(c.input);
+  const stats::AllanResult result =
+      stats::allan_deviation(series.values, series.sample_rate_hz, input, options);
+  // Render everything first, then write: a failure never leaves half the outputs.
+  const std::string json = c.json_path.empty() ? "" : to_json(result, series, c).dump(2) + "\n";
+  const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
+  if (!c.json_path.empty()) write_text_file(c.json_path, json);
+  if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
+  if (c.json_path != "-" && c.csv_path != "-") std::cout << to_table(result, series);
+}
+
+}  // namespace
+
+std::function<void()> register_allan(CLI::App& app) {
+  auto c = std::make_shared<AllanCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "allan", "Allan-family deviation (ADEV, OADEV, MDEV, HDEV, OHDEV, TDEV, TOTDEV) with "
+               "68 % and 95 % confidence intervals");
+  add_input_options(*cmd, c->input, /*file_optional=*/true);
+  cmd->add_option("--kind", c->kind, "oadev, adev, mdev, hdev, ohdev, tdev or totdev")
+      ->capture_default_str();
+  cmd->add_option("--taus", c->taus,
+                  "octave, decade, all, N-per-decade, or averaging times in s (1,10,100)")
+      ->capture_default_str();
+  cmd->add_option("--min-clusters", c->min_clusters,
+                  "generated grids keep floor(samples/m) >= this (the lab's L_m >= 10)")
+      ->capture_default_str();
+  cmd->add_option("--input", c->input_kind, "rate (default) or phase (angle samples)")
+      ->capture_default_str();
+  cmd->add_flag("--no-ci", c->no_ci, "skip noise identification and confidence intervals");
+  cmd->add_option("--csv", c->csv_path, "write the table as CSV ('-' for stdout)");
+  cmd->add_option("--json", c->json_path, "write JSON ('-' for stdout)");
+  return [c] { run(*c); };
+}
+
+}  // namespace foglab::cli

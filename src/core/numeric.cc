@@ -13,7 +13,7 @@ double compensated_sum(std::span<const double> values) {
   const std::size_t n = values.size();
   const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
   std::vector<CompensatedSum> partial(chunks);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t begin = c * kChunkSamples;
     const std::size_t end = std::min(n, begin + kChunkSamples);

@@ -38,7 +38,7 @@ std::vector<double> overlapping_sums(std::span<const double> x,
   const std::int64_t chunks = chunk_count(n, kChunk);
   std::vector<double> partial(static_cast<std::size_t>(chunks * k_count), 0.0);
   const double* p = x.data();
-#pragma omp parallel for schedule(dynamic, 2)
+#pragma omp parallel for schedule(dynamic, 2) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::int64_t c_end = std::min(n, (c + 1) * kChunk);
     for (std::int64_t b = c * kChunk; b < c_end; b += kBlock) {
@@ -80,7 +80,7 @@ double strided_sum(std::span<const double> x, std::int64_t m, std::int64_t terms
   const std::int64_t chunks = chunk_count(terms, kChunk);
   std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
   const double* p = x.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     double s = 0.0;
     const std::int64_t end = std::min(terms, (c + 1) * kChunk);
@@ -111,7 +111,7 @@ double modified_sum(std::span<const double> x, std::int64_t m, std::int64_t term
   std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
   const double* p = x.data();
   auto d = [p, m](std::int64_t i) { return p[i + 2 * m] - 2.0 * p[i + m] + p[i]; };
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::int64_t begin = c * chunk;
     const std::int64_t end = std::min(terms, begin + chunk);
@@ -142,7 +142,7 @@ double total_sum(std::span<const double> x, std::int64_t m) {
   const std::int64_t terms_end = n - 1;  // i < N-1
   const std::int64_t chunks = chunk_count(terms_end, kChunk);
   std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::int64_t begin = std::max<std::int64_t>(1, c * kChunk);
     const std::int64_t end = std::min(terms_end, (c + 1) * kChunk);

@@ -39,7 +39,7 @@ NoiseId lag1_identify(std::span<const double> phase, std::int64_t m, int d_max) 
   const std::int64_t chunks = (K + chunk - 1) / chunk;
   std::vector<Eigen::Matrix3d> gram(static_cast<std::size_t>(chunks));
   std::vector<Eigen::Vector3d> rhs(static_cast<std::size_t>(chunks));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -63,7 +63,7 @@ NoiseId lag1_identify(std::span<const double> phase, std::int64_t m, int d_max) 
 
   // Pass 2: raw sums for every difference order at once.
   std::vector<DiffSums> partial(static_cast<std::size_t>(chunks));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::int64_t begin = c * chunk;
     const std::int64_t end = std::min(K, begin + chunk);

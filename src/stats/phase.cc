@@ -24,7 +24,7 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
     // every statistic is blind to it, and removing it keeps the numbers small.
     const double x0 = samples[0];
     const double slope = n > 1 ? (samples[n - 1] - x0) / static_cast<double>(n - 1) : 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kChunkSamples)
     for (std::size_t k = 0; k < n; ++k) {
       x[k] = ((samples[k] - x0) - slope * static_cast<double>(k)) * sample_rate_hz;
     }
@@ -39,7 +39,7 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
   x[0] = 0.0;
   const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
   std::vector<CompensatedSum> chunk_sums(chunks);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t begin = c * kChunkSamples;
     const std::size_t end = std::min(n, begin + kChunkSamples);
@@ -53,7 +53,7 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
     offsets[c] = running.value();
     running.add(chunk_sums[c]);
   }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t begin = c * kChunkSamples;
     const std::size_t end = std::min(n, begin + kChunkSamples);

@@ -1,1 +1,219 @@
-// placeholder: filled in by the work on issue 2
+// The Allan family against theory on simulated noise (IEEE Std 952 Annex C,
+// NIST SP 1065 Table 8): slopes, levels inside the confidence intervals, the
+// coverage of the intervals themselves, and numerical care with a large bias.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <omp.h>
+#include <string>
+#include <vector>
+
+#include "foglab/core/error.h"
+#include "foglab/stats/allan.h"
+#include "foglab/stats/confidence.h"
+#include "support/noise.h"
+
+namespace foglab::stats {
+namespace {
+
+// Least-squares slope of log10(dev) against log10(tau).
+double loglog_slope(const AllanResult& r, double tau_min_s, double tau_max_s) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int count = 0;
+  for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+    if (r.tau_s[k] < tau_min_s || r.tau_s[k] > tau_max_s) continue;
+    const double x = std::log10(r.tau_s[k]);
+    const double y = std::log10(r.dev[k]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    ++count;
+  }
+  return (count * sxy - sx * sy) / (count * sxx - sx * sx);
+}
+
+AllanResult run(const std::vector<double>& rate, double fs_hz, AllanKind kind) {
+  AllanOptions options;
+  options.kind = kind;
+  return allan_deviation(rate, fs_hz, InputKind::rate, options);
+}
+
+TEST(AllanTheory, WhiteRateNoiseHasSlopeMinusHalfForEveryStatistic) {
+  constexpr double kFsHz = 100.0;
+  constexpr double kN = 0.2;  // deg/h/sqrt(Hz)
+  const std::vector<double> rate = test::white(1 << 20, 11, kN * std::sqrt(kFsHz));
+  for (const AllanKind kind : all_allan_kinds()) {
+    const AllanResult r = run(rate, kFsHz, kind);
+    const double expected = kind == AllanKind::tdev ? 0.5 : -0.5;
+    EXPECT_NEAR(loglog_slope(r, 0.05, 100.0), expected, 0.05) << to_string(kind);
+  }
+}
+
+TEST(AllanTheory, WhiteRateNoiseLevelIsNOverSqrtTauWithinIntervals) {
+  // For white rate noise AVAR = HVAR = TOTVAR = N^2 / tau (SP1065 Table 8).
+  constexpr double kFsHz = 50.0;
+  constexpr double kN = 0.05;
+  const std::vector<double> rate = test::white(1 << 19, 12, kN * std::sqrt(kFsHz));
+  for (const AllanKind kind : {AllanKind::adev, AllanKind::oadev, AllanKind::hdev,
+                               AllanKind::ohdev, AllanKind::totdev}) {
+    const AllanResult r = run(rate, kFsHz, kind);
+    for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+      EXPECT_EQ(r.alpha[k], 0) << to_string(kind) << " tau " << r.tau_s[k];
+      // Neighbouring taus are correlated, so judge each tau at 99.9 %
+      // where there are at least 100 clusters.
+      if (r.tau_s[k] * kFsHz * 100 > static_cast<double>(rate.size())) continue;
+      const Interval wide = chi2_interval(r.dev[k], r.edf[k], 0.999);
+      const double truth = kN / std::sqrt(r.tau_s[k]);
+      EXPECT_GE(truth, wide.low) << to_string(kind) << " tau " << r.tau_s[k];
+      EXPECT_LE(truth, wide.high) << to_string(kind) << " tau " << r.tau_s[k];
+    }
+    EXPECT_NEAR(r.dev[0] / (kN / std::sqrt(r.tau_s[0])), 1.0, 0.01) << to_string(kind);
+  }
+}
+
+TEST(AllanTheory, RateRandomWalkHasSlopePlusHalfAndLevelKSqrtTauOver3) {
+  // A rate random walk of intensity K: AVAR = K^2 tau / 3 (IEEE 952).
+  constexpr double kFsHz = 10.0;
+  constexpr double kK = 0.01;  // deg/h/sqrt(s)
+  const std::vector<double> rate = test::random_walk(1 << 19, 13, kK / std::sqrt(kFsHz));
+  const AllanResult r = run(rate, kFsHz, AllanKind::oadev);
+  EXPECT_NEAR(loglog_slope(r, 10.0, 1e4), 0.5, 0.1);
+  int inside = 0, counted = 0;
+  for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+    if (r.tau_s[k] < 5.0) continue;  // the discrete walk needs m >> 1
+    const double truth = kK * std::sqrt(r.tau_s[k] / 3.0);
+    ++counted;
+    if (truth >= r.ci95_low[k] && truth <= r.ci95_high[k]) ++inside;
+    EXPECT_EQ(r.alpha[k], -2) << "tau " << r.tau_s[k];
+  }
+  EXPECT_GE(inside, counted - 2);
+}
+
+TEST(AllanTheory, ModifiedAllanOfWhiteRateNoiseIsHalfTheAllanVariance) {
+  // R(n) = MVAR/AVAR -> 1/2 for white FM at large m (SP1065 section 5.2.5).
+  constexpr double kFsHz = 1.0;
+  const std::vector<double> rate = test::white(1 << 20, 14, 1.0);
+  AllanOptions options;
+  options.kind = AllanKind::mdev;
+  options.grid = parse_tau_grid("64,256,1024");
+  const AllanResult mod = allan_deviation(rate, kFsHz, InputKind::rate, options);
+  for (std::size_t k = 0; k < mod.tau_s.size(); ++k) {
+    const double avar = 1.0 / mod.tau_s[k];
+    EXPECT_NEAR(mod.dev[k] * mod.dev[k] / avar, 0.5, 0.08) << "tau " << mod.tau_s[k];
+  }
+}
+
+TEST(AllanTheory, NinetyFivePercentIntervalsCoverTheTruthNinetyFivePercentOfTheTime) {
+  // End-to-end check of noise ID + Greenhall edf + chi-square: 400 records.
+  constexpr int kRecords = 400;
+  int covered_oadev = 0, covered_adev = 0;
+  for (int s = 0; s < kRecords; ++s) {
+    const std::vector<double> rate = test::white(2000, 1000 + s, 1.0);
+    AllanOptions options;
+    options.grid = parse_tau_grid("8");
+    const AllanResult o = allan_deviation(rate, 1.0, InputKind::rate, options);
+    if (1.0 / std::sqrt(8.0) >= o.ci95_low[0] && 1.0 / std::sqrt(8.0) <= o.ci95_high[0]) {
+      ++covered_oadev;
+    }
+    options.kind = AllanKind::adev;
+    const AllanResult a = allan_deviation(rate, 1.0, InputKind::rate, options);
+    if (1.0 / std::sqrt(8.0) >= a.ci95_low[0] && 1.0 / std::sqrt(8.0) <= a.ci95_high[0]) {
+      ++covered_adev;
+    }
+  }
+  // Binomial(400, 0.95): standard deviation 4.4 records; allow 3 sigma.
+  EXPECT_NEAR(covered_oadev, 0.95 * kRecords, 13);
+  EXPECT_NEAR(covered_adev, 0.95 * kRecords, 13);
+}
+
+TEST(AllanTheory, LargeBiasIsRemovedExactlyBeforeIntegration) {
+  // The quick version of large_record_test: 2^20 samples.
+  const std::vector<double> noise = test::white(1 << 20, 15, 1e-3);
+  std::vector<double> biased = noise;
+  for (double& v : biased) v += 1e6;
+  for (const AllanKind kind : all_allan_kinds()) {
+    AllanOptions options;
+    options.kind = kind;
+    options.confidence = false;
+    const AllanResult a = allan_deviation(noise, 1.0, InputKind::rate, options);
+    const AllanResult b = allan_deviation(biased, 1.0, InputKind::rate, options);
+    for (std::size_t k = 0; k < a.dev.size(); ++k) {
+      EXPECT_NEAR(b.dev[k] / a.dev[k], 1.0, 1e-6) << to_string(kind) << " m " << a.m[k];
+    }
+  }
+}
+
+TEST(AllanTheory, PhaseInputGivesTheSameDeviationsAsItsRate) {
+  const std::vector<double> rate = test::white(10000, 16, 1.0);
+  std::vector<double> angle(rate.size() + 1, 0.0);
+  constexpr double kFsHz = 4.0;
+  for (std::size_t i = 0; i < rate.size(); ++i) angle[i + 1] = angle[i] + rate[i] / kFsHz;
+  for (const AllanKind kind : all_allan_kinds()) {
+    AllanOptions options;
+    options.kind = kind;
+    options.confidence = false;
+    const AllanResult a = allan_deviation(rate, kFsHz, InputKind::rate, options);
+    const AllanResult b = allan_deviation(angle, kFsHz, InputKind::phase, options);
+    ASSERT_EQ(a.dev.size(), b.dev.size());
+    for (std::size_t k = 0; k < a.dev.size(); ++k) {
+      EXPECT_NEAR(b.dev[k] / a.dev[k], 1.0, 1e-9) << to_string(kind);
+      EXPECT_EQ(a.n[k], b.n[k]);
+    }
+  }
+}
+
+TEST(AllanTheory, ResultDoesNotDependOnTheNumberOfThreads) {
+  const std::vector<double> rate = test::white(300000, 17, 1.0);
+  for (const AllanKind kind : all_allan_kinds()) {
+    AllanOptions options;
+    options.kind = kind;
+    omp_set_num_threads(1);
+    const AllanResult one = allan_deviation(rate, 1.0, InputKind::rate, options);
+    omp_set_num_threads(2);
+    const AllanResult two = allan_deviation(rate, 1.0, InputKind::rate, options);
+    EXPECT_EQ(one.dev, two.dev) << to_string(kind);
+    EXPECT_EQ(one.alpha, two.alpha) << to_string(kind);
+  }
+}
+
+TEST(AllanInput, TooShortRecordsAreDataErrorsThatSayWhatIsNeeded) {
+  const std::vector<double> two = {1.0, 2.0};
+  AllanOptions options;
+  options.kind = AllanKind::hdev;
+  options.grid = parse_tau_grid("1");
+  try {
+    allan_deviation(two, 1.0, InputKind::rate, options);
+    FAIL() << "expected DataError";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("hdev needs at least 3 rate samples"),
+              std::string::npos)
+        << e.what();
+  }
+  const std::vector<double> small = test::white(50, 1, 1.0);
+  AllanOptions octave;  // 50 samples hold fewer than 10 clusters only for m > 5
+  EXPECT_EQ(allan_deviation(small, 1.0, InputKind::rate, octave).m,
+            (std::vector<std::int64_t>{1, 2, 4}));
+  AllanOptions too_long;
+  too_long.grid = parse_tau_grid("30");
+  try {
+    allan_deviation(small, 1.0, InputKind::rate, too_long);
+    FAIL() << "expected DataError";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("tau 30 s needs more samples"), std::string::npos)
+        << e.what();
+  }
+  const std::vector<double> nine = test::white(9, 1, 1.0);
+  try {
+    allan_deviation(nine, 1.0, InputKind::rate, octave);
+    FAIL() << "expected DataError";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 10 clusters"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(allan_deviation(small, 0.0, InputKind::rate, octave), UsageError);
+  EXPECT_THROW(allan_deviation(small, -5.0, InputKind::rate, octave), UsageError);
+}
+
+}  // namespace
+}  // namespace foglab::stats

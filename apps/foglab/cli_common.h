@@ -1,0 +1,42 @@
+// foglab CLI — options and plumbing shared by the subcommands. No algorithms
+// live here: the commands parse, call the library and write what it returns.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "foglab/core/units.h"
+#include "foglab/io/reader.h"
+
+namespace foglab::cli {
+
+/// Where a command reads its record from.
+struct InputOptions {
+  std::string path;  ///< FILE, "-" for stdin, empty for the built-in sample
+  std::string channel;
+  std::optional<double> sample_rate_hz;
+  std::string format = "auto";
+  std::string units = "deg/h";
+  std::string time_channel;
+};
+
+/// Adds FILE and --channel/--fs/--format/--units/--time to `command`.
+void add_input_options(CLI::App& command, InputOptions& options, bool file_optional);
+
+/// Reads the record (or makes the built-in sample when no FILE was given).
+io::Series load_input(const InputOptions& options);
+
+/// A JSON number, or null for NaN/Inf.
+nlohmann::json number(double value);
+nlohmann::json numbers(const std::vector<double>& values);
+
+/// Describes where the data came from, for every JSON output.
+nlohmann::json input_json(const io::Series& series);
+
+/// Prints a note on stderr ("foglab: note: ...").
+void note(const std::string& text);
+
+}  // namespace foglab::cli

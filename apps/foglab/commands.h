@@ -1,0 +1,14 @@
+// foglab CLI — the subcommands.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace foglab::cli {
+
+/// Each registers its subcommand on `app` and returns the action to run when
+/// the subcommand was chosen.
+std::function<void()> register_allan(CLI::App& app);
+std::function<void()> register_psd(CLI::App& app);
+
+}  // namespace foglab::cli
