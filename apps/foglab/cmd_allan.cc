@@ -88,9 +88,12 @@ void run(const AllanCommand& c) {
   options.grid.min_clusters = c.min_clusters;
   options.confidence = !c.no_ci;
   const InputKind input = input_kind_from_string(c.input_kind);
-  const io::Series series = load_input(c.input);
+  io::Series series = load_input(c.input);
+  const std::size_t samples = series.values.size();
+  // In place: the record becomes the angle record, so memory holds one copy.
   const stats::AllanResult result =
-      stats::allan_deviation(series.values, series.sample_rate_hz, input, options);
+      stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);
+  series.values.resize(samples);  // only the count is used below
   // Render everything first, then write: a failure never leaves half the outputs.
   const std::string json = c.json_path.empty() ? "" : to_json(result, series, c).dump(2) + "\n";
   const std::string csv = c.csv_path.empty() ? "" : to_csv(result);

@@ -9,6 +9,30 @@ namespace foglab {
 
 int worker_threads() { return std::max(1, omp_get_max_threads()); }
 
+CompensatedSum chunk_sum(std::span<const double> values, double shift) {
+  constexpr std::size_t kLanes = 4;
+  double sum[kLanes] = {0.0, 0.0, 0.0, 0.0};
+  double comp[kLanes] = {0.0, 0.0, 0.0, 0.0};
+  const std::size_t n = values.size();
+  const std::size_t body = n - n % kLanes;
+  const double* p = values.data();
+  for (std::size_t i = 0; i < body; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) {  // Kahan, lane by lane
+      const double y = (p[i + l] - shift) - comp[l];
+      const double t = sum[l] + y;
+      comp[l] = (t - sum[l]) - y;
+      sum[l] = t;
+    }
+  }
+  CompensatedSum total;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    total.add(sum[l]);
+    total.add(-comp[l]);
+  }
+  for (std::size_t i = body; i < n; ++i) total.add(p[i] - shift);
+  return total;
+}
+
 double compensated_sum(std::span<const double> values) {
   const std::size_t n = values.size();
   const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
@@ -17,9 +41,7 @@ double compensated_sum(std::span<const double> values) {
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t begin = c * kChunkSamples;
     const std::size_t end = std::min(n, begin + kChunkSamples);
-    CompensatedSum s;
-    for (std::size_t i = begin; i < end; ++i) s.add(values[i]);
-    partial[c] = s;
+    partial[c] = chunk_sum(values.subspan(begin, end - begin));
   }
   CompensatedSum total;
   for (const auto& p : partial) total.add(p);

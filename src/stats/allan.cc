@@ -267,9 +267,13 @@ std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKi
   return dev;
 }
 
-AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
-                            InputKind input, const AllanOptions& options) {
-  const std::vector<double> phase = to_phase(samples, sample_rate_hz, input);
+namespace {
+
+// The statistic on an angle record made by to_phase(); `record_samples` is
+// the length of the original record, for messages.
+AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_samples,
+                             double sample_rate_hz, InputKind input,
+                             const AllanOptions& options) {
   const auto n = static_cast<std::int64_t>(phase.size());
   const std::int64_t limit = max_factor(options.kind, n);
   if (limit < 1) {
@@ -281,7 +285,7 @@ AllanResult allan_deviation(std::span<const double> samples, double sample_rate_
     throw DataError(fmt::format("{} needs at least {} {} samples, the record has {}",
                                 to_string(options.kind),
                                 input == InputKind::rate ? needed - 1 : needed,
-                                to_string(input), samples.size()));
+                                to_string(input), record_samples));
   }
   AllanResult result;
   result.kind = options.kind;
@@ -293,7 +297,7 @@ AllanResult allan_deviation(std::span<const double> samples, double sample_rate_
     throw DataError(fmt::format(
         "{} {} samples are too few for {} with at least {} clusters per tau "
         "({} samples needed); lower --min-clusters or give --taus explicitly",
-        samples.size(), to_string(input), to_string(options.kind), options.grid.min_clusters,
+        record_samples, to_string(input), to_string(options.kind), options.grid.min_clusters,
         options.grid.min_clusters + (input == InputKind::rate ? 0 : 1)));
   }
   result.dev = deviations_from_phase(phase, options.kind, result.m, &result.n);
@@ -343,6 +347,21 @@ AllanResult allan_deviation(std::span<const double> samples, double sample_rate_
     result.ci95_high[k] = ci95.high;
   }
   return result;
+}
+
+}  // namespace
+
+AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
+                            InputKind input, const AllanOptions& options) {
+  const std::vector<double> phase = to_phase(samples, sample_rate_hz, input);
+  return allan_from_phase(phase, samples.size(), sample_rate_hz, input, options);
+}
+
+AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
+                                     InputKind input, const AllanOptions& options) {
+  const std::size_t record_samples = samples.size();
+  to_phase_in_place(samples, sample_rate_hz, input);
+  return allan_from_phase(samples, record_samples, sample_rate_hz, input, options);
 }
 
 }  // namespace foglab::stats

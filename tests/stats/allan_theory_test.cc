@@ -164,6 +164,21 @@ TEST(AllanTheory, PhaseInputGivesTheSameDeviationsAsItsRate) {
   }
 }
 
+TEST(AllanTheory, InPlaceFormGivesTheSameResultAsTheCopyingForm) {
+  const std::vector<double> rate = test::white(200000, 18, 3.0);
+  for (const InputKind input : {InputKind::rate, InputKind::phase}) {
+    std::vector<double> work = rate;
+    EXPECT_EQ(to_phase(rate, 5.0, input), (to_phase_in_place(work, 5.0, input), work));
+    std::vector<double> again = rate;
+    AllanOptions options;
+    options.kind = AllanKind::totdev;
+    const AllanResult copy = allan_deviation(rate, 5.0, input, options);
+    const AllanResult in_place = allan_deviation_in_place(again, 5.0, input, options);
+    EXPECT_EQ(copy.dev, in_place.dev);
+    EXPECT_EQ(copy.ci95_high, in_place.ci95_high);
+  }
+}
+
 TEST(AllanTheory, ResultDoesNotDependOnTheNumberOfThreads) {
   const std::vector<double> rate = test::white(300000, 17, 1.0);
   for (const AllanKind kind : all_allan_kinds()) {

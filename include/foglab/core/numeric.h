@@ -36,6 +36,11 @@ class CompensatedSum {
   double compensation_ = 0.0;
 };
 
+/// Compensated sum of (values[i] - shift) over a short span (one chunk):
+/// four interleaved Kahan accumulators, so the loop vectorises, combined with
+/// Neumaier's rule. Serial; the building block of the parallel sums below.
+CompensatedSum chunk_sum(std::span<const double> values, double shift = 0.0);
+
 /// Compensated sum of `values`, computed in parallel with a thread-count
 /// independent result.
 double compensated_sum(std::span<const double> values);

@@ -93,6 +93,16 @@ struct AllanResult {
 AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
                             InputKind input, const AllanOptions& options = {});
 
+/// As allan_deviation(), but turns `samples` into the angle record in place
+/// (no second array: peak memory stays at one copy of the record). The
+/// vector's contents are unspecified afterwards. The CLI uses this form.
+AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
+                                     InputKind input, const AllanOptions& options = {});
+
+/// Turns a rate or angle record into the angle record of to_phase() in
+/// place; a rate record grows by one element.
+void to_phase_in_place(std::vector<double>& samples, double sample_rate_hz, InputKind input);
+
 /// The angle record foglab analyses, in units where tau0 = 1: a rate record
 /// becomes x_0 = 0, x_{k+1} = x_k + (y_k - mean(y)) (length N+1); an angle
 /// record becomes x_k * fs minus the straight line through its end points.
