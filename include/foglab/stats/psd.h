@@ -1,7 +1,7 @@
 // foglab — power spectral density of a rate record by Welch's method.
 //
 // Estimator: Welch (1967) averaged, modified periodograms: segments of
-// `segment_length` samples with a Hann window and 50 % overlap by default,
+// `segment_length` samples with a periodic Hann window and 50 % overlap by default,
 // each segment's mean removed, FFT by FFTW (one plan made per call and
 // reused for every segment).
 //
@@ -25,7 +25,8 @@ namespace foglab::stats {
 
 struct WelchOptions {
   /// Samples per segment; 0 chooses the largest power of two not above
-  /// N/4 (at least 16, at most N). Must be >= 16 and <= N when given.
+  /// N/4 (at least 16, at most N, at most 2^20). Must be >= 16 and <= N when
+  /// given.
   std::size_t segment_length = 0;
   /// Fraction of a segment shared with the next, in [0, 1).
   double overlap = 0.5;
