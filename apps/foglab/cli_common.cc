@@ -5,7 +5,6 @@
 #include <cmath>
 #include <iostream>
 
-#include "foglab/core/error.h"
 #include "foglab/io/sample.h"
 
 namespace foglab::cli {
@@ -44,11 +43,6 @@ io::Series load_input(const InputOptions& options) {
   read.format = io::input_format_from_string(options.format);
   read.unit = rate_unit_from_string(options.units);
   read.time_channel = options.time_channel;
-  if (options.sample_rate_hz && !(*options.sample_rate_hz > 0.0 &&
-                                  std::isfinite(*options.sample_rate_hz))) {
-    throw UsageError(fmt::format("--fs {}: the sample rate must be a positive number of Hz",
-                                 *options.sample_rate_hz));
-  }
   io::Series series = io::read_series(options.path, read);
   if (options.channel.empty() && series.available_channels.size() > 1) {
     note(fmt::format("'{}' has channels {}; using '{}' (choose with --channel)", options.path,

@@ -1,1 +1,323 @@
-// placeholder: filled in by the work on issue 2
+// foglab — read_series(): option checks, format dispatch, and what every
+// format shares (finite samples, unit conversion, time-vector checks).
+#include "foglab/io/reader.h"
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "foglab/core/error.h"
+#include "readers_internal.h"
+
+namespace foglab::io {
+namespace internal {
+
+std::string quoted_path(const std::string& path) {
+  return path == "-" ? std::string("standard input") : "'" + path + "'";
+}
+
+void throw_data_error(const std::string& path, std::string_view what) {
+  throw DataError(fmt::format("{}: {}", quoted_path(path), what));
+}
+
+namespace {
+
+// stat() + fopen() so that the message carries the system's own reason.
+struct stat stat_readable(const std::string& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) {
+    throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
+  }
+  if (S_ISDIR(info.st_mode)) {
+    throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(EISDIR)));
+  }
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) {
+    throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
+  }
+  std::fclose(file);
+  return info;
+}
+
+}  // namespace
+
+void require_readable(const std::string& path) {
+  if (path != "-") stat_readable(path);
+}
+
+std::optional<std::uint64_t> regular_file_size(const std::string& path) {
+  if (path == "-") return std::nullopt;
+  const struct stat info = stat_readable(path);
+  if (!S_ISREG(info.st_mode)) return std::nullopt;
+  return static_cast<std::uint64_t>(info.st_size);
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+std::string format_value(double value) { return fmt::format("{:.12g}", value); }
+
+bool is_time_name(std::string_view name, bool ignore_case) {
+  if (!ignore_case) return name == "t" || name == "time" || name == "time_s";
+  if (name == "T") return false;  // the lab's temperature, not time
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower == "t" || lower == "time" || lower == "time_s";
+}
+
+bool is_temperature_name(std::string_view name) {
+  if (name.empty() || name[0] != 'T') return false;
+  return std::all_of(name.begin() + 1, name.end(),
+                     [](unsigned char c) { return std::isdigit(c) != 0; });
+}
+
+TimeAxisCheck::TimeAxisCheck(const std::string& path, std::string name, double resolution_s)
+    : path_(path), name_(std::move(name)), resolution_s_(resolution_s) {
+  head_s_.reserve(kHeadSteps + 1);
+  head_lines_.reserve(kHeadSteps + 1);
+}
+
+std::string TimeAxisCheck::where(std::size_t index, std::size_t line) const {
+  return line == 0 ? fmt::format("sample {} of '{}'", index + 1, name_)
+                   : fmt::format("sample {} of '{}' (line {})", index + 1, name_, line);
+}
+
+void TimeAxisCheck::add(double time_s, std::size_t line, double resolution_s) {
+  const std::size_t index = count_++;
+  resolution_s_ = std::max(resolution_s_, resolution_s);
+  if (!std::isfinite(time_s)) {
+    throw_data_error(path_,
+                     fmt::format("time at {} is {}", where(index, line), format_value(time_s)));
+  }
+  if (index == 0) {
+    first_s_ = time_s;
+  } else if (!(time_s > previous_s_)) {
+    throw_data_error(
+        path_, fmt::format("time is not increasing at {}: {} s follows {} s", where(index, line),
+                           format_value(time_s), format_value(previous_s_)));
+  }
+  if (settled_ && index > 0) {
+    const double step = time_s - previous_s_;
+    const double magnitude = std::max(std::fabs(first_s_), std::fabs(time_s));
+    const double rounding_s = resolution_s_ < 0.5 * reference_s_ ? resolution_s_ : 0.0;
+    const double tolerance_s =
+        0.01 * reference_s_ + rounding_s + 8.0 * std::numeric_limits<double>::epsilon() * magnitude;
+    if (std::fabs(step - reference_s_) > tolerance_s) {
+      throw_data_error(
+          path_, fmt::format("time is not uniformly sampled at {}: step {} s ({} s "
+                             "-> {} s), expected {} s (a gap or an irregular step)",
+                             where(index, line), format_value(step), format_value(previous_s_),
+                             format_value(time_s), format_value(reference_s_)));
+    }
+  } else if (!settled_) {
+    head_s_.push_back(time_s);
+    head_lines_.push_back(line);
+  }
+  previous_s_ = time_s;
+  if (!settled_ && head_s_.size() == kHeadSteps + 1) settle_reference();
+}
+
+void TimeAxisCheck::settle_reference() {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < head_s_.size(); ++i) steps.push_back(head_s_[i] - head_s_[i - 1]);
+  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  reference_s_ = *middle;
+  settled_ = true;
+  // replay the buffered times through the step check
+  const std::vector<double> head = std::move(head_s_);
+  const std::vector<std::size_t> lines = std::move(head_lines_);
+  head_s_.clear();
+  head_lines_.clear();
+  const std::size_t count = count_;
+  count_ = 0;
+  for (std::size_t i = 0; i < head.size(); ++i) add(head[i], lines[i]);
+  count_ = count;
+}
+
+double TimeAxisCheck::rate_hz() {
+  if (count_ < 2) {
+    throw_data_error(path_, fmt::format("time column '{}' has {} sample(s); at least 2 are "
+                                        "needed for a sample rate (or give --fs)",
+                                        name_, count_));
+  }
+  if (!settled_) settle_reference();
+  const double rate_hz = static_cast<double>(count_ - 1) / (previous_s_ - first_s_);
+  check_file_sample_rate(path_, rate_hz, fmt::format("time column {}", name_));
+  return rate_hz;
+}
+
+double sample_rate_from_time(const std::string& path, std::string_view name,
+                             std::span<const double> time_s, double resolution_s) {
+  TimeAxisCheck check(path, std::string(name), resolution_s);
+  for (const double t : time_s) check.add(t);
+  return check.rate_hz();
+}
+
+void check_file_sample_rate(const std::string& path, double rate_hz, std::string_view source) {
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
+    throw_data_error(path, fmt::format("sample rate from {} is {} Hz; expected a positive, "
+                                       "finite rate",
+                                       source, format_value(rate_hz)));
+  }
+}
+
+}  // namespace internal
+
+namespace {
+
+using internal::quoted_path;
+using internal::throw_data_error;
+
+std::string lower_case(std::string_view text) {
+  std::string out(text);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+bool has_extension(const std::string& path, std::string_view extension) {
+  const std::string lower = lower_case(path);
+  return lower.size() > extension.size() &&
+         lower.compare(lower.size() - extension.size(), extension.size(), extension) == 0;
+}
+
+// The format a file is read as: the option, else by extension.
+InputFormat resolve_format(const std::string& path, InputFormat format) {
+  if (format != InputFormat::automatic) return format;
+  if (path == "-") return InputFormat::text;
+  if (has_extension(path, ".mat")) return InputFormat::mat;
+  if (has_extension(path, ".f32")) return InputFormat::f32;
+  if (has_extension(path, ".f64")) return InputFormat::f64;
+  return InputFormat::text;
+}
+
+void check_format_source(const std::string& path, InputFormat format) {
+  if (path == "-" && format == InputFormat::mat) {
+    throw UsageError("MAT files cannot be read from standard input: give a file name");
+  }
+  internal::require_readable(path);
+}
+
+std::string describe_non_finite(double value) {
+  if (std::isnan(value)) return "NaN";
+  return value > 0 ? "+Inf" : "-Inf";
+}
+
+// Checks every sample and converts it to deg/h in the same pass.
+void finish_values(Series& series, RateUnit unit) {
+  if (series.values.empty()) {
+    throw_data_error(series.path, fmt::format("channel '{}' has no samples", series.channel));
+  }
+  const double factor = to_deg_per_hour(unit);
+  for (std::size_t i = 0; i < series.values.size(); ++i) {
+    const double value = series.values[i];
+    if (!std::isfinite(value)) {
+      throw_data_error(series.path, fmt::format("sample {} of '{}' is {}", i + 1, series.channel,
+                                                describe_non_finite(value)));
+    }
+    const double converted = value * factor;
+    if (!std::isfinite(converted)) {
+      throw_data_error(
+          series.path,
+          fmt::format("sample {} of '{}' ({} {}) overflows when converted to deg/h", i + 1,
+                      series.channel, internal::format_value(value), to_string(unit)));
+    }
+    series.values[i] = converted;
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(InputFormat format) {
+  switch (format) {
+    case InputFormat::automatic:
+      return "auto";
+    case InputFormat::mat:
+      return "mat";
+    case InputFormat::text:
+      return "text";
+    case InputFormat::f32:
+      return "f32";
+    case InputFormat::f64:
+      return "f64";
+  }
+  return "?";
+}
+
+InputFormat input_format_from_string(std::string_view text) {
+  const std::string t = lower_case(text);
+  if (t == "auto" || t == "automatic") return InputFormat::automatic;
+  if (t == "mat") return InputFormat::mat;
+  if (t == "text" || t == "csv" || t == "tsv" || t == "txt") return InputFormat::text;
+  if (t == "f32" || t == "float32") return InputFormat::f32;
+  if (t == "f64" || t == "float64") return InputFormat::f64;
+  throw UsageError(
+      fmt::format("unknown input format '{}': expected auto, mat, text (csv, tsv), "
+                  "f32 (float32) or f64 (float64)",
+                  text));
+}
+
+Series read_series(const std::string& path, const ReadOptions& options) {
+  if (options.sample_rate_hz &&
+      !(std::isfinite(*options.sample_rate_hz) && *options.sample_rate_hz > 0.0)) {
+    throw UsageError(
+        fmt::format("invalid sample rate --fs {} for {}: expected a positive, "
+                    "finite rate in Hz",
+                    internal::format_value(*options.sample_rate_hz), quoted_path(path)));
+  }
+  const InputFormat format = resolve_format(path, options.format);
+  check_format_source(path, format);
+
+  Series series;
+  switch (format) {
+    case InputFormat::mat:
+      series = internal::read_mat(path, options);
+      break;
+    case InputFormat::f32:
+    case InputFormat::f64:
+      series = internal::read_raw(path, options, format);
+      break;
+    case InputFormat::automatic:
+    case InputFormat::text:
+      series = internal::read_text(path, options);
+      break;
+  }
+  series.path = path;
+  if (options.sample_rate_hz) {
+    series.sample_rate_hz = *options.sample_rate_hz;
+    series.sample_rate_source = "option --fs";
+  }
+  finish_values(series, options.unit);
+  return series;
+}
+
+std::vector<std::string> list_channels(const std::string& path, InputFormat format) {
+  const InputFormat resolved = resolve_format(path, format);
+  check_format_source(path, resolved);
+  switch (resolved) {
+    case InputFormat::mat:
+      return internal::list_mat_channels(path);
+    case InputFormat::f32:
+    case InputFormat::f64:
+      return {"1"};
+    case InputFormat::automatic:
+    case InputFormat::text:
+      return internal::list_text_channels(path);
+  }
+  return {};
+}
+
+}  // namespace foglab::io

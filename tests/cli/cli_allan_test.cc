@@ -33,6 +33,8 @@ struct OctaveCase {
   std::string kind;
 };
 
+void PrintTo(const OctaveCase& c, std::ostream* os) { *os << c.file; }
+
 class CliStable32 : public ::testing::TestWithParam<OctaveCase> {};
 
 TEST_P(CliStable32, JsonReproducesTheOctaveTableWithIntervals) {

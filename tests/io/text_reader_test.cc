@@ -1,1 +1,429 @@
-// placeholder: filled in by the work on issue 2
+// Tests of reading text tables: CSV, TSV and whitespace columns, headers,
+// comments, column choice, the time column, and the messages for bad cells.
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "foglab/core/error.h"
+#include "foglab/io/reader.h"
+
+namespace foglab::io {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+template <typename E>
+std::string message_of(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const E& error) {
+    return error.what();
+  } catch (const std::exception& error) {
+    ADD_FAILURE() << "threw the wrong type: " << error.what();
+    return {};
+  }
+  ADD_FAILURE() << "did not throw";
+  return {};
+}
+
+class TextReaderTest : public ::testing::Test {
+ protected:
+  TextReaderTest() {
+    static int counter = 0;
+    dir_ = fs::temp_directory_path() /
+           ("foglab_text_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir_);
+  }
+  ~TextReaderTest() override {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+  std::string write(const std::string& name, const std::string& content) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << content;
+    return path;
+  }
+  static ReadOptions with_fs(double rate_hz) {
+    ReadOptions options;
+    options.sample_rate_hz = rate_hz;
+    return options;
+  }
+  fs::path dir_;
+};
+
+TEST_F(TextReaderTest, CsvWithHeaderTakesRateAndItsSampleRateFromT) {
+  // the layout `foglab generate` writes: t, rate, temperature
+  const std::string path = write("run.csv",
+                                 "t,rate,temperature\n"
+                                 "0.0,1.5,20.0\n"
+                                 "0.1,2.5,20.1\n"
+                                 "0.2,-3.5,20.2\n");
+  const Series series = read_series(path, {});
+  EXPECT_EQ(series.path, path);
+  EXPECT_EQ(series.channel, "rate");
+  EXPECT_THAT(series.values, ElementsAre(1.5, 2.5, -3.5));
+  EXPECT_NEAR(series.sample_rate_hz, 10.0, 1e-12);
+  EXPECT_EQ(series.sample_rate_source, "time column t");
+  EXPECT_THAT(series.available_channels, ElementsAre("t", "rate", "temperature"));
+  EXPECT_THAT(list_channels(path), ElementsAre("t", "rate", "temperature"));
+}
+
+TEST_F(TextReaderTest, TabSeparatedWithTimeHeaderInAnyCase) {
+  const std::string path = write("run.tsv",
+                                 "Time_S\tY1\tY2\n"
+                                 "10.00\t1\t4\n"
+                                 "10.25\t2\t5\n"
+                                 "10.50\t3\t6\n");
+  const Series series = read_series(path, {});
+  EXPECT_EQ(series.channel, "Y1");
+  EXPECT_THAT(series.values, ElementsAre(1, 2, 3));
+  EXPECT_NEAR(series.sample_rate_hz, 4.0, 1e-12);
+  EXPECT_EQ(series.sample_rate_source, "time column Time_S");
+}
+
+TEST_F(TextReaderTest, WhitespaceColumnsWithoutHeaderAreChosenByIndex) {
+  const std::string path = write("run.txt",
+                                 "  0.0   10   -1e-3\n"
+                                 "0.5\t\t20  +2.5E2\n"
+                                 "1.0 30 3\n");
+  ReadOptions options = with_fs(2.0);
+  options.channel = "3";
+  const Series series = read_series(path, options);
+  EXPECT_EQ(series.channel, "3");
+  EXPECT_THAT(series.values, ElementsAre(-1e-3, 250.0, 3.0));
+  EXPECT_EQ(series.sample_rate_source, "option --fs");
+  EXPECT_THAT(series.available_channels, ElementsAre("1", "2", "3"));
+}
+
+TEST_F(TextReaderTest, TimeColumnOfAHeaderlessFileIsChosenByIndex) {
+  const std::string path = write("run.txt", "0 5\n0.5 6\n1.0 7\n");
+  ReadOptions options;
+  options.channel = "2";
+  options.time_channel = "1";
+  const Series series = read_series(path, options);
+  EXPECT_THAT(series.values, ElementsAre(5, 6, 7));
+  EXPECT_DOUBLE_EQ(series.sample_rate_hz, 2.0);
+  EXPECT_EQ(series.sample_rate_source, "time column 1");
+}
+
+TEST_F(TextReaderTest, OneNumericColumnNeedsNoChannel) {
+  const std::string path = write("rate.txt", "1.25\n2.5\n\n3.75\n");
+  const Series series = read_series(path, with_fs(100.0));
+  EXPECT_EQ(series.channel, "1");
+  EXPECT_THAT(series.values, ElementsAre(1.25, 2.5, 3.75));
+  EXPECT_EQ(series.sample_rate_hz, 100.0);
+}
+
+TEST_F(TextReaderTest, OneColumnWithoutFsAsksForIt) {
+  const std::string path = write("rate.txt", "1\n2\n");
+  const std::string message = message_of<UsageError>([&] { read_series(path, {}); });
+  EXPECT_THAT(message, HasSubstr("'" + path + "' has no sample rate"));
+  EXPECT_THAT(message, HasSubstr("give --fs"));
+}
+
+TEST_F(TextReaderTest, CommentsBlankLinesCrLfAndQuotesAreHandled) {
+  const std::string path = write("commented.csv",
+                                 "\xEF\xBB\xBF# recorded by hand\r\n"
+                                 "\r\n"
+                                 "   # another comment\r\n"
+                                 "\"t\", \"rate\"  # names\r\n"
+                                 "0, 1   # first\r\n"
+                                 "\r\n"
+                                 "1, 2\r\n"
+                                 "# between\r\n"
+                                 "2, \"3\"\r\n");
+  const Series series = read_series(path, {});
+  EXPECT_EQ(series.channel, "rate");
+  EXPECT_THAT(series.values, ElementsAre(1, 2, 3));
+  EXPECT_DOUBLE_EQ(series.sample_rate_hz, 1.0);
+}
+
+TEST_F(TextReaderTest, ColumnsAreChosenByNameOrIndex) {
+  const std::string path = write("three.csv", "a,b,c\n1,2,3\n4,5,6\n");
+  ReadOptions options = with_fs(1.0);
+  options.channel = "b";
+  EXPECT_THAT(read_series(path, options).values, ElementsAre(2, 5));
+  options.channel = "C";  // a name that matches only without regard to case
+  EXPECT_THAT(read_series(path, options).values, ElementsAre(3, 6));
+  options.channel = "1";
+  const Series first = read_series(path, options);
+  EXPECT_EQ(first.channel, "a");
+  EXPECT_THAT(first.values, ElementsAre(1, 4));
+}
+
+TEST_F(TextReaderTest, DigitsThatNameAColumnAreAName) {
+  const std::string path = write("named.csv", "x,1\n10,20\n30,40\n");
+  ReadOptions options = with_fs(1.0);
+  options.channel = "1";  // the column named "1" (the second), not column 1
+  EXPECT_THAT(read_series(path, options).values, ElementsAre(20, 40));
+}
+
+TEST_F(TextReaderTest, UnknownColumnListsTheColumns) {
+  const std::string path = write("three.csv", "t,a,b\n0,1,2\n");
+  ReadOptions options = with_fs(1.0);
+  options.channel = "rate";
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, options); }),
+            "'" + path + "': no channel column 'rate'; columns: t, a, b");
+  options.channel = "4";
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, options); }),
+            "'" + path + "': no channel column 4: the table has 3 column(s) (t, a, b)");
+}
+
+TEST_F(TextReaderTest, SeveralColumnsWithoutAPreferredNameNeedAChannel) {
+  const std::string path = write("three.csv", "t,a,b\n0,1,2\n");
+  const std::string message = message_of<DataError>([&] { read_series(path, {}); });
+  EXPECT_THAT(message, HasSubstr("'" + path + "'"));
+  EXPECT_THAT(message, HasSubstr("several columns (t, a, b) and none is Y1 or rate"));
+  EXPECT_THAT(message, HasSubstr("--channel"));
+}
+
+TEST_F(TextReaderTest, TheOnlyNonTimeColumnIsTheDefault) {
+  const std::string path = write("two.csv", "time,gyro\n0,7\n0.5,8\n");
+  const Series series = read_series(path, {});
+  EXPECT_EQ(series.channel, "gyro");
+  EXPECT_DOUBLE_EQ(series.sample_rate_hz, 2.0);
+}
+
+TEST_F(TextReaderTest, ACapitalTIsTemperatureNotTime) {
+  const std::string path = write("temp.csv", "Y1,T\n1,20\n2,25\n");
+  EXPECT_THAT(message_of<UsageError>([&] { read_series(path, {}); }),
+              HasSubstr("has no sample rate"));
+  EXPECT_EQ(read_series(path, with_fs(1.0)).channel, "Y1");
+}
+
+TEST_F(TextReaderTest, TimeWithAGapIsAnErrorWithIndexAndValues) {
+  const std::string path = write("gap.csv", "t,rate\n0,1\n0.1,1\n0.2,1\n0.4,1\n0.5,1\n");
+  const std::string message = message_of<DataError>([&] { read_series(path, {}); });
+  EXPECT_THAT(message, HasSubstr("'" + path + "'"));
+  EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample 4 of 't' (line 5): step 0.2 s "
+                                 "(0.2 s -> 0.4 s), expected 0.1 s"));
+  // with --fs the time column is not used, so it does not matter
+  EXPECT_EQ(read_series(path, with_fs(10.0)).values.size(), 5u);
+}
+
+TEST_F(TextReaderTest, TimeGoingBackIsAnError) {
+  const std::string path = write("back.csv", "t,rate\n0,1\n1,1\n2,1\n1.5,1\n");
+  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
+              HasSubstr("time is not increasing at sample 4 of 't' (line 5): 1.5 s follows 2 s"));
+}
+
+TEST_F(TextReaderTest, GapLateInALongRecordIsFound) {
+  // past the first 64 steps the time column is checked as it streams by
+  std::string content = "# logger output\ntime_s rate\n";
+  for (int i = 0; i < 500; ++i) {
+    const double t = 100.0 + 0.002 * (i < 321 ? i : i + 1);  // sample 322 is missing
+    content += fmt::format("{} {}\n", t, i);
+  }
+  const std::string path = write("late_gap.txt", content);
+  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
+              HasSubstr("not uniformly sampled at sample 322 of 'time_s' (line 324): step 0.004 s "
+                        "(100.64 s -> 100.644 s), expected 0.002 s"));
+}
+
+TEST_F(TextReaderTest, TimesPrintedWithFewDecimalsAreNotGaps) {
+  // 300 Hz printed with "%.3f": steps of 0.003 and 0.004 s are rounding
+  std::string content = "t,rate\n";
+  for (int i = 0; i < 300; ++i) content += fmt::format("{:.3f},{}\n", 5.0 + i / 300.0, i);
+  const std::string path = write("rounded.csv", content);
+  const Series series = read_series(path, {});
+  // the rate comes from the span, which rounding moves by up to 1 ms in ~1 s
+  EXPECT_NEAR(series.sample_rate_hz, 300.0, 300.0 * 0.001 / 0.996);
+  // ... but a missing sample is still a gap
+  content = "t,rate\n";
+  for (int i = 0; i < 300; ++i) {
+    if (i != 200) content += fmt::format("{:.3f},{}\n", 5.0 + i / 300.0, i);
+  }
+  const std::string gap = write("rounded_gap.csv", content);
+  EXPECT_THAT(message_of<DataError>([&] { read_series(gap, {}); }),
+              HasSubstr("not uniformly sampled at sample 201 of 't' (line 202)"));
+}
+
+TEST_F(TextReaderTest, WholeSecondTimesAreExact) {
+  // integer seconds at 1 Hz: the print resolution (1 s) is no excuse for
+  // a step of 2 s
+  const std::string path = write("seconds.csv", "t,rate\n0,1\n1,1\n2,1\n4,1\n5,1\n");
+  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
+              HasSubstr("at sample 4 of 't' (line 5): step 2 s (2 s -> 4 s), expected 1 s"));
+}
+
+TEST_F(TextReaderTest, OneOddFirstStepIsReportedAsTheOddOne) {
+  // the reference step is the median of the first steps, not the first one
+  const std::string path = write("odd.csv", "t,rate\n0,1\n0.5,1\n0.6,1\n0.7,1\n0.8,1\n");
+  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
+              HasSubstr("at sample 2 of 't' (line 3): step 0.5 s (0 s -> 0.5 s), expected 0.1 s"));
+}
+
+TEST_F(TextReaderTest, NonNumericCellNamesLineColumnAndText) {
+  const std::string path = write("bad.csv",
+                                 "# header follows\n"
+                                 "t,rate\n"
+                                 "0,1\n"
+                                 "1,2\n"
+                                 "2,abc\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, {}); }),
+            "'" + path + "': line 5, column 2 (rate): 'abc' is not a number");
+}
+
+TEST_F(TextReaderTest, NonNumericCellWithoutHeaderNamesTheColumnNumber) {
+  const std::string path = write("bad.txt", "1 2\n3 4x\n");
+  ReadOptions options = with_fs(1.0);
+  options.channel = "2";
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, options); }),
+            "'" + path + "': line 2, column 2: '4x' is not a number");
+}
+
+TEST_F(TextReaderTest, EmptyCellIsReported) {
+  const std::string path = write("hole.csv", "t,rate\n0,1\n1,\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, {}); }),
+            "'" + path + "': line 3, column 2 (rate) is empty");
+}
+
+TEST_F(TextReaderTest, TextInAColumnThatIsNotReadDoesNotMatter) {
+  const std::string path = write("dated.csv", "date,rate\n2021-03-01,1\n2021-03-02,2\n");
+  ReadOptions options = with_fs(1.0);
+  options.channel = "rate";
+  EXPECT_THAT(read_series(path, options).values, ElementsAre(1, 2));
+}
+
+TEST_F(TextReaderTest, RaggedRowIsReported) {
+  const std::string path = write("ragged.csv", "t,rate,temp\n0,1,20\n1,2\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, {}); }),
+            "'" + path + "': line 3 has 2 column(s), expected 3 as in line 1 (t, rate, temp)");
+}
+
+TEST_F(TextReaderTest, SemicolonsGetAHint) {
+  const std::string path = write("excel.csv", "t;rate\n0;1\n");
+  const std::string message = message_of<DataError>([&] { read_series(path, with_fs(1.0)); });
+  EXPECT_THAT(message, HasSubstr("line 2, column 1 (t;rate): '0;1' is not a number"));
+  EXPECT_THAT(message, HasSubstr("semicolon-separated tables are not supported"));
+}
+
+TEST_F(TextReaderTest, BinaryDataIsNotTakenForText) {
+  const std::string path = write("record.dat", std::string("\x00\x00\xf0\x3f\x01\x02", 6));
+  EXPECT_THAT(message_of<DataError>([&] { read_series(path, with_fs(1.0)); }),
+              HasSubstr("'" + path + "': line 1 holds binary data, not text"));
+}
+
+TEST_F(TextReaderTest, AMatFileUnderAnotherNameIsRecognised) {
+  const std::string path = write("record.dat",
+                                 "MATLAB 5.0 MAT-file, Platform: x, Created on: Sat Nov 21\n"
+                                 "  \x00\x01IM\x0e\x00\x00\x00");
+  EXPECT_THAT(message_of<DataError>([&] { read_series(path, with_fs(1.0)); }),
+              HasSubstr("'" + path + "': this is a MAT file, not text"));
+}
+
+TEST_F(TextReaderTest, HeaderWithoutRowsIsReported) {
+  const std::string path = write("header.csv", "# only names\nt,rate\n\n# nothing else\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, {}); }),
+            "'" + path + "': the file has a header (t, rate) but no data rows");
+}
+
+TEST_F(TextReaderTest, EmptyAndCommentOnlyFilesHaveNoData) {
+  const std::string empty = write("empty.csv", "");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(empty, with_fs(1.0)); }),
+            "'" + empty + "': no data (the file is empty or has only comments)");
+  const std::string comments = write("comments.txt", "# a\n\n   \n# b\n");
+  EXPECT_THAT(message_of<DataError>([&] { read_series(comments, with_fs(1.0)); }),
+              HasSubstr("no data"));
+  EXPECT_THAT(message_of<DataError>([&] { list_channels(comments); }), HasSubstr("no data"));
+}
+
+TEST_F(TextReaderTest, NanAndInfAreReportedWithTheirSampleIndex) {
+  const std::string path = write("nan.csv", "t,rate\n0,1\n1,2\n2,nan\n3,4\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, {}); }),
+            "'" + path + "': sample 3 of 'rate' is NaN");
+  const std::string inf = write("inf.txt", "1\n2\n3\n-inf\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(inf, with_fs(1.0)); }),
+            "'" + inf + "': sample 4 of '1' is -Inf");
+}
+
+TEST_F(TextReaderTest, UnitsAreConvertedToDegPerHour) {
+  const std::string path = write("dps.txt", "1\n-0.5\n");
+  ReadOptions options = with_fs(1.0);
+  options.unit = rate_unit_from_string("deg/s");
+  EXPECT_THAT(read_series(path, options).values, ElementsAre(3600.0, -1800.0));
+  options.unit = rate_unit_from_string("rad/s");
+  const Series series = read_series(path, options);
+  EXPECT_DOUBLE_EQ(series.values[0], 180.0 / kPi * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[1], -0.5 * 180.0 / kPi * 3600.0);
+}
+
+TEST_F(TextReaderTest, UnknownUnitAndFormatNamesAreUsageErrors) {
+  EXPECT_THAT(message_of<UsageError>([] { rate_unit_from_string("mrad/s"); }),
+              HasSubstr("unknown rate unit 'mrad/s'"));
+  EXPECT_THAT(message_of<UsageError>([] { input_format_from_string("xlsx"); }),
+              HasSubstr("unknown input format 'xlsx': expected auto, mat, text"));
+  EXPECT_EQ(input_format_from_string("csv"), InputFormat::text);
+  EXPECT_EQ(input_format_from_string("TSV"), InputFormat::text);
+  EXPECT_EQ(input_format_from_string("float32"), InputFormat::f32);
+  EXPECT_EQ(input_format_from_string("float64"), InputFormat::f64);
+  EXPECT_EQ(input_format_from_string("auto"), InputFormat::automatic);
+  for (InputFormat format : {InputFormat::automatic, InputFormat::mat, InputFormat::text,
+                             InputFormat::f32, InputFormat::f64}) {
+    EXPECT_EQ(input_format_from_string(to_string(format)), format);
+  }
+}
+
+TEST_F(TextReaderTest, BadSampleRateOptionIsAUsageError) {
+  const std::string path = write("rate.txt", "1\n2\n");
+  for (double bad : {0.0, -10.0, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
+    const std::string message = message_of<UsageError>([&] { read_series(path, with_fs(bad)); });
+    EXPECT_THAT(message, HasSubstr("invalid sample rate --fs"));
+    EXPECT_THAT(message, HasSubstr("'" + path + "'"));
+  }
+}
+
+TEST_F(TextReaderTest, MissingFileAndDirectoryAreUsageErrors) {
+  const std::string missing = (dir_ / "absent.csv").string();
+  EXPECT_EQ(message_of<UsageError>([&] { read_series(missing, with_fs(1.0)); }),
+            "cannot open '" + missing + "': No such file or directory");
+  EXPECT_EQ(message_of<UsageError>([&] { list_channels(missing); }),
+            "cannot open '" + missing + "': No such file or directory");
+  EXPECT_EQ(message_of<UsageError>([&] { read_series(dir_.string(), with_fs(1.0)); }),
+            "cannot open '" + dir_.string() + "': Is a directory");
+}
+
+TEST_F(TextReaderTest, LongFileIsReadCompletely) {
+  // more than one 1 MiB block, so lines straddle block boundaries
+  std::string content = "t rate\n";
+  for (int i = 0; i < 100000; ++i) {
+    content += std::to_string(i * 0.001) + " " + std::to_string(i % 977) + "\n";
+  }
+  const std::string path = write("long.txt", content);
+  const Series series = read_series(path, {});
+  ASSERT_EQ(series.values.size(), 100000u);
+  for (std::size_t i = 0; i < series.values.size(); ++i) {
+    ASSERT_EQ(series.values[i], static_cast<double>(i % 977)) << "sample " << i + 1;
+  }
+  EXPECT_NEAR(series.sample_rate_hz, 1000.0, 1e-6);
+}
+
+TEST_F(TextReaderTest, DashReadsTextFromStandardInput) {
+  const std::string path = write("stdin.csv", "t,rate\n0,4\n0.5,5\n");
+  ASSERT_NE(std::freopen(path.c_str(), "rb", stdin), nullptr);
+  const Series series = read_series("-", {});
+  EXPECT_EQ(series.path, "-");
+  EXPECT_THAT(series.values, ElementsAre(4, 5));
+  EXPECT_DOUBLE_EQ(series.sample_rate_hz, 2.0);
+  // messages call it "standard input"
+  ASSERT_NE(std::freopen(path.c_str(), "rb", stdin), nullptr);
+  ReadOptions options;
+  options.channel = "Y9";
+  EXPECT_EQ(message_of<DataError>([&] { read_series("-", options); }),
+            "standard input: no channel column 'Y9'; columns: t, rate");
+}
+
+}  // namespace
+}  // namespace foglab::io

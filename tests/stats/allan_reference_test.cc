@@ -81,6 +81,8 @@ struct Stable32Case {
   bool has_intervals;
 };
 
+void PrintTo(const Stable32Case& c, std::ostream* os) { *os << c.file; }
+
 class Stable32PhaseDat : public ::testing::TestWithParam<Stable32Case> {};
 
 TEST_P(Stable32PhaseDat, DeviationsCountsAndIntervalsMatch) {

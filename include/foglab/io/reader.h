@@ -14,6 +14,24 @@
 // The sample rate comes, in this order, from ReadOptions::sample_rate_hz,
 // from a MAT variable `f`, or from a uniformly sampled time column (`t`,
 // `time` or `time_s`; gaps and non-monotonic time are data errors).
+// An explicit ReadOptions::time_channel is used before `f`. Text headers
+// match the time names without regard to case, except that a column named
+// exactly `T` is the lab's temperature. A time step counts as a gap when it
+// differs from the median of the first 64 steps by more than 1%.
+//
+// Channel names: MAT variables by name; text columns by header name (exact,
+// else without regard to case) or, for a string of digits that is not a
+// name, by 1-based index; columns of a table without a header are named "1",
+// "2", ...; a raw file's one channel is "1". The default channel leaves out
+// `f`, the time and the lab's temperatures (`T`, `T1`, `T2`, ...; MAT only).
+// In a text table only the cells of the columns read are parsed, so a
+// column of dates or words elsewhere does not matter.
+//
+// MAT files are read through matio into the result vector directly (any
+// numeric class is converted to double on the way; the time vector, when it
+// gives the rate, is read and released first), so reading takes about one
+// copy of the channel in memory. Damaged files (truncated, garbage, corrupt
+// compressed data) are DataErrors, and matio/HDF5 never print to stderr.
 //
 // Errors: an unusable option is a UsageError (exit 2); unusable content is a
 // DataError (exit 3) whose message names the file and the variable, line,
@@ -68,7 +86,10 @@ struct Series {
   /// Where the sample rate came from: "option --fs", "variable f" or
   /// "time column t" (with the actual name).
   std::string sample_rate_source;
-  /// Every data channel the file holds (for messages and listings).
+  /// Every data channel the file holds (for messages and listings). MAT:
+  /// the real numeric vectors of two or more samples, in file order (v7.3:
+  /// name order), `t` and `T1` included, scalars such as `f` not; text:
+  /// every column; raw: "1".
   std::vector<std::string> available_channels;
 };
 

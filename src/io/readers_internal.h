@@ -1,0 +1,133 @@
+// foglab — internals shared by the readers in src/io (not a public header).
+//
+// read_series() in reader.cc validates the options, picks the format and
+// hands the file to one of the format readers below. A format reader fills a
+// Series with the chosen channel's samples *in the file's unit*, the sample
+// rate and its source, and the channel list; reader.cc then checks that the
+// samples are finite and converts them to deg/h. Every message a reader
+// throws starts with the file's name (see quoted_path()).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "foglab/io/reader.h"
+
+namespace foglab::io::internal {
+
+/// "'PATH'" for a file, "standard input" for "-": how messages name a source.
+std::string quoted_path(const std::string& path);
+
+/// Throws DataError("<quoted path>: <what>").
+[[noreturn]] void throw_data_error(const std::string& path, std::string_view what);
+
+/// Throws UsageError("cannot open '<path>': <reason>") unless `path` is "-" or
+/// a regular file that can be opened for reading.
+void require_readable(const std::string& path);
+
+/// Size in bytes of a regular file; nullopt for "-", a pipe or a device,
+/// which are read as streams (throws UsageError as above if unreadable).
+std::optional<std::uint64_t> regular_file_size(const std::string& path);
+
+/// `names` joined with ", " (for messages listing channels).
+std::string join_names(const std::vector<std::string>& names);
+
+/// A value for messages, to 12 significant digits (0.1 + 0.2 shows as 0.3).
+std::string format_value(double value);
+
+/// True for the automatic time-channel names `t`, `time`, `time_s`. Text
+/// headers compare without regard to case (`Time`, `TIME_S`), except that a
+/// column named exactly `T` is the lab's temperature and never time.
+bool is_time_name(std::string_view name, bool ignore_case);
+
+/// True for the lab's temperature names `T`, `T1`, `T2`, ... (never data).
+bool is_temperature_name(std::string_view name);
+
+/// Checks a time axis sample by sample, so that a text reader need not keep
+/// the time column: every time must be finite, every step positive (else
+/// "time is not increasing") and within 1% of the reference step plus the
+/// time's resolution (else "not uniformly sampled ... a gap or an irregular
+/// step"). The reference step is the median of the first 64 steps, so one
+/// odd step at the start does not make every regular step look wrong. The
+/// resolution is that of the stored or printed times (single precision,
+/// "%.3f"): rounding each time moves a step by up to one resolution unit.
+/// It is allowed for only while it is below half the reference step; a
+/// coarser one (integer seconds at 1 Hz) means the times are exact.
+/// Messages give the 1-based sample index (and the line, when given) and the
+/// two time values; they are DataErrors naming `path`.
+class TimeAxisCheck {
+ public:
+  TimeAxisCheck(const std::string& path, std::string name, double resolution_s);
+  /// The next time [s]; `line` (0: none) is quoted in messages;
+  /// `resolution_s` raises the resolution for this and later samples.
+  void add(double time_s, std::size_t line = 0, double resolution_s = 0.0);
+  /// [Hz] (n - 1) / (t[n-1] - t[0]) once all samples are in; at least two
+  /// are needed.
+  double rate_hz();
+
+ private:
+  static constexpr std::size_t kHeadSteps = 64;
+  void settle_reference();
+  std::string where(std::size_t index, std::size_t line) const;
+
+  std::string path_;
+  std::string name_;
+  double resolution_s_;
+  std::size_t count_ = 0;
+  double first_s_ = 0.0;
+  double previous_s_ = 0.0;
+  // the first kHeadSteps + 1 times (and their lines), until the reference
+  // step is known
+  std::vector<double> head_s_;
+  std::vector<std::size_t> head_lines_;
+  bool settled_ = false;
+  double reference_s_ = 0.0;
+};
+
+/// The rate [Hz] of a whole time vector, checked as by TimeAxisCheck.
+double sample_rate_from_time(const std::string& path, std::string_view name,
+                             std::span<const double> time_s, double resolution_s);
+
+/// Throws DataError unless a rate read from the file is finite and > 0.
+void check_file_sample_rate(const std::string& path, double rate_hz, std::string_view source);
+
+/// One stretch of matio calls. matio keeps global state (its log function)
+/// and the serial HDF5 library under v7.3 files is not thread-safe, so a
+/// session holds a process-wide lock. It routes matio's (and HDF5's) log
+/// messages into the session instead of stderr. matio 1.5.23 reports
+/// problems only through these messages (its Mat_Critical() only logs; the
+/// library never calls the aborting Mat_Error()) and sometimes returns
+/// "success" after a short read, so callers check messages() after each
+/// call that matters. A MAT writer should hold a session too.
+class MatioSession {
+ public:
+  MatioSession();
+  ~MatioSession();
+  MatioSession(const MatioSession&) = delete;
+  MatioSession& operator=(const MatioSession&) = delete;
+
+  /// matio's messages since the last clear(): errors and critical messages,
+  /// plus warnings when `with_warnings`. HDF5 error stacks are reduced to
+  /// their innermost "minor" description.
+  std::vector<std::string> messages(bool with_warnings) const;
+  void clear();
+};
+
+// --- the format readers (mat_reader.cc, text_reader.cc, raw_reader.cc) ---
+// Each returns the channel in the file's unit; `options.sample_rate_hz`, when
+// set, has been validated and is used instead of anything in the file.
+
+Series read_mat(const std::string& path, const ReadOptions& options);
+std::vector<std::string> list_mat_channels(const std::string& path);
+
+Series read_text(const std::string& path, const ReadOptions& options);
+std::vector<std::string> list_text_channels(const std::string& path);
+
+/// `format` is InputFormat::f32 or InputFormat::f64.
+Series read_raw(const std::string& path, const ReadOptions& options, InputFormat format);
+
+}  // namespace foglab::io::internal
