@@ -111,7 +111,7 @@ void BM_AllanDeviation(benchmark::State& state) {
 
 BENCHMARK(BM_ReadOnce)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 BENCHMARK(BM_OadevOctaveFromPhase)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
-BENCHMARK(BM_ToPhase)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_ToPhase)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_AllanDeviation)
     ->Args({static_cast<int>(stats::AllanKind::oadev), 0})
     ->Args({static_cast<int>(stats::AllanKind::oadev), 1})
@@ -121,6 +121,8 @@ BENCHMARK(BM_AllanDeviation)
     ->Args({static_cast<int>(stats::AllanKind::totdev), 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true)
     ->UseRealTime();
 
 }  // namespace

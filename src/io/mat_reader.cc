@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "readers_internal.h"
 
 namespace {
@@ -439,7 +440,10 @@ class MatFile {
       edge.push_back(static_cast<int>(d));
     }
 
-    std::vector<double> values(static_cast<std::size_t>(numel), kUnread);
+    // One spare element: the Allan integration turns the record into its
+    // angle record in place, which is one sample longer.
+    std::vector<double> values =
+        large_vector(static_cast<std::size_t>(numel), kUnread, static_cast<std::size_t>(numel) + 1);
     // matio delivers the class recorded in the info, converting from the
     // stored type (int16, single, ...) on the way: ask for doubles.
     info->class_type = MAT_C_DOUBLE;

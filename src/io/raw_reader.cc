@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "readers_internal.h"
 
 namespace foglab::io::internal {
@@ -88,7 +89,9 @@ Series read_raw(const std::string& path, const ReadOptions& options, InputFormat
   if (const std::optional<std::uint64_t> size = regular_file_size(path)) {
     if (*size == 0) throw_data_error(path, "the file is empty (no samples)");
     if (*size % element_bytes != 0) throw_truncated(path, *size, element_bytes);
-    series.values.reserve(static_cast<std::size_t>(*size / element_bytes));
+    // One spare element for the in-place angle integration (allan.h).
+    series.values.reserve(static_cast<std::size_t>(*size / element_bytes) + 1);
+    advise_huge_pages(series.values.data(), series.values.capacity());
   }
 
   // Blocks of whole samples; a partial sample at the end of a block waits

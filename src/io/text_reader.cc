@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "readers_internal.h"
 
 namespace foglab::io::internal {
@@ -390,6 +391,7 @@ Series read_text(const std::string& path, const ReadOptions& options) {
     const double rows = file_bytes / static_cast<double>(first_row.size() + 1);
     const auto capacity = static_cast<std::size_t>(rows * 1.2) + 16;
     series.values.reserve(capacity);
+    advise_huge_pages(series.values.data(), series.values.capacity());
   };
 
   auto parse_cell = [&](std::string_view field, std::size_t index, std::size_t line_number) {

@@ -320,10 +320,11 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
   if (!options.confidence) return result;
 
   const bool hadamard = options.kind == AllanKind::hdev || options.kind == AllanKind::ohdev;
+  const std::vector<NoiseId> ids = identify_noise(phase, result.m, hadamard ? 3 : 2);
   int previous_alpha = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t m = result.m[k];
-    NoiseId id = identify_noise(phase, m, hadamard ? 3 : 2);
+    NoiseId id = ids[k];
     if (id.method == "none") id.alpha = previous_alpha;
     previous_alpha = id.alpha;
     result.alpha[k] = id.alpha;

@@ -63,7 +63,7 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
                              InputKind input) {
   check_rate(sample_rate_hz);
   if (input == InputKind::phase) {
-    std::vector<double> x(samples.size());
+    std::vector<double> x = large_vector(samples.size());
     angle_to_phase(samples, sample_rate_hz, x.data());
     return x;
   }
@@ -71,7 +71,7 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
   const double mean = compensated_mean(samples);
   double last = 0.0;
   const std::vector<double> offsets = chunk_offsets(samples, mean, &last);
-  std::vector<double> x(n + 1);
+  std::vector<double> x = large_vector(n + 1);
   const std::size_t chunks = offsets.size();
 #pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::size_t c = 0; c < chunks; ++c) {

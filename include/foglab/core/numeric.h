@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 namespace foglab {
 
@@ -37,7 +38,7 @@ class CompensatedSum {
 };
 
 /// Compensated sum of (values[i] - shift) over a short span (one chunk):
-/// four interleaved Kahan accumulators, so the loop vectorises, combined with
+/// sixteen interleaved Kahan accumulators, so the loop vectorises, combined with
 /// Neumaier's rule. Serial; the building block of the parallel sums below.
 CompensatedSum chunk_sum(std::span<const double> values, double shift = 0.0);
 
@@ -47,6 +48,17 @@ double compensated_sum(std::span<const double> values);
 
 /// Compensated arithmetic mean of `values` (0 for an empty span).
 double compensated_mean(std::span<const double> values);
+
+/// A vector of `size` copies of `fill` with room for `capacity` elements
+/// (at least `size`), for records of up to 10^9 samples. On Linux the
+/// memory is advised for transparent huge pages before it is first touched:
+/// on virtual machines the first-touch page faults of a fresh 4 KiB-paged
+/// array can cost more than the statistics computed on it (bench/RESULTS.md).
+std::vector<double> large_vector(std::size_t size, double fill = 0.0, std::size_t capacity = 0);
+
+/// Advises transparent huge pages for the not yet touched memory
+/// [data, data + count) (Linux madvise; a no-op elsewhere or for small spans).
+void advise_huge_pages(double* data, std::size_t count);
 
 /// Number of worker threads foglab uses (OpenMP's limit, at least 1).
 int worker_threads();

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace foglab::stats {
 
@@ -37,6 +38,11 @@ struct NoiseId {
 /// families, 3 for Hadamard. The result is clamped to the exponents for which
 /// the statistic converges: [-2, 2] for d_max = 2, [-4, 2] for d_max = 3.
 NoiseId identify_noise(std::span<const double> phase, std::int64_t m, int d_max);
+
+/// The same for several averaging factors at once, in two passes over the
+/// record whatever their number (the form allan_deviation() uses).
+std::vector<NoiseId> identify_noise(std::span<const double> phase,
+                                    std::span<const std::int64_t> factors, int d_max);
 
 /// Lag-1 autocorrelation r1 of a series (Riley & Greenhall eq. 2).
 double lag1_autocorrelation(std::span<const double> series);
