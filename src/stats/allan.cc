@@ -102,36 +102,67 @@ double strided_sum(std::span<const double> x, std::int64_t m, std::int64_t terms
 }
 
 // Modified Allan: sum over j = 0 .. n-1 of (sum_{i=j}^{j+m-1} d_i)^2 with
-// d_i = x_{i+2m} - 2 x_{i+m} + x_i, by a sliding window. Each chunk starts its
-// window afresh, so rounding never accumulates beyond one chunk; chunks are
-// at least m long, so the restarts cost at most one extra pass.
+// d_i = x_{i+2m} - 2 x_{i+m} + x_i, by sliding windows. Each chunk starts its
+// windows afresh, so rounding never accumulates beyond one chunk; chunks are
+// at least m long, so the restarts cost at most one extra pass. For short
+// factors a chunk runs four windows side by side (independent dependency
+// chains, about three times faster).
 double modified_sum(std::span<const double> x, std::int64_t m, std::int64_t terms) {
   const std::int64_t chunk = std::max(kChunk, m);
   const std::int64_t chunks = chunk_count(terms, chunk);
   std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
   const double* p = x.data();
   auto d = [p, m](std::int64_t i) { return p[i + 2 * m] - 2.0 * p[i + m] + p[i]; };
+  auto start_window = [&](std::int64_t j) {
+    double w = 0.0;
+    for (std::int64_t i = j; i < j + m; ++i) w += d(i);
+    return w;
+  };
+  constexpr std::int64_t kLanes = 4;
 #pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::int64_t begin = c * chunk;
     const std::int64_t end = std::min(terms, begin + chunk);
-    double window = 0.0;
-    for (std::int64_t i = begin; i < begin + m; ++i) window += d(i);
+    const std::int64_t length = end - begin;
     double s = 0.0;
-    for (std::int64_t j = begin; j < end; ++j) {
+    std::int64_t j = begin;
+    if (m * 16 <= length) {
+      // The lanes stop at least one term before the chunk's end, so every
+      // window update below reads inside the record; the tail loop finishes.
+      const std::int64_t lane = (length - 1) / kLanes;
+      double w[kLanes], acc[kLanes];
+      for (std::int64_t l = 0; l < kLanes; ++l) {
+        w[l] = start_window(begin + l * lane);
+        acc[l] = 0.0;
+      }
+      for (std::int64_t t = 0; t < lane; ++t) {
+        for (std::int64_t l = 0; l < kLanes; ++l) {
+          const std::int64_t jl = begin + l * lane + t;
+          acc[l] += w[l] * w[l];
+          w[l] += d(jl + m) - d(jl);
+        }
+      }
+      for (std::int64_t l = 0; l < kLanes; ++l) s += acc[l];
+      j = begin + kLanes * lane;
+    }
+    double window = start_window(j);
+    for (; j < end; ++j) {
       s += window * window;
       if (j + 1 < terms) window += d(j + m) - d(j);
     }
     partial[c] = s;
   }
   CompensatedSum total;
-  for (const double s : partial) total.add(s);
+  for (const double v : partial) total.add(v);
   return total.value();
 }
 
 // Total variance: second differences at i = 1 .. N-2 of the record extended
-// by point reflection at both ends (SP1065 section 5.2.11).
-double total_sum(std::span<const double> x, std::int64_t m) {
+// by point reflection at both ends (SP1065 section 5.2.11). For i in
+// [m, N-1-m] no reflection is involved and the terms are exactly the OADEV
+// terms, so only the 2(m-1) edge terms are computed here; the caller adds
+// the OADEV sum of the same factor.
+double total_edge_sum(std::span<const double> x, std::int64_t m) {
   const auto n = static_cast<std::int64_t>(x.size());
   const double* p = x.data();
   auto extended = [p, n](std::int64_t k) {
@@ -139,28 +170,14 @@ double total_sum(std::span<const double> x, std::int64_t m) {
     if (k > n - 1) return 2.0 * p[n - 1] - p[2 * (n - 1) - k];
     return p[k];
   };
-  const std::int64_t terms_end = n - 1;  // i < N-1
-  const std::int64_t chunks = chunk_count(terms_end, kChunk);
-  std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
-#pragma omp parallel for schedule(static) if (chunks > 1)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    const std::int64_t begin = std::max<std::int64_t>(1, c * kChunk);
-    const std::int64_t end = std::min(terms_end, (c + 1) * kChunk);
-    double s = 0.0;
-    for (std::int64_t i = begin; i < end; ++i) {
-      double d;
-      if (i >= m && i + m <= n - 1) {
-        d = p[i - m] - 2.0 * p[i] + p[i + m];
-      } else {
-        d = extended(i - m) - 2.0 * p[i] + extended(i + m);
-      }
-      s += d * d;
-    }
-    partial[c] = s;
-  }
-  CompensatedSum total;
-  for (const double s : partial) total.add(s);
-  return total.value();
+  CompensatedSum s;
+  auto add = [&](std::int64_t i) {
+    const double d = extended(i - m) - 2.0 * p[i] + extended(i + m);
+    s.add(d * d);
+  };
+  for (std::int64_t i = 1; i < std::min(m, n - 1); ++i) add(i);               // left edge
+  for (std::int64_t i = std::max(m, n - m); i <= n - 2; ++i) add(i);          // right edge
+  return s.value();
 }
 
 std::int64_t term_count(AllanKind kind, std::int64_t n, std::int64_t m) {
@@ -232,6 +249,10 @@ std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKi
   std::vector<double> sums(factors.size());
   switch (kind) {
     case AllanKind::oadev: sums = overlapping_sums<2>(phase, factors); break;
+    case AllanKind::totdev:
+      sums = overlapping_sums<2>(phase, factors);
+      for (std::size_t k = 0; k < factors.size(); ++k) sums[k] += total_edge_sum(phase, factors[k]);
+      break;
     case AllanKind::ohdev: sums = overlapping_sums<3>(phase, factors); break;
     default:
       for (std::size_t k = 0; k < factors.size(); ++k) {
@@ -241,7 +262,6 @@ std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKi
           case AllanKind::hdev: sums[k] = strided_sum<3>(phase, m, counts[k]); break;
           case AllanKind::mdev:
           case AllanKind::tdev: sums[k] = modified_sum(phase, m, counts[k]); break;
-          case AllanKind::totdev: sums[k] = total_sum(phase, m); break;
           default: break;
         }
       }
