@@ -1,6 +1,7 @@
 #include "cli_common.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <iostream>
@@ -37,6 +38,7 @@ io::Series load_input(const InputOptions& options) {
                      io::BuiltinSample::kDurationS / 3600.0));
     return sample;
   }
+  progress(fmt::format("reading '{}'", options.path));
   io::ReadOptions read;
   read.channel = options.channel;
   read.sample_rate_hz = options.sample_rate_hz;
@@ -71,5 +73,10 @@ nlohmann::json input_json(const io::Series& series) {
 }
 
 void note(const std::string& text) { std::cerr << "foglab: note: " << text << "\n"; }
+
+void progress(const std::string& step) {
+  static const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) std::cerr << "foglab: " << step << " ...\n";
+}
 
 }  // namespace foglab::cli

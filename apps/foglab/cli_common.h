@@ -39,4 +39,8 @@ nlohmann::json input_json(const io::Series& series);
 /// Prints a note on stderr ("foglab: note: ...").
 void note(const std::string& text);
 
+/// Announces a long step on stderr ("foglab: reading ..."), only when stderr
+/// is a terminal; nothing when it is redirected.
+void progress(const std::string& step);
+
 }  // namespace foglab::cli

@@ -90,6 +90,8 @@ void run(const AllanCommand& c) {
   const InputKind input = input_kind_from_string(c.input_kind);
   io::Series series = load_input(c.input);
   const std::size_t samples = series.values.size();
+  progress(fmt::format("{} of {} samples{}", stats::to_string(options.kind), samples,
+                       options.confidence ? " with noise identification and intervals" : ""));
   // In place: the record becomes the angle record, so memory holds one copy.
   const stats::AllanResult result =
       stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);

@@ -31,6 +31,7 @@ nlohmann::json spectrum_json(const stats::PsdResult& p) {
 
 void run(const PsdCommand& c) {
   const io::Series series = load_input(c.input);
+  progress(fmt::format("Welch PSD of {} samples", series.values.size()));
   stats::WelchOptions options;
   options.segment_length = c.segment;
   options.overlap = c.overlap;
