@@ -16,6 +16,9 @@
 
 #include "foglab/core/error.h"
 #include "foglab/io/reader.h"
+#include "support/expect.h"
+#include "reader_fixture.h"
+#include "support/files.h"
 
 namespace foglab::io {
 namespace {
@@ -25,19 +28,7 @@ using ::testing::ElementsAre;
 using ::testing::ElementsAreArray;
 using ::testing::HasSubstr;
 
-template <typename E>
-std::string message_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const E& error) {
-    return error.what();
-  } catch (const std::exception& error) {
-    ADD_FAILURE() << "threw the wrong type: " << error.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
+using test::message_of;
 
 // Little-endian bytes of the values, whatever the host's byte order.
 template <typename T>
@@ -54,30 +45,7 @@ std::string little_endian_bytes(const std::vector<T>& values) {
   return out;
 }
 
-class RawReaderTest : public ::testing::Test {
- protected:
-  RawReaderTest() {
-    static int counter = 0;
-    dir_ = fs::temp_directory_path() /
-           ("foglab_raw_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir_);
-  }
-  ~RawReaderTest() override {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  std::string write(const std::string& name, const std::string& bytes) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
-  static ReadOptions with_fs(double rate_hz) {
-    ReadOptions options;
-    options.sample_rate_hz = rate_hz;
-    return options;
-  }
-  fs::path dir_;
-};
+using RawReaderTest = ReaderTest;
 
 TEST_F(RawReaderTest, Float64RoundTrip) {
   const std::vector<double> values = {1.5, -2.25, 1e-300, 123456789.123456789, 0.0};

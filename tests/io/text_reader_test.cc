@@ -15,6 +15,9 @@
 
 #include "foglab/core/error.h"
 #include "foglab/io/reader.h"
+#include "support/expect.h"
+#include "reader_fixture.h"
+#include "support/files.h"
 
 namespace foglab::io {
 namespace {
@@ -23,44 +26,9 @@ namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-template <typename E>
-std::string message_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const E& error) {
-    return error.what();
-  } catch (const std::exception& error) {
-    ADD_FAILURE() << "threw the wrong type: " << error.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
+using test::message_of;
 
-class TextReaderTest : public ::testing::Test {
- protected:
-  TextReaderTest() {
-    static int counter = 0;
-    dir_ = fs::temp_directory_path() /
-           ("foglab_text_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir_);
-  }
-  ~TextReaderTest() override {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  std::string write(const std::string& name, const std::string& content) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << content;
-    return path;
-  }
-  static ReadOptions with_fs(double rate_hz) {
-    ReadOptions options;
-    options.sample_rate_hz = rate_hz;
-    return options;
-  }
-  fs::path dir_;
-};
+using TextReaderTest = ReaderTest;
 
 TEST_F(TextReaderTest, CsvWithHeaderTakesRateAndItsSampleRateFromT) {
   // the layout `foglab generate` writes: t, rate, temperature
@@ -391,8 +359,8 @@ TEST_F(TextReaderTest, MissingFileAndDirectoryAreUsageErrors) {
             "cannot open '" + missing + "': No such file or directory");
   EXPECT_EQ(message_of<UsageError>([&] { list_channels(missing); }),
             "cannot open '" + missing + "': No such file or directory");
-  EXPECT_EQ(message_of<UsageError>([&] { read_series(dir_.string(), with_fs(1.0)); }),
-            "cannot open '" + dir_.string() + "': Is a directory");
+  EXPECT_EQ(message_of<UsageError>([&] { read_series(dir_.path().string(), with_fs(1.0)); }),
+            "cannot open '" + dir_.path().string() + "': Is a directory");
 }
 
 TEST_F(TextReaderTest, LongFileIsReadCompletely) {
