@@ -25,8 +25,7 @@ struct AllanCommand {
   std::string json_path;
 };
 
-std::string dev_unit(stats::AllanKind kind, InputKind input) {
-  (void)input;
+std::string dev_unit(stats::AllanKind kind) {
   return kind == stats::AllanKind::tdev ? "deg/h*s" : "deg/h";
 }
 
@@ -34,7 +33,7 @@ nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
                        const AllanCommand& c) {
   return {{"kind", std::string(stats::to_string(r.kind))},
           {"input", std::string(to_string(r.input))},
-          {"unit", dev_unit(r.kind, r.input)},
+          {"unit", dev_unit(r.kind)},
           {"tau_s", r.tau_s},
           {"dev", numbers(r.dev)},
           {"n", r.n},
@@ -55,7 +54,7 @@ nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
 std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
 
 std::string to_csv(const stats::AllanResult& r) {
-  const std::string u = dev_unit(r.kind, r.input) == "deg/h" ? "deg_h" : "deg_h_s";
+  const std::string u = dev_unit(r.kind) == "deg/h" ? "deg_h" : "deg_h_s";
   std::string out = fmt::format(
       "tau_s,m,n,dev_{0},alpha,edf,ci68_low_{0},ci68_high_{0},ci95_low_{0},ci95_high_{0}\n", u);
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
@@ -67,7 +66,7 @@ std::string to_csv(const stats::AllanResult& r) {
 }
 
 std::string to_table(const stats::AllanResult& r, const io::Series& series) {
-  const std::string unit = dev_unit(r.kind, r.input);
+  const std::string unit = dev_unit(r.kind);
   std::string out = fmt::format("{} of '{}' channel {} ({} samples at {} Hz, {})\n",
                                 stats::to_string(r.kind), series.path, series.channel,
                                 series.values.size(), series.sample_rate_hz,

@@ -139,9 +139,13 @@ std::vector<std::int64_t> averaging_factors(const TauGrid& grid, std::int64_t ph
       factors.assign(unique.begin(), unique.end());
       break;
     }
-    case TauGridKind::all:
-      for (std::int64_t m = 1; m <= std::min(limit, kAllGridMaxFactors); ++m) factors.push_back(m);
+    case TauGridKind::all: {
+      const auto by_work = static_cast<std::int64_t>(
+          std::max(100.0, kAllGridWorkSamples / static_cast<double>(phase_points)));
+      const std::int64_t count = std::min({limit, kAllGridMaxFactors, by_work});
+      for (std::int64_t m = 1; m <= count; ++m) factors.push_back(m);
       break;
+    }
     case TauGridKind::list: break;
   }
   return factors;

@@ -3,7 +3,9 @@
 //   octave          m = 1, 2, 4, 8, ...
 //   decade          m = 1, 2, 4, 10, 20, 40, 100, ... (1-2-4 per decade, as Stable32)
 //   N-per-decade    m = round(10^(k/N)), duplicates removed (e.g. "10-per-decade")
-//   all             every m = 1, 2, 3, ... (bounded: at most kAllGridMaxFactors)
+//   all             every m = 1, 2, 3, ... (bounded: at most kAllGridMaxFactors,
+//                   and at most kAllGridWorkSamples / N factors, at least 100,
+//                   so that a long record does not take hours)
 //   list            explicit averaging times in seconds, honoured as given
 //                   (each rounded to the nearest multiple of the sample interval)
 //
@@ -23,6 +25,8 @@ enum class TauGridKind { octave, decade, per_decade, all, list };
 
 /// Upper bound on the number of factors of the "all" grid.
 inline constexpr std::int64_t kAllGridMaxFactors = 10000;
+/// Work bound of the "all" grid: factors x phase points.
+inline constexpr double kAllGridWorkSamples = 2e10;
 
 struct TauGrid {
   TauGridKind kind = TauGridKind::octave;
