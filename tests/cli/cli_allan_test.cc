@@ -69,6 +69,27 @@ INSTANTIATE_TEST_SUITE_P(OctaveTables, CliStable32,
                                            OctaveCase{"phase_dat_totdev_octave.txt", "totdev"}),
                          [](const auto& info) { return info.param.kind; });
 
+TEST(CliAllan, EveryStable32AllTauTableThroughAnExplicitTauList) {
+  const std::map<std::string, std::string> tables = {
+      {"adev", "phase_dat_adev.txt"},   {"oadev", "phase_dat_oadev.txt"},
+      {"mdev", "phase_dat_mdev.txt"},   {"tdev", "phase_dat_tdev.txt"},
+      {"hdev", "phase_dat_hdev.txt"},   {"ohdev", "phase_dat_ohdev.txt"},
+      {"totdev", "phase_dat_totdev.txt"}};
+  for (const auto& [kind, file] : tables) {
+    const auto rows = test::read_stable32(file);
+    std::string taus;
+    for (const auto& row : rows) taus += (taus.empty() ? "" : ",") + std::to_string(row.af);
+    const json j = run_json("allan " + quote(test::data_path("stable32-phasedat/PHASE.DAT")) +
+                            " --input phase --fs 1 --kind " + kind + " --taus " + taus);
+    ASSERT_EQ(j["dev"].size(), rows.size()) << file;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_NEAR(j["dev"][k].get<double>() / rows[k].sigma, 1.0, 2e-4) << file << " AF "
+                                                                         << rows[k].af;
+      EXPECT_EQ(j["n"][k].get<std::int64_t>(), rows[k].n) << file << " AF " << rows[k].af;
+    }
+  }
+}
+
 TEST(CliAllan, Nbs14TableThroughCsvInputAndJsonOutput) {
   test::TempDir dir;
   {
