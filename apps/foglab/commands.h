@@ -10,5 +10,7 @@ namespace foglab::cli {
 /// the subcommand was chosen.
 std::function<void()> register_allan(CLI::App& app);
 std::function<void()> register_psd(CLI::App& app);
+std::function<void()> register_generate(CLI::App& app);
+std::function<void()> register_lab2_data(CLI::App& app);
 
 }  // namespace foglab::cli

@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   };
   add(cli::register_allan);
   add(cli::register_psd);
+  add(cli::register_generate);
+  add(cli::register_lab2_data);
 
   try {
     app.parse(argc, argv);
