@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages foglab needs to build, test and benchmark,
-# skipping those already present. Run as root (or with sudo).
+# Installs the Debian 12 packages foglab needs to build and run, skipping
+# those already present; with --tests also what the test suite needs
+# (GNU Octave). Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,12 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
 )
+if [ "${1:-}" = "--tests" ]; then
+  # octave-cli runs the lab's MATLAB steps on lab2-data files in the tests
+  # (octave 7 from Debian 12); its plots need a font, a Recommends of
+  # octave-common that --no-install-recommends would skip.
+  packages+=(octave fonts-freefont-otf)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

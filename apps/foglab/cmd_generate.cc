@@ -1,9 +1,282 @@
-// placeholder: filled in by the work on issue 3
+// foglab generate — one synthetic static-gyro run with known truth.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cli_common.h"
 #include "commands.h"
+#include "foglab/core/error.h"
+#include "foglab/core/output.h"
+#include "foglab/core/version.h"
+#include "foglab/io/writer.h"
+#include "foglab/sim/generator.h"
+#include "foglab/sim/lab2_variants.h"
+#include "foglab/sim/presets.h"
 
 namespace foglab::cli {
-std::function<void()> register_generate(CLI::App& app) {
-  app.add_subcommand("generate", "synthetic static-gyro recording with known truth (in progress)");
-  return [] {};
+namespace {
+
+struct GenerateCommand {
+  std::string preset;
+  std::optional<double> N, B, K, R, Q, gm_sigma, gm_tc, bias, input_rate;
+  std::string temp_coefs;
+  std::optional<double> sample_rate_hz;
+  std::optional<double> hours;
+  std::uint64_t seed = 1;
+  std::uint64_t stream = 0;
+  std::string temperature = "const";
+  std::string out;
+  std::string truth;
+};
+
+enum class OutFormat { mat, csv, f32, f64 };
+
+OutFormat format_of(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".mat") return OutFormat::mat;
+  if (ext == ".csv") return OutFormat::csv;
+  if (ext == ".f32") return OutFormat::f32;
+  if (ext == ".f64") return OutFormat::f64;
+  throw UsageError(fmt::format(
+      "--out '{}': unknown output type '{}'; use .mat, .csv, .f32 or .f64", path, ext));
 }
+
+std::string_view to_string(OutFormat f) {
+  switch (f) {
+    case OutFormat::mat:
+      return "mat";
+    case OutFormat::csv:
+      return "csv";
+    case OutFormat::f32:
+      return "f32";
+    case OutFormat::f64:
+      return "f64";
+  }
+  return "";
+}
+
+std::vector<double> parse_coefs(const std::string& text) {
+  std::vector<double> out;
+  if (text.empty()) return out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos
+                                                                           : comma - start);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
+      throw UsageError(fmt::format(
+          "--temp-coef '{}': '{}' is not a number (expected c1,c2,... in deg/h/degC^k)", text,
+          item));
+    }
+    out.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::string_view to_string(sim::TemperatureKind k) {
+  switch (k) {
+    case sim::TemperatureKind::constant:
+      return "constant";
+    case sim::TemperatureKind::ramp:
+      return "ramp";
+    case sim::TemperatureKind::file:
+      return "file";
+  }
+  return "";
+}
+
+nlohmann::json model_json(const sim::ErrorModel& m) {
+  return {{"N", m.N},         {"B", m.B},
+          {"K", m.K},         {"R", m.R},
+          {"Q", m.Q},         {"gm_sigma", m.gm_sigma},
+          {"gm_tc", m.gm_tc}, {"bias", m.bias},
+          {"input_rate", m.input_rate}, {"temp_coefs", m.temp_coefs}};
+}
+
+nlohmann::json units_json() {
+  return {{"N", "deg/h/sqrt(Hz)"},
+          {"B", "deg/h"},
+          {"K", "deg/h/sqrt(s)"},
+          {"R", "deg/h/s"},
+          {"Q", "deg/h*s"},
+          {"gm_sigma", "deg/h"},
+          {"gm_tc", "s"},
+          {"bias", "deg/h"},
+          {"input_rate", "deg/h"},
+          {"temp_coefs", "deg/h/degC^k, k = 1, 2, ... about temperature.reference_c"},
+          {"rate", "deg/h"},
+          {"temperature", "degC"},
+          {"time", "s"}};
+}
+
+void run(const GenerateCommand& c) {
+  sim::ErrorModel model;
+  std::optional<double> preset_rate;
+  if (!c.preset.empty()) {
+    const sim::Preset& p = sim::find_preset(c.preset);
+    model = p.model;
+    preset_rate = p.sample_rate_hz;
+  }
+  auto apply = [](const std::optional<double>& v, double& field) {
+    if (v) field = *v;
+  };
+  apply(c.N, model.N);
+  apply(c.B, model.B);
+  apply(c.K, model.K);
+  apply(c.R, model.R);
+  apply(c.Q, model.Q);
+  apply(c.gm_sigma, model.gm_sigma);
+  apply(c.gm_tc, model.gm_tc);
+  apply(c.bias, model.bias);
+  apply(c.input_rate, model.input_rate);
+  if (!c.temp_coefs.empty()) model.temp_coefs = parse_coefs(c.temp_coefs);
+
+  sim::GeneratorOptions options;
+  if (c.sample_rate_hz) {
+    options.sample_rate_hz = *c.sample_rate_hz;
+  } else if (preset_rate) {
+    options.sample_rate_hz = *preset_rate;
+  } else {
+    throw UsageError("--fs is required (the sample rate in Hz) unless a --preset gives one");
+  }
+  if (!(options.sample_rate_hz > 0.0) || !std::isfinite(options.sample_rate_hz)) {
+    throw UsageError(fmt::format("--fs must be > 0 Hz, got {}", options.sample_rate_hz));
+  }
+  if (!c.hours) throw UsageError("--hours is required (the duration in hours)");
+  if (!(*c.hours > 0.0) || !std::isfinite(*c.hours)) {
+    throw UsageError(fmt::format("--hours must be > 0, got {}", *c.hours));
+  }
+  options.duration_s = *c.hours * 3600.0;
+  options.seed = c.seed;
+  options.stream = c.stream;
+  const OutFormat format = format_of(c.out);
+  const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
+  const double t_ref = temperature.reference_c(options.duration_s);
+  const auto samples = static_cast<std::int64_t>(
+      std::llround(options.duration_s * options.sample_rate_hz));
+  if (samples < 1) {
+    throw UsageError(fmt::format("--fs {} Hz for --hours {} gives no samples",
+                                 options.sample_rate_hz, *c.hours));
+  }
+  progress(fmt::format("generating {} samples ({} h at {} Hz)", samples, *c.hours,
+                       options.sample_rate_hz));
+
+  std::vector<std::string> variables;
+  if (format == OutFormat::f32 || format == OutFormat::f64) {
+    // streamed block by block: constant memory whatever the length
+    io::RawFileWriter writer(c.out, format == OutFormat::f32 ? io::RawType::f32
+                                                             : io::RawType::f64);
+    sim::generate(model, temperature, options,
+                  [&](const sim::Block& block) { writer.append(block.rate_deg_h); });
+    writer.commit();
+    variables = {"rate"};
+  } else {
+    const sim::Recording rec = sim::generate(model, temperature, options);
+    if (format == OutFormat::mat) {
+      const double f = rec.sample_rate_hz;
+      const std::vector<io::NamedVector> vars = {
+          {"f", {&f, 1}}, {"t", rec.time_s}, {"Y1", rec.rate_deg_h}, {"T1", rec.temperature_c}};
+      io::write_mat(c.out, vars);
+      variables = {"f", "t", "Y1", "T1"};
+    } else {
+      const std::vector<io::NamedVector> cols = {
+          {"t", rec.time_s}, {"rate", rec.rate_deg_h}, {"temperature", rec.temperature_c}};
+      const std::vector<std::string> comments = {
+          fmt::format("foglab {} generate: t [s], rate [deg/h], temperature [degC]; {} Hz, "
+                      "seed {}, stream {}",
+                      version(), rec.sample_rate_hz, options.seed, options.stream)};
+      io::write_csv(c.out, cols, comments);
+      variables = {"t", "rate", "temperature"};
+    }
+  }
+
+  const sim::AdevMinimum bi = sim::model_adev_minimum(
+      model, 1.0 / options.sample_rate_hz,
+      std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
+  const sim::ClassVerdict verdict = sim::classify(bi.adev_deg_h, model.N / 60.0);
+  if (!c.truth.empty()) {
+    nlohmann::json temp = {{"spec", c.temperature},
+                           {"kind", std::string(to_string(temperature.kind))},
+                           {"start_c", temperature.start_c},
+                           {"span_c", temperature.span_c},
+                           {"jitter_c", temperature.jitter_c},
+                           {"reference_c", t_ref}};
+    const nlohmann::json truth = {
+        {"generator", "foglab generate"},
+        {"foglab_version", std::string(version())},
+        {"preset", c.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.preset)},
+        {"model", model_json(model)},
+        {"units", units_json()},
+        {"arw_deg_per_sqrt_h", model.N / 60.0},
+        {"temperature", temp},
+        {"sample_rate_hz", options.sample_rate_hz},
+        {"duration_s", options.duration_s},
+        {"samples", samples},
+        {"seed", options.seed},
+        {"stream", options.stream},
+        {"output", {{"path", c.out}, {"format", std::string(to_string(format))},
+                    {"variables", variables}}},
+        {"theory",
+         {{"bias_instability_deg_h", bi.adev_deg_h},
+          {"bias_instability_tau_s", bi.tau_s},
+          {"bias_instability_at_range_edge", bi.at_range_edge},
+          {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
+          {"accuracy_class", std::string(sim::to_string(verdict.accuracy_class))},
+          {"class_decided_by", verdict.decided_by}}}};
+    write_text_file(c.truth, truth.dump(2) + "\n");
+  }
+  if (c.truth != "-") {
+    std::cout << fmt::format(
+        "wrote '{}': {} samples at {} Hz ({} h), seed {}, stream {}; model ADEV minimum "
+        "{:.4g} deg/h at {:.4g} s, ARW {:.4g} deg/sqrt(h), class {}\n",
+        c.out, samples, options.sample_rate_hz, *c.hours, options.seed, options.stream,
+        bi.adev_deg_h, bi.tau_s, model.N / 60.0, sim::to_string(verdict.accuracy_class));
+  }
+}
+
+}  // namespace
+
+std::function<void()> register_generate(CLI::App& app) {
+  auto c = std::make_shared<GenerateCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "generate",
+      "synthetic static-gyro recording with known truth (MAT f,t,Y1,T1; CSV t,rate,temperature; "
+      "raw .f32/.f64 rate)");
+  cmd->add_option("--preset", c->preset,
+                  "start from a preset (kvh-dsp-3000, class-navigation, ...); explicit model "
+                  "options override its values");
+  cmd->add_option("--N", c->N, "white rate noise N [deg/h/sqrt(Hz)] (ARW = N/60 deg/sqrt(h))");
+  cmd->add_option("--B", c->B, "flicker coefficient B [deg/h] (ADEV floor 0.664 B)");
+  cmd->add_option("--K", c->K, "rate random walk K [deg/h/sqrt(s)]");
+  cmd->add_option("--R", c->R, "rate ramp R [deg/h/s]");
+  cmd->add_option("--Q", c->Q, "angle quantisation Q [deg/h*s]");
+  cmd->add_option("--gm-sigma", c->gm_sigma, "Gauss-Markov sigma [deg/h]");
+  cmd->add_option("--gm-tc", c->gm_tc, "Gauss-Markov correlation time [s]");
+  cmd->add_option("--bias", c->bias, "constant bias [deg/h]");
+  cmd->add_option("--temp-coef", c->temp_coefs,
+                  "temperature coefficients c1,c2,... [deg/h/degC^k] about the mean temperature");
+  cmd->add_option("--input-rate", c->input_rate, "constant input rate [deg/h]");
+  cmd->add_option("--fs", c->sample_rate_hz, "sample rate [Hz] (default: the preset's)");
+  cmd->add_option("--hours", c->hours, "duration [h]")->required();
+  cmd->add_option("--seed", c->seed, "random seed (same seed, same bits)")->capture_default_str();
+  cmd->add_option("--stream", c->stream, "independent stream number for one seed")
+      ->capture_default_str();
+  cmd->add_option("--temperature", c->temperature,
+                  "const, const:25, ramp:10, ramp:10@20 or file:PATH")
+      ->capture_default_str();
+  cmd->add_option("--out", c->out, "output: FILE.mat, FILE.csv, FILE.f32 or FILE.f64")
+      ->required();
+  cmd->add_option("--truth", c->truth, "write the truth as JSON ('-' for stdout)");
+  return [c] { run(*c); };
+}
+
 }  // namespace foglab::cli

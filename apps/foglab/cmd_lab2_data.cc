@@ -1,9 +1,239 @@
-// placeholder: filled in by the work on issue 3
+// foglab lab2-data — the lab-2 variant files FOG1_k.mat, FOG2_k.mat and the
+// instructor's answer key (answers.json, answers.csv).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cli_common.h"
 #include "commands.h"
+#include "foglab/core/error.h"
+#include "foglab/core/output.h"
+#include "foglab/core/version.h"
+#include "foglab/io/writer.h"
+#include "foglab/sim/generator.h"
+#include "foglab/sim/lab2_variants.h"
 
 namespace foglab::cli {
-std::function<void()> register_lab2_data(CLI::App& app) {
-  app.add_subcommand("lab2-data", "the lab-2 variant data sets and answer key (in progress)");
-  return [] {};
+namespace {
+
+struct Lab2DataCommand {
+  std::string out;
+  std::uint64_t seed = sim::kLab2DefaultSeed;
+  std::optional<double> hours;  // hidden: shorter runs for tests and quick looks
+};
+
+nlohmann::json optional_number(bool present, double value) {
+  return present ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
+
+nlohmann::json gyro_truth(const sim::Lab2Gyro& g) {
+  const sim::ErrorModel& m = g.model;
+  return {{"N", m.N},         {"B", m.B},
+          {"K", m.K},         {"R", m.R},
+          {"Q", m.Q},         {"gm_sigma", m.gm_sigma},
+          {"gm_tc", m.gm_tc}, {"bias", m.bias},
+          {"input_rate", m.input_rate}, {"temp_coefs", m.temp_coefs}};
+}
+
+nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g,
+                        const sim::Lab2Run& r) {
+  const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
+  const auto samples = static_cast<std::int64_t>(
+      std::llround(r.generator.duration_s * r.generator.sample_rate_hz));
+  return {
+      {"file", g.file_name},
+      {"gyro", g.name},
+      {"variant", v.variant},
+      {"run", r.temperature.kind == sim::TemperatureKind::constant ? "constant" : "ramp"},
+      {"rate_variable", r.rate_name},
+      {"temperature_variable", r.temperature_name},
+      {"temperature",
+       {{"kind", r.temperature.kind == sim::TemperatureKind::constant ? "constant" : "ramp"},
+        {"start_c", r.temperature.start_c},
+        {"span_c", r.temperature.span_c},
+        {"jitter_c", r.temperature.jitter_c},
+        {"reference_c", r.t_ref_c}}},
+      {"sample_rate_hz", r.generator.sample_rate_hz},
+      {"duration_s", r.generator.duration_s},
+      {"samples", samples},
+      {"seed", r.generator.seed},
+      {"stream", r.generator.stream},
+      {"expected",
+       {{"polyfit_p", {r.polyfit_p[0], r.polyfit_p[1], r.polyfit_p[2]}},
+        {"lab_constant_term_deg_h", r.lab_constant_term_deg_h},
+        {"constant_term_well_conditioned", r.constant_term_well_conditioned},
+        {"bias_at_t_ref_deg_h", r.bias_at_t_ref_deg_h},
+        {"N", g.model.N},
+        {"arw_deg_per_sqrt_h", g.arw_deg_sqrt_h},
+        {"random_bias_process", std::string(sim::to_string(g.random_bias))},
+        {"K", optional_number(wiener, g.model.K)},
+        {"gm_sigma", optional_number(!wiener, g.model.gm_sigma)},
+        {"gm_tc", optional_number(!wiener, g.model.gm_tc)},
+        {"flicker_floor_deg_h", std::sqrt(2.0 * std::log(2.0) / M_PI) * g.model.B},
+        {"bias_instability_deg_h", r.bias_instability.adev_deg_h},
+        {"bias_instability_tau_s", r.bias_instability.tau_s},
+        {"bias_instability_at_range_edge", r.bias_instability.at_range_edge},
+        {"usable_tau_s", {r.usable_tau_min_s, r.usable_tau_max_s}},
+        {"accuracy_class", std::string(sim::to_string(g.verdict.accuracy_class))},
+        {"class_by_bias_instability",
+         std::string(sim::to_string(g.verdict.by_bias_instability))},
+        {"class_by_arw", std::string(sim::to_string(g.verdict.by_arw))},
+        {"class_decided_by", g.verdict.decided_by}}}};
+}
+
+std::string cell(const nlohmann::json& j) {
+  if (j.is_null()) return "";
+  if (j.is_string()) return j.get<std::string>();
+  if (j.is_boolean()) return j.get<bool>() ? "true" : "false";
+  if (j.is_number_float()) return fmt::format("{}", j.get<double>());
+  return j.dump();
+}
+
+std::string answers_csv(const nlohmann::json& rows) {
+  const std::vector<std::string> top = {"file", "gyro", "variant", "run", "rate_variable",
+                                        "temperature_variable", "sample_rate_hz", "duration_s",
+                                        "samples", "seed", "stream"};
+  const std::vector<std::string> expected = {
+      "lab_constant_term_deg_h", "constant_term_well_conditioned", "bias_at_t_ref_deg_h", "N",
+      "arw_deg_per_sqrt_h", "random_bias_process", "K", "gm_sigma", "gm_tc",
+      "flicker_floor_deg_h", "bias_instability_deg_h", "bias_instability_tau_s",
+      "bias_instability_at_range_edge", "accuracy_class", "class_decided_by"};
+  std::string out = "# foglab lab2-data answer key: N deg/h/sqrt(Hz), ARW deg/sqrt(h), K "
+                    "deg/h/sqrt(s), gm_sigma deg/h, gm_tc s, biases deg/h, temperatures degC; "
+                    "p1..p3 = polyfit(T, Y, 2) in MATLAB order\n";
+  for (const std::string& k : top) {
+    out += k;
+    out += ',';
+  }
+  out += "t_ref_c,p1,p2,p3";
+  for (const std::string& k : expected) {
+    out += ',';
+    out += k;
+  }
+  out += "\n";
+  for (const nlohmann::json& row : rows) {
+    for (const std::string& k : top) {
+      out += cell(row[k]);
+      out += ',';
+    }
+    const nlohmann::json& e = row["expected"];
+    out += fmt::format("{},{},{},{}", row["temperature"]["reference_c"].get<double>(),
+                       e["polyfit_p"][0].get<double>(), e["polyfit_p"][1].get<double>(),
+                       e["polyfit_p"][2].get<double>());
+    for (const std::string& k : expected) {
+      out += ',';  // (not "," + cell(): GCC 12 -Wrestrict false positive, bug 105329)
+      out += cell(e[k]);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+void run(const Lab2DataCommand& c) {
+  sim::Lab2Options options;
+  options.seed = c.seed;
+  if (c.hours) {
+    if (!(*c.hours > 0.0) || !std::isfinite(*c.hours)) {
+      throw UsageError(fmt::format("--hours must be > 0, got {}", *c.hours));
+    }
+    options.duration_s = *c.hours * 3600.0;
+  }
+  const std::vector<sim::Lab2Variant> variants = sim::lab2_variants(options);
+  std::error_code ec;
+  std::filesystem::create_directories(c.out, ec);
+  if (ec || !std::filesystem::is_directory(c.out)) {
+    throw UsageError(fmt::format("cannot create the directory '{}': {}", c.out,
+                                 ec ? ec.message() : "a file of that name exists"));
+  }
+  const std::filesystem::path dir(c.out);
+
+  nlohmann::json rows = nlohmann::json::array();
+  nlohmann::json gyros = nlohmann::json::array();
+  std::string table = fmt::format("{:<11} {:<12} {:<13} {:>9} {:>9} {:>10} {:>9} {:>9}\n",
+                                  "file", "class", "random bias", "N", "ARW", "BI [deg/h]",
+                                  "p3 (Y2)", "fs x h");
+  for (const sim::Lab2Variant& v : variants) {
+    for (const sim::Lab2Gyro& g : v.gyros) {
+      progress(fmt::format("generating {}", g.file_name));
+      std::array<sim::Recording, 2> recs;
+      for (std::size_t r = 0; r < 2; ++r) {
+        recs[r] = sim::generate(g.model, g.runs[r].temperature, g.runs[r].generator);
+      }
+      const double f = recs[0].sample_rate_hz;
+      const std::vector<io::NamedVector> vars = {
+          {"f", {&f, 1}},
+          {"t", recs[0].time_s},
+          {"Y1", recs[0].rate_deg_h},
+          {"Y2", recs[1].rate_deg_h},
+          {"T1", recs[0].temperature_c},
+          {"T2", recs[1].temperature_c}};
+      io::write_mat((dir / g.file_name).string(), vars);
+      for (const sim::Lab2Run& r : g.runs) rows.push_back(run_json(v, g, r));
+      gyros.push_back({{"file", g.file_name},
+                       {"gyro", g.name},
+                       {"variant", v.variant},
+                       {"design", g.design},
+                       {"random_bias_process", std::string(sim::to_string(g.random_bias))},
+                       {"accuracy_class", std::string(sim::to_string(g.verdict.accuracy_class))},
+                       {"model", gyro_truth(g)}});
+      const sim::Lab2Run& ramp = g.runs[1];
+      table += fmt::format(
+          "{:<11} {:<12} {:<13} {:>9.4g} {:>9.4g} {:>10.4g} {:>9.4g} {:>9}\n", g.file_name,
+          sim::to_string(g.verdict.accuracy_class), sim::to_string(g.random_bias), g.model.N,
+          g.arw_deg_sqrt_h, ramp.bias_instability.adev_deg_h, ramp.lab_constant_term_deg_h,
+          fmt::format("{}x{:.3g}", ramp.generator.sample_rate_hz,
+                      ramp.generator.duration_s / 3600.0));
+    }
+  }
+  const nlohmann::json answers = {
+      {"generator", "foglab lab2-data"},
+      {"foglab_version", std::string(version())},
+      {"seed", c.seed},
+      {"units",
+       {{"N", "deg/h/sqrt(Hz)"},
+        {"B", "deg/h"},
+        {"K", "deg/h/sqrt(s)"},
+        {"R", "deg/h/s"},
+        {"Q", "deg/h*s"},
+        {"gm_sigma", "deg/h"},
+        {"gm_tc", "s"},
+        {"bias", "deg/h"},
+        {"input_rate", "deg/h"},
+        {"temp_coefs", "deg/h/degC^k about temperature.reference_c"},
+        {"polyfit_p", "MATLAB polyfit(T, Y, 2) order: deg/h/degC^2, deg/h/degC, deg/h"},
+        {"arw_deg_per_sqrt_h", "deg/sqrt(h)"},
+        {"bias_instability_deg_h", "deg/h (minimum of the model ADEV in usable_tau_s)"},
+        {"usable_tau_s", "s, [1/fs, duration/10]"}}},
+      {"notes",
+       {"Values are computed from the model, not estimated from the data.",
+        "The thermostat run's polyfit constant is ill-conditioned (the temperature moves only "
+        "by sensor jitter): compare bias_at_t_ref_deg_h with mean(Y1) instead."}},
+      {"gyros", gyros},
+      {"runs", rows}};
+  write_text_file((dir / "answers.json").string(), answers.dump(2) + "\n");
+  write_text_file((dir / "answers.csv").string(), answers_csv(rows));
+  std::cout << fmt::format("wrote 12 files, answers.json and answers.csv to '{}' (seed {})\n",
+                           c.out, c.seed)
+            << table;
+}
+
+}  // namespace
+
+std::function<void()> register_lab2_data(CLI::App& app) {
+  auto c = std::make_shared<Lab2DataCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "lab2-data",
+      "the lab-2 variant data sets FOG1_1..6.mat, FOG2_1..6.mat (f, t, Y1, Y2, T1, T2) and "
+      "the answer key answers.json/answers.csv");
+  cmd->add_option("--out", c->out, "directory to write (created if needed)")->required();
+  cmd->add_option("--seed", c->seed, "random seed of the variant design and the noise")
+      ->capture_default_str();
+  cmd->add_option("--hours", c->hours, "")->group("");  // hidden: shorter runs
+  return [c] { run(*c); };
+}
+
 }  // namespace foglab::cli

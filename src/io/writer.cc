@@ -1,1 +1,203 @@
-// placeholder: filled in by the work on issue 3
+#include "foglab/io/writer.h"
+
+#include <fmt/format.h>
+#include <matio.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <set>
+
+#include "foglab/core/error.h"
+#include "foglab/core/output.h"
+#include "readers_internal.h"
+
+namespace foglab::io {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "raw output assumes a little-endian host");
+
+[[noreturn]] void cannot_write(const std::string& path, const std::string& reason) {
+  throw UsageError(fmt::format("cannot write '{}': {}", path, reason));
+}
+
+/// The temporary beside `path`: ".NAME.tmpPID" in the same directory, so
+/// the final rename stays on one file system.
+std::string temporary_for(const std::string& path) {
+  const std::filesystem::path target(path);
+  if (target.filename().empty()) cannot_write(path, "not a file name");
+  return (target.parent_path() / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid()))
+      .string();
+}
+
+/// Renames the finished temporary over the target (removing it on failure).
+void move_into_place(const std::string& tmp, const std::string& path) {
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    cannot_write(path, ec.message());
+  }
+}
+
+bool valid_matlab_name(const std::string& name) {
+  if (name.empty() || name.size() > 63) return false;
+  if (std::isalpha(static_cast<unsigned char>(name[0])) == 0) return false;
+  for (const char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)) == 0 && c != '_') return false;
+  }
+  return true;
+}
+
+std::string session_reason(const internal::MatioSession& session, const std::string& fallback) {
+  const std::vector<std::string> messages = session.messages(false);
+  return messages.empty() ? fallback : fallback + " (" + messages.front() + ")";
+}
+
+}  // namespace
+
+void write_mat(const std::string& path, std::span<const NamedVector> variables) {
+  std::set<std::string> names;
+  for (const NamedVector& v : variables) {
+    if (!valid_matlab_name(v.name)) {
+      cannot_write(path, fmt::format("'{}' is not a valid MATLAB variable name", v.name));
+    }
+    if (!names.insert(v.name).second) {
+      cannot_write(path, fmt::format("variable '{}' given twice", v.name));
+    }
+    if (v.values.empty()) cannot_write(path, fmt::format("variable '{}' is empty", v.name));
+  }
+  const std::string tmp = temporary_for(path);
+  internal::MatioSession session;
+  mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
+  if (mat == nullptr) {
+    const int err = errno;
+    std::remove(tmp.c_str());
+    cannot_write(path, session_reason(session, err != 0 ? std::strerror(err) : "cannot create"));
+  }
+  bool ok = true;
+  std::string reason;
+  for (const NamedVector& v : variables) {
+    size_t dims[2] = {v.values.size(), 1};
+    // matio does not modify the data it writes; MAT_F_DONT_COPY_DATA keeps
+    // it from copying (and freeing) our buffer.
+    matvar_t* var = Mat_VarCreate(v.name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
+                                  const_cast<double*>(v.values.data()), MAT_F_DONT_COPY_DATA);
+    if (var == nullptr) {
+      ok = false;
+      reason = session_reason(session, fmt::format("cannot create variable '{}'", v.name));
+      break;
+    }
+    const int status = Mat_VarWrite(mat, var, MAT_COMPRESSION_ZLIB);
+    Mat_VarFree(var);
+    if (status != 0 || !session.messages(false).empty()) {
+      ok = false;
+      reason = session_reason(session, fmt::format("writing variable '{}' failed", v.name));
+      break;
+    }
+  }
+  const bool closed = Mat_Close(mat) == 0;
+  if (ok && !closed) {
+    ok = false;
+    reason = session_reason(session, "closing the file failed");
+  }
+  if (!ok) {
+    std::remove(tmp.c_str());
+    cannot_write(path, reason);
+  }
+  move_into_place(tmp, path);
+}
+
+void write_csv(const std::string& path, std::span<const NamedVector> columns,
+               std::span<const std::string> comments) {
+  if (columns.empty()) cannot_write(path, "no columns");
+  const std::size_t rows = columns.front().values.size();
+  for (const NamedVector& c : columns) {
+    if (c.values.size() != rows) {
+      cannot_write(path, fmt::format("column '{}' has {} values, '{}' has {}", c.name,
+                                     c.values.size(), columns.front().name, rows));
+    }
+    if (c.name.find_first_of(",\n\"") != std::string::npos) {
+      cannot_write(path, fmt::format("column name '{}' contains a comma, quote or newline",
+                                     c.name));
+    }
+  }
+  fmt::memory_buffer out;
+  for (const std::string& line : comments) fmt::format_to(std::back_inserter(out), "# {}\n", line);
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    fmt::format_to(std::back_inserter(out), "{}{}", j ? "," : "", columns[j].name);
+  }
+  out.push_back('\n');
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      // {} is the shortest representation that reads back to the same double.
+      fmt::format_to(std::back_inserter(out), "{}{}", j ? "," : "", columns[j].values[i]);
+    }
+    out.push_back('\n');
+  }
+  write_text_file(path, std::string_view(out.data(), out.size()));
+}
+
+std::string_view to_string(RawType type) { return type == RawType::f32 ? "f32" : "f64"; }
+
+void write_raw(const std::string& path, std::span<const double> values, RawType type) {
+  RawFileWriter writer(path, type);
+  writer.append(values);
+  writer.commit();
+}
+
+RawFileWriter::RawFileWriter(const std::string& path, RawType type)
+    : path_(path), tmp_(temporary_for(path)), type_(type) {
+  file_ = std::fopen(tmp_.c_str(), "wb");
+  if (file_ == nullptr) cannot_write(path_, std::strerror(errno));
+}
+
+RawFileWriter::~RawFileWriter() {
+  if (file_ != nullptr) {
+    std::fclose(file_);
+    std::remove(tmp_.c_str());
+  }
+}
+
+void RawFileWriter::fail(const std::string& reason) {
+  if (file_ != nullptr) std::fclose(file_);
+  file_ = nullptr;
+  std::remove(tmp_.c_str());
+  cannot_write(path_, reason);
+}
+
+void RawFileWriter::append(std::span<const double> values) {
+  if (file_ == nullptr) cannot_write(path_, "the writer is closed");
+  const std::size_t width = type_ == RawType::f32 ? 4 : 8;
+  buffer_.resize(values.size() * width);
+  if (type_ == RawType::f32) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const float v = static_cast<float>(values[i]);
+      std::memcpy(buffer_.data() + 4 * i, &v, 4);
+    }
+  } else {
+    std::memcpy(buffer_.data(), values.data(), buffer_.size());
+  }
+  if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+    fail(std::strerror(errno));
+  }
+  samples_ += values.size();
+}
+
+void RawFileWriter::commit() {
+  if (file_ == nullptr) cannot_write(path_, "the writer is closed");
+  std::FILE* f = file_;
+  file_ = nullptr;
+  if (std::fclose(f) != 0) {
+    const int err = errno;
+    std::remove(tmp_.c_str());
+    cannot_write(path_, std::strerror(err));
+  }
+  move_into_place(tmp_, path_);
+}
+
+}  // namespace foglab::io

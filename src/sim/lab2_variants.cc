@@ -1,1 +1,307 @@
-// placeholder: filled in by the work on issue 3
+#include "foglab/sim/lab2_variants.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "foglab/core/error.h"
+
+namespace foglab::sim {
+
+// --- Table 1 ------------------------------------------------------------------
+
+std::string_view to_string(AccuracyClass c) {
+  switch (c) {
+    case AccuracyClass::strategic:
+      return "strategic";
+    case AccuracyClass::navigation:
+      return "navigation";
+    case AccuracyClass::intermediate:
+      return "intermediate";
+    case AccuracyClass::tactical:
+      return "tactical";
+    case AccuracyClass::consumer:
+      return "consumer";
+  }
+  return "consumer";
+}
+
+AccuracyClass class_by_bias_instability(double bi_deg_h) {
+  if (bi_deg_h < 0.001) return AccuracyClass::strategic;
+  if (bi_deg_h < 0.01) return AccuracyClass::navigation;
+  if (bi_deg_h <= 1.0) return AccuracyClass::intermediate;
+  if (bi_deg_h <= 10.0) return AccuracyClass::tactical;
+  return AccuracyClass::consumer;
+}
+
+AccuracyClass class_by_arw(double arw_deg_sqrt_h) {
+  if (arw_deg_sqrt_h < 0.0003) return AccuracyClass::strategic;
+  if (arw_deg_sqrt_h < 0.005) return AccuracyClass::navigation;
+  if (arw_deg_sqrt_h <= 0.05) return AccuracyClass::intermediate;
+  if (arw_deg_sqrt_h <= 0.5) return AccuracyClass::tactical;
+  return AccuracyClass::consumer;
+}
+
+ClassVerdict classify(double bi_deg_h, double arw_deg_sqrt_h) {
+  ClassVerdict v;
+  v.by_bias_instability = class_by_bias_instability(bi_deg_h);
+  v.by_arw = class_by_arw(arw_deg_sqrt_h);
+  v.accuracy_class = std::max(v.by_bias_instability, v.by_arw);
+  v.decided_by = v.by_bias_instability == v.by_arw ? "both"
+                 : v.by_bias_instability > v.by_arw ? "bias_instability"
+                                                    : "arw";
+  return v;
+}
+
+// --- theory ---------------------------------------------------------------------
+
+double model_allan_variance(const ErrorModel& m, double tau_s) {
+  const double t = tau_s;
+  constexpr double kFlicker = 2.0 * 0.69314718055994531 / 3.14159265358979324;
+  double avar = m.R * m.R * t * t / 2.0 + m.K * m.K * t / 3.0 + kFlicker * m.B * m.B +
+                m.N * m.N / t + 3.0 * m.Q * m.Q / (t * t);
+  if (m.gm_sigma > 0.0 && m.gm_tc > 0.0) {
+    const double x = t / m.gm_tc;
+    // For small x the bracket loses digits; its series is 2x^3/3 - x^4/2 + ...
+    const double bracket = x < 1e-3 ? x * x * x * (2.0 / 3.0 - x / 2.0 + 7.0 * x * x / 30.0)
+                                    : 2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x);
+    avar += m.gm_sigma * m.gm_sigma * bracket / (x * x);
+  }
+  return avar;
+}
+
+AdevMinimum model_adev_minimum(const ErrorModel& model, double tau_min_s, double tau_max_s,
+                               int points_per_decade) {
+  if (!(tau_min_s > 0.0) || !(tau_max_s >= tau_min_s) || points_per_decade < 1) {
+    throw UsageError(fmt::format("model_adev_minimum: invalid tau range [{}, {}] s", tau_min_s,
+                                 tau_max_s));
+  }
+  const double lo = std::log10(tau_min_s);
+  const double hi = std::log10(tau_max_s);
+  const int steps = std::max(1, static_cast<int>(std::ceil((hi - lo) * points_per_decade)));
+  auto log_tau = [&](int i) { return lo + (hi - lo) * i / steps; };
+  auto f = [&](double lt) { return model_allan_variance(model, std::pow(10.0, lt)); };
+  int best = 0;
+  double best_value = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= steps; ++i) {
+    const double v = f(log_tau(i));
+    if (v < best_value) {
+      best_value = v;
+      best = i;
+    }
+  }
+  double best_lt = log_tau(best);
+  if (best > 0 && best < steps) {
+    // golden-section refinement between the neighbours
+    double a = log_tau(best - 1);
+    double b = log_tau(best + 1);
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    double c = b - g * (b - a);
+    double d = a + g * (b - a);
+    double fc = f(c);
+    double fd = f(d);
+    for (int it = 0; it < 60; ++it) {
+      if (fc < fd) {
+        b = d;
+        d = c;
+        fd = fc;
+        c = b - g * (b - a);
+        fc = f(c);
+      } else {
+        a = c;
+        c = d;
+        fc = fd;
+        d = a + g * (b - a);
+        fd = f(d);
+      }
+    }
+    const double lt = (a + b) / 2.0;
+    if (f(lt) <= best_value) {
+      best_lt = lt;
+      best_value = f(lt);
+    }
+  }
+  AdevMinimum out;
+  out.adev_deg_h = std::sqrt(best_value);
+  out.tau_s = std::clamp(std::pow(10.0, best_lt), tau_min_s, tau_max_s);
+  out.at_range_edge = best == 0 || best == steps;
+  return out;
+}
+
+std::vector<double> raw_temperature_polynomial(const ErrorModel& model, double t_ref_c) {
+  // sum_k c_k (T - r)^k = sum_k c_k sum_j C(k, j) T^j (-r)^(k-j), c_0 = bias + input
+  std::vector<double> c = {model.bias + model.input_rate};
+  c.insert(c.end(), model.temp_coefs.begin(), model.temp_coefs.end());
+  std::vector<double> a(c.size(), 0.0);
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    double binomial = 1.0;  // C(k, j), j from 0
+    for (std::size_t j = 0; j <= k; ++j) {
+      a[j] += c[k] * binomial * std::pow(-t_ref_c, static_cast<double>(k - j));
+      binomial = binomial * static_cast<double>(k - j) / static_cast<double>(j + 1);
+    }
+  }
+  return a;
+}
+
+std::string_view to_string(RandomBiasProcess p) {
+  return p == RandomBiasProcess::wiener ? "wiener" : "gauss_markov";
+}
+
+// --- variants ---------------------------------------------------------------------
+
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+/// A uniform number in [0, 1), a pure function of its arguments.
+class Draw {
+ public:
+  Draw(std::uint64_t seed, int variant, int gyro)
+      : base_(splitmix64(splitmix64(seed) ^ (static_cast<std::uint64_t>(variant) << 8) ^
+                         static_cast<std::uint64_t>(gyro))) {}
+  double uniform(int parameter) const {
+    return static_cast<double>(splitmix64(base_ + static_cast<std::uint64_t>(parameter)) >> 11) *
+           0x1.0p-53;
+  }
+  double linear(int parameter, double lo, double hi) const {
+    return lo + (hi - lo) * uniform(parameter);
+  }
+  double log_uniform(int parameter, double lo, double hi) const {
+    return lo * std::pow(hi / lo, uniform(parameter));
+  }
+  double sign(int parameter) const { return uniform(parameter) < 0.5 ? -1.0 : 1.0; }
+
+ private:
+  std::uint64_t base_;
+};
+
+/// The ranges of one gyro type (see the header).
+struct GyroDesign {
+  const char* description;
+  double sample_rate_hz;
+  double duration_s;
+  double arw_lo, arw_hi;            // [deg/sqrt(h)]
+  double floor_lo, floor_hi;        // [deg/h] 0.664 B
+  double cross_lo, cross_hi;        // [s] tau* / Tc
+  double bias_lo, bias_hi;          // [deg/h] magnitude
+  double c1_lo, c1_hi, c2_lo, c2_hi;  // magnitudes
+};
+
+constexpr GyroDesign kFog1{
+    "closed-loop FOG, intermediate grade (1550 nm source, km-long coil, phase-ramp feedback)",
+    10.0, 3.0 * 3600.0, 0.006, 0.02, 0.02, 0.06, 150.0, 600.0, 0.5, 3.0, 0.15, 0.4, 0.005, 0.02};
+constexpr GyroDesign kFog2{
+    "open-loop FOG, tactical grade (830 nm source, all-fibre, piezo modulator)",
+    20.0, 2.0 * 3600.0, 0.08, 0.25, 1.5, 4.0, 60.0, 240.0, 5.0, 25.0, 2.0, 4.0, 0.05, 0.2};
+
+const double kFlickerFloor = std::sqrt(2.0 * std::log(2.0) / 3.14159265358979324);
+constexpr double kJitterC = 0.02;
+constexpr double kRampSpanC = 10.0;
+
+void fill_answers(Lab2Run& run, const ErrorModel& model) {
+  const double fs = run.generator.sample_rate_hz;
+  const double duration = run.generator.duration_s;
+  run.t_ref_c = run.temperature.reference_c(duration);
+  std::vector<double> a = raw_temperature_polynomial(model, run.t_ref_c);
+  a.resize(3, 0.0);
+  run.polyfit_p = {a[2], a[1], a[0]};
+  run.lab_constant_term_deg_h = a[0];
+  run.bias_at_t_ref_deg_h = model.bias + model.input_rate;
+  run.constant_term_well_conditioned = run.temperature.kind == TemperatureKind::ramp;
+  run.usable_tau_min_s = 1.0 / fs;
+  run.usable_tau_max_s = std::max(run.usable_tau_min_s, duration / 10.0);
+  run.bias_instability = model_adev_minimum(model, run.usable_tau_min_s, run.usable_tau_max_s);
+}
+
+Lab2Gyro make_gyro(int variant, int gyro, const Lab2Options& options) {
+  const GyroDesign& d = gyro == 1 ? kFog1 : kFog2;
+  const Draw draw(options.seed, variant, gyro);
+  Lab2Gyro g;
+  g.gyro = gyro;
+  g.name = fmt::format("FOG{}", gyro);
+  g.file_name = fmt::format("FOG{}_{}.mat", gyro, variant);
+  const bool wiener = (variant + gyro) % 2 == 0;  // FOG1 odd variants, FOG2 even
+  g.random_bias = wiener ? RandomBiasProcess::wiener : RandomBiasProcess::gauss_markov;
+
+  ErrorModel& m = g.model;
+  g.arw_deg_sqrt_h = draw.log_uniform(0, d.arw_lo, d.arw_hi);
+  m.N = 60.0 * g.arw_deg_sqrt_h;
+  m.B = draw.log_uniform(1, d.floor_lo, d.floor_hi) / kFlickerFloor;
+  const double cross_s = draw.log_uniform(2, d.cross_lo, d.cross_hi);
+  if (wiener) {
+    m.K = std::sqrt(3.0) * m.N / cross_s;  // white and random-walk ADEV lines cross at cross_s
+  } else {
+    m.gm_tc = cross_s;
+    const double hump_ratio = draw.linear(3, 2.5, 5.0);
+    // GM ADEV peaks near 0.62 sigma at 1.89 Tc; white ADEV there is N/sqrt(1.89 Tc).
+    m.gm_sigma = hump_ratio * m.N / std::sqrt(1.89 * m.gm_tc) / 0.62;
+  }
+  m.bias = draw.sign(4) * draw.log_uniform(5, d.bias_lo, d.bias_hi);
+  m.temp_coefs = {draw.sign(6) * draw.linear(7, d.c1_lo, d.c1_hi),
+                  draw.sign(8) * draw.linear(9, d.c2_lo, d.c2_hi)};
+  m.input_rate = 0.0;
+  const double t0_c = std::round(draw.linear(10, 22.0, 28.0) * 10.0) / 10.0;
+
+  g.design = fmt::format(
+      "{}; random bias: {}; {} Hz for {} h; thermostat at {} degC, ramp {} -> {} degC",
+      d.description, wiener ? "Wiener process" : "first-order Gauss-Markov process",
+      d.sample_rate_hz, (options.duration_s ? *options.duration_s : d.duration_s) / 3600.0, t0_c,
+      t0_c - kRampSpanC / 2.0, t0_c + kRampSpanC / 2.0);
+
+  for (int r = 0; r < 2; ++r) {
+    Lab2Run& run = g.runs[static_cast<std::size_t>(r)];
+    run.rate_name = fmt::format("Y{}", r + 1);
+    run.temperature_name = fmt::format("T{}", r + 1);
+    run.temperature.jitter_c = kJitterC;
+    if (r == 0) {
+      run.temperature.kind = TemperatureKind::constant;
+      run.temperature.start_c = t0_c;
+      run.temperature.span_c = 0.0;
+    } else {
+      run.temperature.kind = TemperatureKind::ramp;
+      run.temperature.start_c = t0_c - kRampSpanC / 2.0;
+      run.temperature.span_c = kRampSpanC;
+    }
+    run.generator.sample_rate_hz = d.sample_rate_hz;
+    run.generator.duration_s = options.duration_s ? *options.duration_s : d.duration_s;
+    run.generator.seed = options.seed;
+    run.generator.stream = static_cast<std::uint64_t>(100 * variant + 10 * gyro + r + 1);
+    fill_answers(run, m);
+  }
+  // Both runs share fs and duration, hence the usable tau range and the
+  // bias instability; the class follows from them.
+  g.verdict = classify(g.runs[0].bias_instability.adev_deg_h, g.arw_deg_sqrt_h);
+  return g;
+}
+
+}  // namespace
+
+Lab2Variant lab2_variant(int variant, const Lab2Options& options) {
+  if (variant < 1 || variant > kLab2Variants) {
+    throw UsageError(fmt::format("lab-2 variant {} does not exist (1..{})", variant,
+                                 kLab2Variants));
+  }
+  if (options.duration_s && !(*options.duration_s > 0.0 && std::isfinite(*options.duration_s))) {
+    throw UsageError(fmt::format("lab-2 duration must be > 0 s, got {}", *options.duration_s));
+  }
+  Lab2Variant v;
+  v.variant = variant;
+  v.seed = options.seed;
+  v.gyros = {make_gyro(variant, 1, options), make_gyro(variant, 2, options)};
+  return v;
+}
+
+std::vector<Lab2Variant> lab2_variants(const Lab2Options& options) {
+  std::vector<Lab2Variant> out;
+  for (int k = 1; k <= kLab2Variants; ++k) out.push_back(lab2_variant(k, options));
+  return out;
+}
+
+}  // namespace foglab::sim

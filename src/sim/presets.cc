@@ -1,1 +1,137 @@
-// placeholder: filled in by the work on issue 3
+#include "foglab/sim/presets.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "foglab/core/error.h"
+#include "foglab/sim/lab2_variants.h"
+
+namespace foglab::sim {
+namespace {
+
+// ADEV plateau of flicker noise = sqrt(2 ln2 / pi) B = 0.664 B
+const double kFlickerFloor = std::sqrt(2.0 * std::log(2.0) / 3.14159265358979324);
+
+/// A preset from datasheet figures: ARW [deg/sqrt(h)] (or N directly) and
+/// the bias instability [deg/h]. The class follows Table 1 from those two
+/// numbers (the worse of the two criteria).
+Preset from_datasheet(std::string name, std::string description, double n_deg_h_sqrt_hz,
+                      double bi_deg_h, double sample_rate_hz) {
+  Preset p;
+  p.name = std::move(name);
+  p.model.N = n_deg_h_sqrt_hz;
+  p.model.B = bi_deg_h / kFlickerFloor;
+  p.sample_rate_hz = sample_rate_hz;
+  const ClassVerdict verdict = classify(bi_deg_h, n_deg_h_sqrt_hz / 60.0);
+  p.accuracy_class = std::string(to_string(verdict.accuracy_class));
+  p.description =
+      fmt::format("{} Model: N = {:.4g} deg/h/sqrt(Hz) (ARW {:.4g} deg/sqrt(h)), B = BI/0.664 = "
+                  "{:.4g} deg/h (BI {:.4g} deg/h); no rate random walk, Gauss-Markov, ramp, "
+                  "quantisation, bias or temperature terms (not on the datasheet; add them with "
+                  "options). Table 1 class: {} (by BI {}, by ARW {}).",
+                  description, p.model.N, n_deg_h_sqrt_hz / 60.0, p.model.B, bi_deg_h,
+                  p.accuracy_class, to_string(verdict.by_bias_instability),
+                  to_string(verdict.by_arw));
+  return p;
+}
+
+std::vector<Preset> make_presets() {
+  std::vector<Preset> out;
+  // KVH open-loop FOGs, lab manual Fig. 15 (datasheet maxima taken as values).
+  out.push_back(from_datasheet("kvh-dsp-3000",
+                               "KVH DSP-3000 open-loop FOG (lab manual Fig. 15): ARW <= 0.067 "
+                               "deg/sqrt(h), bias instability <= 1 deg/h; limits taken as values.",
+                               60.0 * 0.067, 1.0, 100.0));
+  out.push_back(from_datasheet("kvh-dsp-1750",
+                               "KVH DSP-1750 open-loop FOG (lab manual Fig. 15): ARW <= 0.013 "
+                               "deg/sqrt(h), bias instability <= 0.1 deg/h; limits taken as values.",
+                               60.0 * 0.013, 0.1, 100.0));
+  out.push_back(from_datasheet("kvh-dsp-1760",
+                               "KVH DSP-1760 open-loop FOG (lab manual Fig. 15): ARW <= 0.012 "
+                               "deg/sqrt(h), bias instability <= 0.05 deg/h; limits taken as "
+                               "values.",
+                               60.0 * 0.012, 0.05, 100.0));
+  // Closed-loop FOGs of the manual's Table 3: "noise of the output signal"
+  // in (deg/h)/sqrt(Hz) is N; "random bias drift at fixed temperature (1 sigma)"
+  // is taken as the bias instability. KIND 11-222 (no noise figure) is left out.
+  const char* t3 = "lab manual Table 3: output noise {} (deg/h)/sqrt(Hz) taken as N; random bias "
+                   "drift at fixed temperature {} deg/h ({}) taken as the bias instability.";
+  out.push_back(from_datasheet(
+      "fog-600s", fmt::format("FOG 600S, FOG Photonics (Hong Kong), 1500 m coil; {}",
+                              fmt::format(fmt::runtime(t3), "<= 0.7", "<= 0.005", "1 sigma")),
+      0.7, 0.005, 100.0));
+  out.push_back(from_datasheet(
+      "oius-2000", fmt::format("OIUS-2000, Optolink (Russia), 2000 m coil; {}",
+                               fmt::format(fmt::runtime(t3), "<= 0.03", "<= 0.005", "1 sigma")),
+      0.03, 0.005, 100.0));
+  out.push_back(from_datasheet(
+      "oius-1000", fmt::format("OIUS-1000, Optolink (Russia), 1000 m coil; {}",
+                               fmt::format(fmt::runtime(t3), "<= 0.07", "<= 0.01", "1 sigma")),
+      0.07, 0.01, 100.0));
+  out.push_back(from_datasheet(
+      "vog-120",
+      fmt::format("VOG-120, PNPPK (Russia), 1000 m coil; {} The quoted range 0.02...0.05 deg/h "
+                  "is represented by its middle, 0.035 deg/h.",
+                  fmt::format(fmt::runtime(t3), "<= 0.18", "0.02...0.05", "1 sigma")),
+      0.18, 0.035, 100.0));
+  out.push_back(from_datasheet(
+      "fog-120", fmt::format("FOG 120, iXblue (France), 2000 m coil; {}",
+                             fmt::format(fmt::runtime(t3), "<= 0.072", "<= 0.01", "1 sigma")),
+      0.072, 0.01, 100.0));
+  out.push_back(from_datasheet(
+      "fog-1000",
+      fmt::format("FOG 1000, Northrop Grumman (USA), 1000 m coil; {}",
+                  fmt::format(fmt::runtime(t3), "<= 0.04", "0.005", "confidence not stated")),
+      0.04, 0.005, 100.0));
+  out.push_back(from_datasheet(
+      "elektropribor-fog",
+      fmt::format("FOG of CSRI Elektropribor (Russia), 2000 m coil; {}",
+                  fmt::format(fmt::runtime(t3), "<= 0.04", "<= 0.01", "1 sigma")),
+      0.04, 0.01, 100.0));
+  // One archetype per Table 1 class, at the geometric middle of the class's
+  // bias-instability and ARW ranges (open-ended ranges: half the bound for
+  // strategic, 3x the bound for consumer ARW).
+  struct Archetype {
+    const char* cls;
+    double bi;   // [deg/h]
+    double arw;  // [deg/sqrt(h)]
+    const char* ranges;
+  };
+  const Archetype archetypes[] = {
+      {"strategic", 0.0005, 0.00015, "BI < 0.001 deg/h, ARW < 0.0003 deg/sqrt(h)"},
+      {"navigation", 0.00316, 0.00122, "BI 0.001..0.01 deg/h, ARW 0.0003..0.005 deg/sqrt(h)"},
+      {"intermediate", 0.1, 0.0158, "BI 0.01..1 deg/h, ARW 0.005..0.05 deg/sqrt(h)"},
+      {"tactical", 3.16, 0.158, "BI 1..10 deg/h, ARW 0.05..0.5 deg/sqrt(h)"},
+      {"consumer", 100.0, 1.5, "BI 10..1000 deg/h, ARW > 0.5 deg/sqrt(h)"},
+  };
+  for (const Archetype& a : archetypes) {
+    out.push_back(from_datasheet(
+        fmt::format("class-{}", a.cls),
+        fmt::format("Archetype of the {} class of the lab manual's Table 1 ({}): BI {} deg/h "
+                    "and ARW {} deg/sqrt(h), the geometric middle of each range (an open range "
+                    "takes half its upper or three times its lower bound).",
+                    a.cls, a.ranges, a.bi, a.arw),
+        60.0 * a.arw, a.bi, 100.0));
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<Preset>& presets() {
+  static const std::vector<Preset> all = make_presets();
+  return all;
+}
+
+const Preset& find_preset(std::string_view name) {
+  for (const Preset& p : presets()) {
+    if (p.name == name) return p;
+  }
+  std::string names;
+  for (const Preset& p : presets()) names += (names.empty() ? "" : ", ") + p.name;
+  throw UsageError(fmt::format("unknown preset '{}'; the presets are: {}", name, names));
+}
+
+}  // namespace foglab::sim

@@ -49,7 +49,11 @@ struct Recording {
 
 /// Generates the recording block by block, in order, calling `sink` for each
 /// (blocks of at most 2^20 samples; the sink may write them out). Uses all
-/// worker threads inside each block. Throws UsageError for invalid options
+/// worker threads inside each block. The sink runs on a helper thread while
+/// the next block is generated (so writing overlaps generating); its calls
+/// never overlap one another, come in order, and the block's spans stay valid
+/// until the call returns. An exception from the sink stops the generation
+/// and is rethrown to the caller. Throws UsageError for invalid options
 /// or model parameters (negative intensities, gm_sigma > 0 with gm_tc <= 0).
 void generate(const ErrorModel& model, const TemperatureProfile& temperature,
               const GeneratorOptions& options, const std::function<void(const Block&)>& sink);

@@ -1,0 +1,169 @@
+// foglab — the lab-2 variant data sets and their answer key (instructor side).
+//
+// Lab 2 of the manual (Table 5) gives each student a variant k = 1..6 and two
+// files, FOG1_k.mat and FOG2_k.mat, each holding `f, t, Y1, Y2, T1, T2`: the
+// rate of a static gyro at constant temperature (Y1, T1: a thermostat with a
+// small sensor jitter) and during a linear 10 degC temperature ramp (Y2, T2).
+// The student fits p = polyfit(T, Y, 2), reads the white-noise intensity,
+// the random-bias process (Wiener or first-order Gauss-Markov, and its
+// intensity) and the bias instability from the PSD and the Allan deviation,
+// and names each gyro's accuracy class (Table 1).
+//
+// Design (deterministic in (seed, variant): each parameter is drawn from its
+// range by a hash of seed, variant, gyro and parameter number):
+//   * FOG1 — closed-loop, intermediate grade: 10 Hz for 3 h; ARW
+//     0.006..0.02 deg/sqrt(h); flicker floor 0.664 B 0.02..0.06 deg/h;
+//     temperature coefficients |c1| 0.15..0.4 deg/h/degC, |c2| 0.005..0.02.
+//   * FOG2 — open-loop, tactical grade: 20 Hz for 2 h; ARW 0.08..0.25
+//     deg/sqrt(h); flicker floor 1.5..4 deg/h; |c1| 2..4 deg/h/degC,
+//     |c2| 0.05..0.2.
+//   * the random bias is a Wiener process (K set so that the white and
+//     random-walk lines of the ADEV cross at tau* = sqrt(3) N/K, 150..600 s
+//     for FOG1 and 60..240 s for FOG2) in odd variants for FOG1 and even
+//     variants for FOG2; otherwise a Gauss-Markov process with Tc in the same
+//     tau* range and sigma making its ADEV hump (0.62 sigma near 1.89 Tc)
+//     2.5..5 times the white-noise ADEV there. So each variant has one gyro
+//     of each kind.
+//   * constant bias drawn in +-(0.5..3) deg/h (FOG1), +-(5..25) deg/h (FOG2);
+//     no input rate (the sensitive axis is taken horizontal, pointing east,
+//     so it sees no Earth rate); thermostat at T0 uniform in 22..28 degC with
+//     0.02 degC jitter; the ramp runs from T0 - 5 to T0 + 5 degC (same T_ref).
+//   * generator streams: stream = 100 variant + 10 gyro + run (gyro 1|2,
+//     run 1 constant|2 ramp), all with the one seed.
+//
+// Answer key: computed from the model, never estimated from data — the
+// polynomial the lab's polyfit should approach, N/ARW/K/GM, and the bias
+// instability = the minimum of the model's theoretical ADEV (IEEE 952, see
+// error_model.h) over the record's usable tau range [1/fs, duration/10]
+// (at least 10 clusters, the manual's L_m >= 10), with its tau, and the
+// Table 1 class (the worse of the bias-instability and ARW classes).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "foglab/sim/error_model.h"
+#include "foglab/sim/generator.h"
+
+namespace foglab::sim {
+
+// --- Table 1 accuracy classes -------------------------------------------
+
+/// The manual's Table 1 classes, best first.
+enum class AccuracyClass { strategic, navigation, intermediate, tactical, consumer };
+
+/// "strategic", "navigation", "intermediate", "tactical", "consumer".
+std::string_view to_string(AccuracyClass c);
+
+/// Class by bias instability [deg/h]: < 0.001 strategic, < 0.01 navigation,
+/// 0.01..1 intermediate, (1, 10] tactical, above consumer. A value on a
+/// boundary goes to the better class (a datasheet's "<= 1 deg/h" is met).
+AccuracyClass class_by_bias_instability(double bi_deg_h);
+
+/// Class by angle random walk [deg/sqrt(h)]: < 0.0003 strategic, < 0.005
+/// navigation, 0.005..0.05 intermediate, (0.05, 0.5] tactical, above consumer.
+AccuracyClass class_by_arw(double arw_deg_sqrt_h);
+
+struct ClassVerdict {
+  AccuracyClass accuracy_class = AccuracyClass::consumer;  ///< the worse of the two
+  AccuracyClass by_bias_instability = AccuracyClass::consumer;
+  AccuracyClass by_arw = AccuracyClass::consumer;
+  /// "bias_instability", "arw" or "both" (they agree).
+  std::string decided_by;
+};
+
+/// The Table 1 verdict: the worse of the two classes wins.
+ClassVerdict classify(double bi_deg_h, double arw_deg_sqrt_h);
+
+// --- the model's theory ---------------------------------------------------
+
+/// The model's Allan variance at tau [s] ((deg/h)^2), IEEE 952 plus the
+/// Gauss-Markov term (error_model.h).
+double model_allan_variance(const ErrorModel& model, double tau_s);
+
+struct AdevMinimum {
+  double adev_deg_h = 0.0;  ///< [deg/h] the minimum
+  double tau_s = 0.0;       ///< [s] where it occurs
+  bool at_range_edge = false;  ///< the minimum is at tau_min_s or tau_max_s
+};
+
+/// The minimum of sqrt(model_allan_variance) over [tau_min_s, tau_max_s] on a
+/// log grid of `points_per_decade` (refined by golden-section search between
+/// the neighbours of the best grid point).
+AdevMinimum model_adev_minimum(const ErrorModel& model, double tau_min_s, double tau_max_s,
+                               int points_per_decade = 1000);
+
+/// The systematic part bias + input_rate + sum_k c_k (T - t_ref_c)^k as a
+/// polynomial in raw T [degC]: ascending coefficients a_0, a_1, ... [deg/h/degC^j].
+std::vector<double> raw_temperature_polynomial(const ErrorModel& model, double t_ref_c);
+
+// --- the variants -----------------------------------------------------------
+
+enum class RandomBiasProcess { wiener, gauss_markov };
+std::string_view to_string(RandomBiasProcess p);
+
+/// The seed used when none is given (the manual's year).
+inline constexpr std::uint64_t kLab2DefaultSeed = 2021;
+
+struct Lab2Options {
+  std::uint64_t seed = kLab2DefaultSeed;
+  /// [s] overrides every run's duration (tests, quick looks); the answer
+  /// key follows (its usable tau range shrinks).
+  std::optional<double> duration_s;
+};
+
+/// One run of a gyro and what the lab should find in it.
+struct Lab2Run {
+  std::string rate_name;         ///< "Y1" | "Y2"
+  std::string temperature_name;  ///< "T1" | "T2"
+  TemperatureProfile temperature;
+  GeneratorOptions generator;    ///< fs, duration, seed, stream
+  double t_ref_c = 0.0;          ///< [degC] reference of the temperature coefficients
+
+  // answer key, from the model
+  /// p of polyfit(T, Y, 2) in MATLAB order [p1 p2 p3] (deg/h per degC^2,
+  /// degC, 1): the model's polynomial expanded in raw degC.
+  std::array<double, 3> polyfit_p{};
+  double lab_constant_term_deg_h = 0.0;  ///< p3: the polynomial at T = 0 degC
+  double bias_at_t_ref_deg_h = 0.0;      ///< the polynomial at t_ref_c
+  /// False for the thermostat run: its temperature moves only by the sensor
+  /// jitter, so polyfit(T1, Y1, 2) is ill-conditioned and its constant term
+  /// is dominated by noise; compare the bias at T_ref (mean of Y1) instead.
+  bool constant_term_well_conditioned = false;
+  double usable_tau_min_s = 0.0;  ///< [s] 1/fs
+  double usable_tau_max_s = 0.0;  ///< [s] duration/10
+  AdevMinimum bias_instability;   ///< min of the model ADEV in the usable range
+};
+
+/// One gyro of a variant (the file FOGg_k.mat).
+struct Lab2Gyro {
+  int gyro = 1;             ///< 1 | 2
+  std::string name;         ///< "FOG1" | "FOG2"
+  std::string file_name;    ///< "FOG1_3.mat"
+  std::string design;       ///< a sentence describing the gyro
+  ErrorModel model;         ///< the truth (SPEC units)
+  RandomBiasProcess random_bias = RandomBiasProcess::wiener;
+  double arw_deg_sqrt_h = 0.0;  ///< N / 60
+  std::array<Lab2Run, 2> runs;  ///< constant temperature (Y1, T1), ramp (Y2, T2)
+  ClassVerdict verdict;         ///< from the (shared) bias instability and ARW
+};
+
+struct Lab2Variant {
+  int variant = 1;  ///< 1..6
+  std::uint64_t seed = kLab2DefaultSeed;
+  std::array<Lab2Gyro, 2> gyros;  ///< FOG1, FOG2
+};
+
+inline constexpr int kLab2Variants = 6;
+
+/// Variant k (1..6; UsageError otherwise, or for a duration <= 0).
+Lab2Variant lab2_variant(int variant, const Lab2Options& options = {});
+
+/// All six.
+std::vector<Lab2Variant> lab2_variants(const Lab2Options& options = {});
+
+}  // namespace foglab::sim
