@@ -71,13 +71,16 @@ class RawFileWriter {
 
  private:
   void fail(const std::string& reason);
+  void flush(std::size_t bytes);
 
   std::string path_;
   std::string tmp_;
   RawType type_;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;
+  bool direct_ = false;   // the file was opened with O_DIRECT (page cache bypassed)
   std::uint64_t samples_ = 0;
-  std::vector<unsigned char> buffer_;
+  unsigned char* buffer_ = nullptr;  // page-aligned staging buffer
+  std::size_t used_ = 0;             // bytes staged
 };
 
 }  // namespace foglab::io
