@@ -341,11 +341,26 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
 
   const bool hadamard = options.kind == AllanKind::hdev || options.kind == AllanKind::ohdev;
   const std::vector<NoiseId> ids = identify_noise(phase, result.m, hadamard ? 3 : 2);
+  // Phase-noise types (alpha > 0, ADEV ~ 1/tau) fall faster than every other
+  // term, so once a frequency-noise type dominates at some tau, phase noise
+  // cannot dominate at a longer one. With few decimated points the lag-1
+  // method sometimes calls white FM "PM", which would give a far too large
+  // edf; such calls beyond the shortest FM tau are taken as white FM.
+  std::int64_t shortest_fm_m = std::numeric_limits<std::int64_t>::max();
+  for (std::size_t k = 0; k < count; ++k) {
+    if (ids[k].method != "none" && ids[k].alpha <= 0) {
+      shortest_fm_m = std::min(shortest_fm_m, result.m[k]);
+    }
+  }
   int previous_alpha = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t m = result.m[k];
     NoiseId id = ids[k];
     if (id.method == "none") id.alpha = previous_alpha;
+    if (id.alpha > 0 && m > shortest_fm_m) {
+      id.alpha = 0;
+      id.method += ",fm_floor";
+    }
     previous_alpha = id.alpha;
     result.alpha[k] = id.alpha;
     result.alpha_method[k] = id.method;

@@ -128,6 +128,26 @@ TEST(AllanTheory, NinetyFivePercentIntervalsCoverTheTruthNinetyFivePercentOfTheT
   EXPECT_NEAR(covered_adev, 0.95 * kRecords, 13);
 }
 
+TEST(AllanTheory, WhiteFmIsNeverCalledPhaseNoiseAtLongTauSoIntervalsStayHonest) {
+  // With 30-60 decimated points the lag-1 method alone calls white FM "PM"
+  // in roughly one record in four, and the PM edf is orders of magnitude too
+  // large. Over 30 records, the truth must fall outside the 99.9 % interval
+  // about as rarely as 99.9 % says (expected 0.45 of 450 taus; allow 3).
+  int outside = 0, total = 0;
+  for (int s = 0; s < 30; ++s) {
+    const std::vector<double> rate = test::white(200000, 5000 + s, 1.0);
+    const AllanResult r = allan_deviation(rate, 1.0, InputKind::rate, AllanOptions{});
+    for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+      EXPECT_LE(r.alpha[k], 0) << "seed " << s << " tau " << r.tau_s[k];
+      const Interval wide = chi2_interval(r.dev[k], r.edf[k], 0.999);
+      const double truth = 1.0 / std::sqrt(r.tau_s[k]);
+      if (truth < wide.low || truth > wide.high) ++outside;
+      ++total;
+    }
+  }
+  EXPECT_LE(outside, 3) << "of " << total;
+}
+
 TEST(AllanTheory, LargeBiasIsRemovedExactlyBeforeIntegration) {
   // The quick version of large_record_test: 2^20 samples.
   const std::vector<double> noise = test::white(1 << 20, 15, 1e-3);

@@ -17,6 +17,9 @@
 //     variance over Allan variance of the m-sample averages) compared with
 //     its theoretical values at the geometric means between noise types,
 //     and the R(n) = MVAR/AVAR ratio to split white from flicker PM.
+// allan_deviation() adds one physical constraint: phase-noise types fall as
+// 1/tau, faster than any other term, so beyond the shortest tau identified as
+// frequency noise a PM call is taken as white FM (method "...,fm_floor").
 #pragma once
 
 #include <cstdint>
