@@ -64,6 +64,27 @@ nlohmann::json numbers(const std::vector<double>& values) {
   return array;
 }
 
+nlohmann::json model_json(const sim::ErrorModel& m) {
+  return {{"N", m.N},         {"B", m.B},
+          {"K", m.K},         {"R", m.R},
+          {"Q", m.Q},         {"gm_sigma", m.gm_sigma},
+          {"gm_tc", m.gm_tc}, {"bias", m.bias},
+          {"input_rate", m.input_rate}, {"temp_coefs", m.temp_coefs}};
+}
+
+nlohmann::json model_units_json() {
+  return {{"N", "deg/h/sqrt(Hz)"},
+          {"B", "deg/h"},
+          {"K", "deg/h/sqrt(s)"},
+          {"R", "deg/h/s"},
+          {"Q", "deg/h*s"},
+          {"gm_sigma", "deg/h"},
+          {"gm_tc", "s"},
+          {"bias", "deg/h"},
+          {"input_rate", "deg/h"},
+          {"temp_coefs", "deg/h/degC^k, k = 1, 2, ... about temperature.reference_c"}};
+}
+
 nlohmann::json input_json(const io::Series& series) {
   return {{"path", series.path},
           {"channel", series.channel},

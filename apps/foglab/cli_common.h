@@ -10,6 +10,7 @@
 
 #include "foglab/core/units.h"
 #include "foglab/io/reader.h"
+#include "foglab/sim/error_model.h"
 
 namespace foglab::cli {
 
@@ -32,6 +33,11 @@ io::Series load_input(const InputOptions& options);
 /// A JSON number, or null for NaN/Inf.
 nlohmann::json number(double value);
 nlohmann::json numbers(const std::vector<double>& values);
+
+/// An error model as JSON, in SPEC.md units (truth files, answer keys).
+nlohmann::json model_json(const sim::ErrorModel& model);
+/// The unit of every field of model_json().
+nlohmann::json model_units_json();
 
 /// Describes where the data came from, for every JSON output.
 nlohmann::json input_json(const io::Series& series);

@@ -94,28 +94,12 @@ std::string_view to_string(sim::TemperatureKind k) {
   return "";
 }
 
-nlohmann::json model_json(const sim::ErrorModel& m) {
-  return {{"N", m.N},         {"B", m.B},
-          {"K", m.K},         {"R", m.R},
-          {"Q", m.Q},         {"gm_sigma", m.gm_sigma},
-          {"gm_tc", m.gm_tc}, {"bias", m.bias},
-          {"input_rate", m.input_rate}, {"temp_coefs", m.temp_coefs}};
-}
-
 nlohmann::json units_json() {
-  return {{"N", "deg/h/sqrt(Hz)"},
-          {"B", "deg/h"},
-          {"K", "deg/h/sqrt(s)"},
-          {"R", "deg/h/s"},
-          {"Q", "deg/h*s"},
-          {"gm_sigma", "deg/h"},
-          {"gm_tc", "s"},
-          {"bias", "deg/h"},
-          {"input_rate", "deg/h"},
-          {"temp_coefs", "deg/h/degC^k, k = 1, 2, ... about temperature.reference_c"},
-          {"rate", "deg/h"},
-          {"temperature", "degC"},
-          {"time", "s"}};
+  nlohmann::json units = model_units_json();
+  units["rate"] = "deg/h";
+  units["temperature"] = "degC";
+  units["time"] = "s";
+  return units;
 }
 
 void run(const GenerateCommand& c) {

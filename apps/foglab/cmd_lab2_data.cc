@@ -30,14 +30,16 @@ nlohmann::json optional_number(bool present, double value) {
   return present ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-nlohmann::json gyro_truth(const sim::Lab2Gyro& g) {
-  const sim::ErrorModel& m = g.model;
-  return {{"N", m.N},         {"B", m.B},
-          {"K", m.K},         {"R", m.R},
-          {"Q", m.Q},         {"gm_sigma", m.gm_sigma},
-          {"gm_tc", m.gm_tc}, {"bias", m.bias},
-          {"input_rate", m.input_rate}, {"temp_coefs", m.temp_coefs}};
+nlohmann::json lab2_units() {
+  nlohmann::json units = model_units_json();
+  units["polyfit_p"] = "MATLAB polyfit(T, Y, 2) order: deg/h/degC^2, deg/h/degC, deg/h";
+  units["arw_deg_per_sqrt_h"] = "deg/sqrt(h)";
+  units["bias_instability_deg_h"] = "deg/h (minimum of the model ADEV in usable_tau_s)";
+  units["usable_tau_s"] = "s, [1/fs, duration/10]";
+  return units;
 }
+
+nlohmann::json gyro_truth(const sim::Lab2Gyro& g) { return model_json(g.model); }
 
 nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g,
                         const sim::Lab2Run& r) {
@@ -193,21 +195,7 @@ void run(const Lab2DataCommand& c) {
       {"generator", "foglab lab2-data"},
       {"foglab_version", std::string(version())},
       {"seed", c.seed},
-      {"units",
-       {{"N", "deg/h/sqrt(Hz)"},
-        {"B", "deg/h"},
-        {"K", "deg/h/sqrt(s)"},
-        {"R", "deg/h/s"},
-        {"Q", "deg/h*s"},
-        {"gm_sigma", "deg/h"},
-        {"gm_tc", "s"},
-        {"bias", "deg/h"},
-        {"input_rate", "deg/h"},
-        {"temp_coefs", "deg/h/degC^k about temperature.reference_c"},
-        {"polyfit_p", "MATLAB polyfit(T, Y, 2) order: deg/h/degC^2, deg/h/degC, deg/h"},
-        {"arw_deg_per_sqrt_h", "deg/sqrt(h)"},
-        {"bias_instability_deg_h", "deg/h (minimum of the model ADEV in usable_tau_s)"},
-        {"usable_tau_s", "s, [1/fs, duration/10]"}}},
+      {"units", lab2_units()},
       {"notes",
        {"Values are computed from the model, not estimated from the data.",
         "The thermostat run's polyfit constant is ill-conditioned (the temperature moves only "
