@@ -47,37 +47,18 @@
 #include <vector>
 
 #include "foglab/sim/error_model.h"
+#include "foglab/core/accuracy_class.h"
 #include "foglab/sim/generator.h"
 
 namespace foglab::sim {
 
-// --- Table 1 accuracy classes -------------------------------------------
-
-/// The manual's Table 1 classes, best first.
-enum class AccuracyClass { strategic, navigation, intermediate, tactical, consumer };
-
-/// "strategic", "navigation", "intermediate", "tactical", "consumer".
-std::string_view to_string(AccuracyClass c);
-
-/// Class by bias instability [deg/h]: < 0.001 strategic, < 0.01 navigation,
-/// 0.01..1 intermediate, (1, 10] tactical, above consumer. A value on a
-/// boundary goes to the better class (a datasheet's "<= 1 deg/h" is met).
-AccuracyClass class_by_bias_instability(double bi_deg_h);
-
-/// Class by angle random walk [deg/sqrt(h)]: < 0.0003 strategic, < 0.005
-/// navigation, 0.005..0.05 intermediate, (0.05, 0.5] tactical, above consumer.
-AccuracyClass class_by_arw(double arw_deg_sqrt_h);
-
-struct ClassVerdict {
-  AccuracyClass accuracy_class = AccuracyClass::consumer;  ///< the worse of the two
-  AccuracyClass by_bias_instability = AccuracyClass::consumer;
-  AccuracyClass by_arw = AccuracyClass::consumer;
-  /// "bias_instability", "arw" or "both" (they agree).
-  std::string decided_by;
-};
-
-/// The Table 1 verdict: the worse of the two classes wins.
-ClassVerdict classify(double bi_deg_h, double arw_deg_sqrt_h);
+// Table 1 accuracy classes live in core (shared with the estimators).
+using foglab::AccuracyClass;
+using foglab::class_by_arw;
+using foglab::class_by_bias_instability;
+using foglab::classify;
+using foglab::ClassVerdict;
+using foglab::to_string;
 
 // --- the model's theory ---------------------------------------------------
 
