@@ -61,7 +61,7 @@ CompensatedSum chunk_sum(std::span<const double> values, double shift) {
   return total;
 }
 
-double compensated_sum(std::span<const double> values) {
+std::vector<CompensatedSum> chunk_sums(std::span<const double> values, double shift) {
   const std::size_t n = values.size();
   const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
   std::vector<CompensatedSum> partial(chunks);
@@ -69,10 +69,14 @@ double compensated_sum(std::span<const double> values) {
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t begin = c * kChunkSamples;
     const std::size_t end = std::min(n, begin + kChunkSamples);
-    partial[c] = chunk_sum(values.subspan(begin, end - begin));
+    partial[c] = chunk_sum(values.subspan(begin, end - begin), shift);
   }
+  return partial;
+}
+
+double compensated_sum(std::span<const double> values) {
   CompensatedSum total;
-  for (const auto& p : partial) total.add(p);
+  for (const auto& p : chunk_sums(values)) total.add(p);
   return total.value();
 }
 

@@ -38,20 +38,12 @@ void angle_to_phase(std::span<const double> in, double sample_rate_hz, double* o
 // never travel further than one chunk. Returns the chunk offsets x at each
 // chunk start and the final value x_n.
 std::vector<double> chunk_offsets(std::span<const double> rate, double mean, double* last) {
-  const std::size_t n = rate.size();
-  const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
-  std::vector<CompensatedSum> chunk_sums(chunks);
-#pragma omp parallel for schedule(static) if (chunks > 1)
-  for (std::size_t c = 0; c < chunks; ++c) {
-    const std::size_t begin = c * kChunkSamples;
-    const std::size_t end = std::min(n, begin + kChunkSamples);
-    chunk_sums[c] = chunk_sum(rate.subspan(begin, end - begin), mean);
-  }
-  std::vector<double> offsets(chunks);
+  const std::vector<CompensatedSum> sums = chunk_sums(rate, mean);
+  std::vector<double> offsets(sums.size());
   CompensatedSum running;
-  for (std::size_t c = 0; c < chunks; ++c) {
+  for (std::size_t c = 0; c < sums.size(); ++c) {
     offsets[c] = running.value();
-    running.add(chunk_sums[c]);
+    running.add(sums[c]);
   }
   *last = running.value();
   return offsets;

@@ -42,6 +42,10 @@ class CompensatedSum {
 /// Neumaier's rule. Serial; the building block of the parallel sums below.
 CompensatedSum chunk_sum(std::span<const double> values, double shift = 0.0);
 
+/// chunk_sum() of every kChunkSamples-long chunk of `values`, in parallel;
+/// combining them in order gives a thread-count independent result.
+std::vector<CompensatedSum> chunk_sums(std::span<const double> values, double shift = 0.0);
+
 /// Compensated sum of `values`, computed in parallel with a thread-count
 /// independent result.
 double compensated_sum(std::span<const double> values);
