@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     auto action = reg(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(action));
   };
+  add(cli::register_analyze);
   add(cli::register_allan);
   add(cli::register_psd);
   add(cli::register_generate);

@@ -1,0 +1,85 @@
+// foglab — the whole identification of a static recording (lab 2, SPEC.md
+// Part A): systematic part, statistics on the residual, noise-model fit,
+// the lab's graphical readings, the random-bias question and the class.
+//
+//   1. temperature polynomial (systematic.h), when a temperature is given;
+//   2. its residual: Welch PSD (two-sided, log-smoothed for display) and the
+//      overlapping Allan deviation with 95 % intervals (stats/);
+//   3. the joint noise-model fit (noise_fit.h), allowing for what removing
+//      the polynomial did to each term, and with it the systematic fit's
+//      standard errors; the automatic degree comes from a first, quick noise
+//      model of the cubic fit's residual (deviations only);
+//   4. graphical readings (readings.h), ADEV minimum = bias instability;
+//   5. Table 1 class from that minimum and the ARW (N/60).
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "foglab/core/accuracy_class.h"
+#include "foglab/model/noise_fit.h"
+#include "foglab/model/readings.h"
+#include "foglab/model/systematic.h"
+#include "foglab/stats/allan.h"
+#include "foglab/stats/psd.h"
+
+namespace foglab::model {
+
+struct AnalysisOptions {
+  SystematicOptions systematic;
+  stats::TauGrid grid;       ///< for the Allan deviation (default octave, >= 10 clusters)
+  std::size_t psd_segment = 0;   ///< Welch segment (0: automatic, psd.h)
+  double psd_bins_per_decade = 20.0;  ///< log smoothing for display and readings
+  NoiseFitOptions noise_fit;
+  /// The noise fit also uses the longer taus down to this many clusters
+  /// (the reported Allan deviation keeps grid.min_clusters).
+  std::int64_t fit_min_clusters = 3;
+  /// Block means used for the detrending factors (systematic.h).
+  int detrend_blocks = 512;
+};
+
+/// The evidence behind the random-bias answer.
+struct RandomBiasEvidence {
+  double deviance_none = 0.0;          ///< best model without random bias (NaN if none fitted)
+  double deviance_wiener = 0.0;        ///< best model with a Wiener term (NaN if none admissible)
+  double deviance_gauss_markov = 0.0;  ///< best with a Gauss-Markov term (NaN if none admissible)
+  double criterion_none = 0.0, criterion_wiener = 0.0, criterion_gauss_markov = 0.0;
+  /// Log-log slope of the ADEV over its last three points (+0.5 Wiener,
+  /// turning negative after a Gauss-Markov hump).
+  double adev_end_slope = 0.0;
+  /// Log-log slope of the raw PSD over its lowest decade (-2 Wiener, about 0
+  /// on a Gauss-Markov plateau below 1/(2 pi Tc)).
+  double psd_low_frequency_slope = 0.0;
+  std::string summary;  ///< one sentence
+};
+
+struct AnalysisResult {
+  double sample_rate_hz = 0.0;  ///< [Hz]
+  std::int64_t samples = 0;
+  double duration_s = 0.0;      ///< [s]
+  std::optional<SystematicFit> systematic;  ///< empty without temperature
+  stats::PsdResult psd;           ///< Welch PSD of the residual, (deg/h)^2/Hz two-sided
+  stats::PsdResult psd_smoothed;  ///< the same, log-smoothed
+  stats::AllanResult allan;       ///< OADEV of the residual with intervals
+  NoiseFitResult noise;
+  AdevReadings adev_readings;
+  PsdReadings psd_readings;
+  double arw_deg_sqrt_h = 0.0;            ///< N/60 of the fit
+  double bias_instability_deg_h = 0.0;    ///< ADEV minimum
+  double bias_instability_tau_s = 0.0;    ///< [s]
+  bool bias_instability_at_edge = false;  ///< minimum at the end of the tau range
+  RandomBiasEvidence evidence;
+  ClassVerdict verdict;
+  std::vector<std::string> notes;  ///< what the program decided and why
+};
+
+/// Analyses a rate record [deg/h] sampled at `sample_rate_hz`, with the
+/// temperature [degC] at the same instants (empty span: no temperature).
+/// `rate_deg_h` is consumed (it becomes the residual's angle record).
+/// Throws UsageError / DataError as the steps do (e.g. too short a record).
+AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> temperature_c,
+                       double sample_rate_hz, const AnalysisOptions& options = {});
+
+}  // namespace foglab::model

@@ -1,0 +1,166 @@
+// foglab — identifying the random error model from the Allan variance.
+//
+// The model (IEEE Std 952-1997 Annex C; SPEC.md), tau [s], rate [deg/h]:
+//
+//   AVAR(tau) = R^2 tau^2/2 + K^2 tau/3 + (2 ln2/pi) B^2 + N^2/tau + 3 Q^2/tau^2
+//             + sigma^2 (Tc/tau)^2 (2 tau/Tc - 3 + 4 e^(-tau/Tc) - e^(-2 tau/Tc))
+//
+// with N white rate noise [deg/h/sqrt(Hz)], B flicker (bias instability)
+// [deg/h], K rate random walk (Wiener) [deg/h/sqrt(s)], R rate ramp [deg/h/s],
+// Q angle quantisation [deg/h*s] and a first-order Gauss-Markov random bias
+// of standard deviation sigma [deg/h] and correlation time Tc [s].
+//
+// Estimator. Each overlapping Allan variance estimate is, to the usual
+// approximation (NIST SP 1065 section 5.2.3), the model value times a
+// chi-square variable with the estimate's equivalent degrees of freedom
+// (edf) divided by the edf: a gamma variable of mean AVAR(tau) and shape
+// edf/2. The fit maximises that likelihood over the tau grid (the points
+// treated as independent), which is a weighted least-squares fit whose
+// weights are the Allan variance's own uncertainty, 2 AVAR^2/edf, taken at
+// the model (iteratively reweighted) — the weighting of the GMWM literature
+// (Guerrier et al., "Wavelet-variance-based estimation for composite
+// stochastic processes", JASA 2013), with the gamma deviance
+//   D = sum_i edf_i (y_i/mu_i - 1 - ln(y_i/mu_i))
+// as the measure of fit. The coefficients enter squared and linearly, so for
+// a fixed Tc the fit is a positive weighted linear least-squares problem;
+// Tc is profiled on a log grid and refined (several starts).
+//
+// Which terms are present: every admissible subset of {N, B, K, R, Q, GM}
+// is fitted, a subset counting only when all its coefficients come out
+// positive (otherwise its optimum is one of its subsets), and the subset
+// minimising D + penalty * (number of parameters) is chosen (a BIC-like
+// criterion; the penalty was set by the simulation study in
+// docs/validation.md). Wiener and Gauss-Markov random bias are alternatives
+// (the lab's question), not combined, unless the options allow it.
+//
+// Uncertainty: the 95 % interval of a chosen term comes from the observed
+// Fisher information of the gamma likelihood in log-parameter space,
+// scaled by the fit's dispersion D/(points - parameters) when that exceeds
+// one and by `correlation_inflation` for the correlation between
+// neighbouring tau estimates (which the independent-points likelihood
+// ignores), then mapped back (so the interval is positive and asymmetric).
+// A term left out gets a one-sided 95 % upper bound from the profile
+// deviance (the value at which adding it costs 2.71 in D), and the status
+// `upper_bound` when the data pull it above zero but not significantly, or
+// `absent` when they pull it to zero.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "foglab/stats/allan.h"
+
+namespace foglab::model {
+
+/// The estimator's error model, SPEC.md units. A term not present is 0.
+struct NoiseModel {
+  double N = 0.0;         ///< [deg/h/sqrt(Hz)]
+  double B = 0.0;         ///< [deg/h]
+  double K = 0.0;         ///< [deg/h/sqrt(s)]
+  double R = 0.0;         ///< [deg/h/s]
+  double Q = 0.0;         ///< [deg/h*s]
+  double gm_sigma = 0.0;  ///< [deg/h]
+  double gm_tc = 0.0;     ///< [s], > 0 when gm_sigma > 0
+};
+
+/// One term of the model; gm stands for the pair (sigma, Tc).
+enum class NoiseTerm { N, B, K, R, Q, gm };
+inline constexpr int kNoiseTerms = 6;
+std::string_view to_string(NoiseTerm term);
+
+/// The model's Allan variance [(deg/h)^2] at tau [s].
+double allan_variance(const NoiseModel& model, double tau_s);
+/// The contribution of one term [(deg/h)^2] at tau [s].
+double allan_variance(const NoiseModel& model, NoiseTerm term, double tau_s);
+
+enum class TermStatus { resolved, upper_bound, absent };
+std::string_view to_string(TermStatus status);
+
+/// One reported parameter.
+struct ParameterEstimate {
+  double value = 0.0;  ///< the estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent
+  /// The 95 % interval; for a term left out, the one-sided [0, upper_95]
+  /// (NaN when no bound could be set).
+  double ci95_low = 0.0;
+  double ci95_high = 0.0;
+  /// One-sided 95 % upper bound for a term left out (NaN when resolved or
+  /// when no bound could be set, e.g. Gauss-Markov Tc).
+  double upper_95 = 0.0;
+  TermStatus status = TermStatus::absent;
+};
+
+/// The lab's question: what is the random part of the bias?
+enum class RandomBiasProcess { none, wiener, gauss_markov };
+std::string_view to_string(RandomBiasProcess process);
+
+struct NoiseFitOptions {
+  /// Cost of one parameter in the selection criterion D + penalty * p.
+  double penalty = 6.0;
+  /// Multiplies the covariance of the chosen parameters, for the correlation
+  /// of neighbouring tau estimates (set by the simulation study).
+  double correlation_inflation = 3.0;
+  bool allow_gauss_markov = true;
+  /// Allow a Wiener and a Gauss-Markov term in the same model.
+  bool allow_wiener_with_gauss_markov = false;
+  /// Points whose edf is below this are left out of the fit.
+  double min_edf = 1.0;
+};
+
+/// How removing a fitted polynomial (the temperature dependence) from the
+/// record changes each term's expected Allan variance: the fit compares the
+/// measured Allan variance of the residual with the model times these
+/// factors (1 everywhere when nothing but the mean was removed). Computed by
+/// detrend_factors() (systematic.h).
+struct DetrendFactors {
+  std::vector<double> tau_s;                     ///< [s] the fit's tau points
+  std::array<std::vector<double>, 5> linear;     ///< N, B, K, R, Q: factor at each tau
+  std::vector<double> gm_tc_s;                   ///< [s] Gauss-Markov Tc grid, increasing
+  std::vector<std::vector<double>> gm;           ///< [Tc index][tau index]
+  /// The factor of `term` at tau point `index` (Tc for the Gauss-Markov
+  /// term, interpolated in ln Tc, clamped at the grid's ends).
+  double factor(NoiseTerm term, std::size_t index, double tc_s) const;
+};
+
+/// One fitted candidate model (for the evidence in the output).
+struct CandidateModel {
+  std::string terms;         ///< e.g. "N+B+K"
+  NoiseModel model;
+  double deviance = 0.0;     ///< gamma deviance D
+  int parameters = 0;
+  double criterion = 0.0;    ///< D + penalty * parameters
+};
+
+struct NoiseFitResult {
+  NoiseModel model;  ///< the chosen model (terms left out are 0)
+  ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
+  RandomBiasProcess random_bias_process = RandomBiasProcess::none;
+  std::string terms;     ///< the chosen terms, e.g. "N+B+K"
+  double deviance = 0.0;
+  int points = 0;        ///< tau points used
+  int parameters = 0;
+  double dispersion = 1.0;  ///< max(1, D / (points - parameters))
+  /// The best candidate of each random-bias hypothesis (terms "none",
+  /// "wiener", "gauss_markov" in `random_bias`), the evidence for the answer.
+  CandidateModel best_without_random_bias, best_wiener, best_gauss_markov;
+  bool has_wiener_candidate = false, has_gauss_markov_candidate = false;
+  std::vector<CandidateModel> candidates;  ///< every admissible subset, best first
+};
+
+/// Fits the model to Allan deviations `adev_deg_h` at `tau_s` with their
+/// equivalent degrees of freedom `edf` (stats::AllanResult's fields).
+/// Throws UsageError for mismatched sizes, fewer than 3 usable points or
+/// non-positive values.
+/// `detrend`, when given, holds the factors for the same tau points.
+NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const double> adev_deg_h,
+                               std::span<const double> edf, const NoiseFitOptions& options = {},
+                               const DetrendFactors* detrend = nullptr);
+
+/// The same on an Allan result computed with confidence intervals.
+NoiseFitResult fit_noise_model(const stats::AllanResult& allan,
+                               const NoiseFitOptions& options = {},
+                               const DetrendFactors* detrend = nullptr);
+
+}  // namespace foglab::model

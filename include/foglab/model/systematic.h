@@ -1,0 +1,112 @@
+// foglab — the systematic part of a static recording: bias and its
+// temperature dependence (lab manual section 2.2, step 3: polyfit(T, Y, 2)).
+//
+// Model: rate_k = sum_{j=0..d} c_j (T_k - t_ref)^j + e_k, t_ref the mean
+// temperature, fitted by ordinary least squares (Eigen's QR on the centred
+// and scaled design). The noise e_k is NOT white — a gyro's random bias
+// (flicker, Wiener, Gauss-Markov) is strongly correlated, and under a
+// temperature ramp it is confounded with the temperature terms — so the
+// standard errors of c_j come from the covariance the fitted noise model
+// implies (noise_fit.h), not from the residual scatter:
+//
+//   Cov(c) = (X'X)^-1 X' Sigma X (X'X)^-1,
+//
+// with Sigma built on block means of the record from the phase structure
+// function of each noise term (white, flicker, Wiener, Gauss-Markov,
+// quantisation; docs/theory/systematic.md). A random-walk or flicker
+// process has no finite variance, so the intercept's standard error counts
+// only the stationary terms; the slopes' errors are complete.
+//
+// Degree: by default the degree d in 0..3 minimising the information
+// criterion W_d + p d, where W_d is the Wald statistic (with the covariance
+// above, so correlated noise is accounted for) of the coefficients above d in
+// the cubic fit — the Wald approximation of the likelihood-ratio statistic
+// -2 ln(L_d / L_3) — and p = 6.63, the 99 % point of chi-square with one
+// degree of freedom: a coefficient must be significant at the 1 % level to
+// enter. (BIC's ln(n) would count every sample as independent, which a
+// random-walk bias is not; AIC's 2 lets one spurious term in six.) When the temperature barely moves
+// (the spread of its block means below `min_span_c`) the fit falls back to a
+// constant, whatever was asked, and says so. The lab's number — the constant
+// term of polyfit(T, Y, 2) in raw degC — is reported from the quadratic fit
+// in every case (with `lab_constant_meaningful` false on a thermostat run).
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "foglab/model/noise_fit.h"
+
+namespace foglab::model {
+
+struct SystematicOptions {
+  int degree = -1;           ///< -1: choose by the criterion; 0..3 forces it
+  int max_degree = 3;        ///< highest degree the criterion considers (0..3)
+  double min_span_c = 0.5;   ///< [degC] below this spread, fit a constant
+  int blocks = 1024;         ///< block means used for the covariance
+  /// Cost of one coefficient in the degree criterion (chi-square_1 at 99 %).
+  double degree_penalty = 6.635;
+};
+
+struct SystematicFit {
+  int degree = 0;                     ///< degree used
+  std::vector<double> coefficients;   ///< c_j [deg/h/degC^j] about t_ref_c
+  std::vector<double> standard_errors;///< [deg/h/degC^j] from the noise model (NaN before it is known)
+  double t_ref_c = 0.0;               ///< [degC] mean temperature
+  double bias_deg_h = 0.0;            ///< [deg/h] c_0: the bias at t_ref_c
+  double temperature_span_c = 0.0;    ///< [degC] max - min of the block-mean temperature
+  double temperature_min_c = 0.0, temperature_max_c = 0.0;  ///< [degC] of the block means
+  /// Constant term of polyfit(T, Y, 2) in raw degC [deg/h] (the lab's number).
+  double lab_constant_term_deg_h = 0.0;
+  /// polyfit(T, Y, 2) in MATLAB order [p1 p2 p3].
+  std::vector<double> lab_polyfit;
+  bool lab_constant_meaningful = true;  ///< false when the span is below min_span_c
+  bool constant_fallback = false;       ///< the span was too small for a slope
+  bool degree_chosen = false;           ///< by the criterion (not forced)
+  std::vector<double> criterion;        ///< W_d + ln(n) d for d = 0..max (empty if not chosen)
+  double residual_rms_deg_h = 0.0;      ///< [deg/h]
+  std::string note;                     ///< what was done, for the report
+};
+
+/// Least-squares fits of degree 0..max_degree; returns the fit of the
+/// requested (or, for auto, the highest admissible) degree, without
+/// standard errors. Throws UsageError for mismatched lengths, fewer than 8
+/// samples or a degree outside 0..3; DataError for a non-finite temperature.
+SystematicFit fit_temperature(std::span<const double> rate_deg_h,
+                              std::span<const double> temperature_c, double sample_rate_hz,
+                              const SystematicOptions& options = {});
+
+/// With the noise model fitted to the residual: standard errors, and (for
+/// automatic degree) the degree chosen and the coefficients refitted.
+SystematicFit finish_temperature_fit(const SystematicFit& first,
+                                     std::span<const double> rate_deg_h,
+                                     std::span<const double> temperature_c,
+                                     double sample_rate_hz, const NoiseModel& noise,
+                                     const SystematicOptions& options = {});
+
+/// Subtracts the fitted polynomial from `rate_deg_h` in place.
+void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,
+                              std::span<const double> temperature_c);
+
+/// The factors by which subtracting a least-squares polynomial of `degree`
+/// in temperature changes each noise term's expected overlapping Allan
+/// variance at `tau_s` (for noise_fit.h). With P the projection on the
+/// polynomial columns, A the Allan variance's quadratic form and Sigma a
+/// term's covariance, E[AVAR of the residual] = tr(A (I-P) Sigma (I-P)) and
+/// the factor is that over tr(A Sigma); computed on `blocks` block means
+/// (taus shorter than a block scale the first block's correction linearly;
+/// the rate ramp R is deterministic: the ratio of the residual's AVAR to the
+/// ramp's). Gauss-Markov: on a grid of Tc, 8 per decade, from tau_s.front()/2
+/// to 30 tau_s.back().
+DetrendFactors detrend_factors(std::span<const double> temperature_c, double sample_rate_hz,
+                               double t_ref_c, int degree, std::span<const double> tau_s,
+                               int blocks = 1024);
+
+/// The covariance (row-major, (d+1)^2) of least-squares coefficients of the
+/// columns (T - t_ref)^j, j = 0..degree, under the noise model (exposed for
+/// tests).
+std::vector<double> coefficient_covariance(std::span<const double> temperature_c,
+                                           double sample_rate_hz, double t_ref_c, int degree,
+                                           const NoiseModel& noise, int blocks = 1024);
+
+}  // namespace foglab::model

@@ -1,0 +1,283 @@
+#include "foglab/model/analysis.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "foglab/core/error.h"
+
+namespace foglab::model {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Least-squares slope of ln y against ln x.
+double log_slope(std::span<const double> x, std::span<const double> y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!(x[i] > 0) || !(y[i] > 0)) continue;
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+    ++n;
+  }
+  if (n < 2) return kNaN;
+  const double den = n * sxx - sx * sx;
+  return den > 0 ? (n * sxy - sx * sy) / den : kNaN;
+}
+
+SystematicFit negated(SystematicFit fit) {
+  for (double& c : fit.coefficients) c = -c;
+  return fit;
+}
+
+// The points of `all` the reported grid keeps: at least grid.min_clusters
+// clusters, floor((N - 1)/m) with N angle points (tau_grid.h); an explicit
+// list is kept whole.
+stats::AllanResult reported_part(const stats::AllanResult& all, const stats::TauGrid& grid) {
+  if (grid.kind == stats::TauGridKind::list) return all;
+  stats::AllanResult r = all;
+  std::size_t keep = 0;
+  while (keep < all.m.size() && (all.phase_points - 1) / all.m[keep] >= grid.min_clusters) ++keep;
+  auto cut = [keep](auto& v) {
+    if (v.size() > keep) v.resize(keep);
+  };
+  cut(r.m);
+  cut(r.tau_s);
+  cut(r.dev);
+  cut(r.n);
+  cut(r.alpha);
+  cut(r.alpha_method);
+  cut(r.edf);
+  cut(r.ci68_low);
+  cut(r.ci68_high);
+  cut(r.ci95_low);
+  cut(r.ci95_high);
+  return r;
+}
+
+struct Statistics {
+  stats::PsdResult psd, smoothed;
+  stats::AllanResult allan;
+  NoiseFitResult noise;
+};
+
+// PSD, OADEV and the noise fit of the residual (consumed: it becomes the
+// angle record).
+// `fit` (with its temperature) is the polynomial already removed: the noise
+// fit then allows for what removing it did to each term (detrend_factors).
+Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOptions& options,
+                      const SystematicFit* fit, std::span<const double> temperature) {
+  Statistics s;
+  stats::WelchOptions welch;
+  welch.segment_length = options.psd_segment;
+  s.psd = stats::welch_psd(residual, fs, welch);
+  s.smoothed = stats::log_smooth(s.psd, options.psd_bins_per_decade);
+  // The fit sees the long taus the lab's ten-cluster rule leaves out (down
+  // to `fit_min_clusters`): their few degrees of freedom are weighted as
+  // such, and they show where a random walk turns into a Gauss-Markov hump.
+  stats::AllanOptions allan;
+  allan.kind = stats::AllanKind::oadev;
+  allan.grid = options.grid;
+  allan.confidence = true;
+  if (options.grid.kind != stats::TauGridKind::list) {
+    allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
+  }
+  const stats::AllanResult all =
+      stats::allan_deviation_in_place(residual, fs, InputKind::rate, allan);
+  s.allan = reported_part(all, options.grid);
+  if (s.allan.tau_s.size() < 3) {
+    throw DataError(fmt::format(
+        "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s) with at least "
+        "{} clusters; the noise model needs 3 or more (a few hundred samples)",
+        all.phase_points, fs, s.allan.tau_s.size(), options.grid.min_clusters));
+  }
+  if (fit && fit->degree > 0) {
+    const DetrendFactors factors = detrend_factors(temperature, fs, fit->t_ref_c, fit->degree,
+                                                   all.tau_s, options.detrend_blocks);
+    s.noise = fit_noise_model(all, options.noise_fit, &factors);
+  } else {
+    s.noise = fit_noise_model(all, options.noise_fit);
+  }
+  return s;
+}
+
+// The noise model of a residual from its overlapping Allan deviations alone
+// (no intervals: the fit takes each point's edf from its candidate models),
+// on a copy; used to choose the polynomial's degree.
+NoiseFitResult quick_noise_model(std::span<const double> residual, double fs,
+                                 const AnalysisOptions& options, const SystematicFit& fit,
+                                 std::span<const double> temperature) {
+  stats::AllanOptions allan;
+  allan.kind = stats::AllanKind::oadev;
+  allan.grid = options.grid;
+  allan.confidence = false;
+  if (options.grid.kind != stats::TauGridKind::list) {
+    allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
+  }
+  const stats::AllanResult all = stats::allan_deviation(residual, fs, InputKind::rate, allan);
+  if (all.tau_s.size() < 3) {
+    throw DataError(fmt::format(
+        "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s); the noise "
+        "model needs 3 or more (a few hundred samples)",
+        residual.size(), fs, all.tau_s.size()));
+  }
+  if (fit.degree > 0) {
+    const DetrendFactors factors = detrend_factors(temperature, fs, fit.t_ref_c, fit.degree,
+                                                   all.tau_s, options.detrend_blocks);
+    return fit_noise_model(all, options.noise_fit, &factors);
+  }
+  return fit_noise_model(all, options.noise_fit);
+}
+
+RandomBiasEvidence evidence_of(const Statistics& s) {
+  RandomBiasEvidence e;
+  const NoiseFitResult& n = s.noise;
+  auto dev = [](bool have, const CandidateModel& c) { return have ? c.deviance : kNaN; };
+  auto crit = [](bool have, const CandidateModel& c) { return have ? c.criterion : kNaN; };
+  const bool have_none = std::isfinite(n.best_without_random_bias.deviance);
+  e.deviance_none = dev(have_none, n.best_without_random_bias);
+  e.criterion_none = crit(have_none, n.best_without_random_bias);
+  e.deviance_wiener = dev(n.has_wiener_candidate, n.best_wiener);
+  e.criterion_wiener = crit(n.has_wiener_candidate, n.best_wiener);
+  e.deviance_gauss_markov = dev(n.has_gauss_markov_candidate, n.best_gauss_markov);
+  e.criterion_gauss_markov = crit(n.has_gauss_markov_candidate, n.best_gauss_markov);
+
+  const std::size_t m = s.allan.tau_s.size();
+  const std::size_t first = m >= 3 ? m - 3 : 0;
+  e.adev_end_slope =
+      log_slope(std::span(s.allan.tau_s).subspan(first), std::span(s.allan.dev).subspan(first));
+  // The lowest decade of the raw PSD.
+  const auto& f = s.psd.frequency_hz;
+  std::size_t end = 0;
+  while (end < f.size() && f[end] <= 10.0 * f.front()) ++end;
+  e.psd_low_frequency_slope =
+      log_slope(std::span(f).first(end), std::span(s.psd.psd).first(end));
+
+  const std::string fits = fmt::format(
+      "criterion (-2 ln L + penalty x parameters): no random bias {:.1f}, Wiener {:.1f}, "
+      "Gauss-Markov {:.1f}",
+      e.criterion_none, e.criterion_wiener, e.criterion_gauss_markov);
+  switch (n.random_bias_process) {
+    case RandomBiasProcess::wiener:
+      e.summary = fmt::format(
+          "Wiener random bias: the Allan deviation rises at the long taus (end slope {:.2f}, "
+          "+0.5 expected) and a random walk explains it best; {}",
+          e.adev_end_slope, fits);
+      break;
+    case RandomBiasProcess::gauss_markov:
+      e.summary = fmt::format(
+          "first-order Gauss-Markov random bias (Tc = {:.3g} s): the Allan deviation rises and "
+          "turns down again (end slope {:.2f}), the PSD flattens at low frequency (slope {:.2f}); "
+          "{}",
+          n.model.gm_tc, e.adev_end_slope, e.psd_low_frequency_slope, fits);
+      break;
+    case RandomBiasProcess::none:
+      e.summary = fmt::format(
+          "no random bias visible in this record: neither a random walk nor a Gauss-Markov term "
+          "improves the fit enough (end slope {:.2f}); {}",
+          e.adev_end_slope, fits);
+      break;
+  }
+  return e;
+}
+
+}  // namespace
+
+AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> temperature_c,
+                       double sample_rate_hz, const AnalysisOptions& options) {
+  if (!(sample_rate_hz > 0) || !std::isfinite(sample_rate_hz)) {
+    throw UsageError(fmt::format("sample rate {} Hz must be positive", sample_rate_hz));
+  }
+  if (!temperature_c.empty() && temperature_c.size() != rate_deg_h.size()) {
+    throw DataError(fmt::format(
+        "the rate has {} samples but the temperature {}; they must pair sample by sample",
+        rate_deg_h.size(), temperature_c.size()));
+  }
+  if (rate_deg_h.size() < 64) {
+    throw DataError(fmt::format(
+        "the record has {} samples; the analysis needs at least 64 (a few hundred for a "
+        "meaningful noise model)",
+        rate_deg_h.size()));
+  }
+  AnalysisResult r;
+  r.sample_rate_hz = sample_rate_hz;
+  r.samples = static_cast<std::int64_t>(rate_deg_h.size());
+  r.duration_s = static_cast<double>(rate_deg_h.size()) / sample_rate_hz;
+
+  const bool with_temperature = !temperature_c.empty();
+  std::optional<SystematicFit> fit;
+  if (with_temperature) {
+    fit = fit_temperature(rate_deg_h, temperature_c, sample_rate_hz, options.systematic);
+    if (fit->degree_chosen) {
+      // The degree needs the noise model, the noise model a residual: a
+      // quick first look (deviations only, on a copy, the cubic removed)
+      // gives the model for the degree criterion.
+      subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
+      const NoiseFitResult look = quick_noise_model(rate_deg_h, sample_rate_hz, options, *fit,
+                                                    temperature_c);
+      subtract_temperature_fit(negated(*fit), rate_deg_h, temperature_c);  // the record again
+      fit = finish_temperature_fit(*fit, rate_deg_h, temperature_c, sample_rate_hz, look.model,
+                                   options.systematic);
+    }
+    subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
+  } else {
+    r.notes.push_back(
+        "no temperature: the systematic part is the mean rate only (removed by the statistics)");
+  }
+  Statistics s = statistics(rate_deg_h, sample_rate_hz, options, fit ? &*fit : nullptr,
+                            temperature_c);
+  if (fit) {
+    // Standard errors with the noise model of the final residual. A random
+    // walk the record cannot resolve is confounded with a temperature ramp
+    // (the polynomial absorbs it), so it enters at its 95 % upper bound: the
+    // errors are then conservative rather than several times too small.
+    NoiseModel for_errors = s.noise.model;
+    if (s.noise.K.status != TermStatus::resolved && std::isfinite(s.noise.K.upper_95) &&
+        s.noise.random_bias_process != RandomBiasProcess::gauss_markov) {
+      for_errors.K = s.noise.K.upper_95;
+    }
+    const std::vector<double> cov =
+        coefficient_covariance(temperature_c, sample_rate_hz, fit->t_ref_c, fit->degree,
+                               for_errors, options.systematic.blocks);
+    fit->standard_errors.assign(static_cast<std::size_t>(fit->degree + 1), 0.0);
+    for (int j = 0; j <= fit->degree; ++j) {
+      fit->standard_errors[static_cast<std::size_t>(j)] =
+          std::sqrt(std::max(0.0, cov[static_cast<std::size_t>(j * (fit->degree + 1) + j)]));
+    }
+    r.notes.push_back(fit->note);
+    r.systematic = std::move(fit);
+  }
+  r.evidence = evidence_of(s);
+  r.psd = std::move(s.psd);
+  r.psd_smoothed = std::move(s.smoothed);
+  r.allan = std::move(s.allan);
+  r.noise = std::move(s.noise);
+
+  r.adev_readings = read_adev(r.allan.tau_s, r.allan.dev);
+  r.psd_readings = read_psd(r.psd_smoothed.frequency_hz, r.psd_smoothed.psd);
+  r.bias_instability_deg_h = r.adev_readings.bias_instability_deg_h;
+  r.bias_instability_tau_s = r.adev_readings.bias_instability_tau_s;
+  r.bias_instability_at_edge = r.adev_readings.minimum_at_edge;
+  if (r.bias_instability_at_edge) {
+    r.notes.push_back(fmt::format(
+        "the Allan deviation is lowest at the {} of its tau range ({:.4g} s): the bias "
+        "instability may be lower than reported",
+        r.bias_instability_tau_s == r.allan.tau_s.back() ? "end" : "start",
+        r.bias_instability_tau_s));
+  }
+  r.arw_deg_sqrt_h = r.noise.model.N / 60.0;
+  if (r.noise.N.status != TermStatus::resolved) {
+    r.notes.push_back("no white rate noise resolved: the ARW for the class verdict is its upper bound");
+    if (std::isfinite(r.noise.N.upper_95)) r.arw_deg_sqrt_h = r.noise.N.upper_95 / 60.0;
+  }
+  r.verdict = classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h);
+  return r;
+}
+
+}  // namespace foglab::model

@@ -1,0 +1,168 @@
+// simulate -> identify round trips of the whole analysis (lab 2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "foglab/core/error.h"
+#include "foglab/model/analysis.h"
+#include "foglab/sim/generator.h"
+#include "foglab/sim/lab2_variants.h"
+#include "foglab/sim/presets.h"
+#include "support/expect.h"
+
+namespace foglab::model {
+namespace {
+
+bool contains(const std::vector<std::string>& notes, const std::string& text) {
+  for (const std::string& n : notes) {
+    if (n.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+struct Lab2Case {
+  sim::Lab2Gyro gyro;
+  sim::Lab2Run run;
+  AnalysisResult result;
+  std::vector<double> result_temperature;  // the record's temperature [degC]
+};
+
+Lab2Case analyse_lab2(int variant, int gyro, int run, std::uint64_t seed,
+                      const AnalysisOptions& options = {}) {
+  sim::Lab2Options o;
+  o.seed = seed;
+  const sim::Lab2Variant v = sim::lab2_variant(variant, o);
+  Lab2Case c{v.gyros[gyro], v.gyros[gyro].runs[run], {}, {}};
+  sim::Recording rec = sim::generate(c.gyro.model, c.run.temperature, c.run.generator);
+  c.result_temperature = rec.temperature_c;
+  c.result = analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz, options);
+  return c;
+}
+
+TEST(Analysis, Lab2RampRunRoundTrips) {
+  AnalysisOptions lab;
+  lab.systematic.degree = 2;  // the lab's polyfit(T, Y, 2)
+  for (std::uint64_t seed : {11u, 12u, 13u}) {
+    const Lab2Case c = analyse_lab2(1, 0, 1, seed, lab);  // FOG1_1, Y2: 10 degC ramp
+    const AnalysisResult& r = c.result;
+    ASSERT_TRUE(r.systematic.has_value());
+    const SystematicFit& s = *r.systematic;
+    EXPECT_EQ(s.degree, 2) << "seed " << seed;
+    // The lab's number against the key, within the errors of the terms it sums.
+    const double t = s.t_ref_c;
+    EXPECT_NEAR(s.lab_constant_term_deg_h, c.run.lab_constant_term_deg_h,
+                4.0 * (s.standard_errors[0] + s.standard_errors[1] * t +
+                       s.standard_errors[2] * t * t))
+        << "seed " << seed;
+    EXPECT_FALSE(s.constant_fallback);
+    EXPECT_NEAR(s.temperature_span_c, 10.0, 0.2);
+    // The coefficients against the truth within 4 standard errors of the
+    // true noise model, and the reported errors (from the estimated model)
+    // against those.
+    const sim::ErrorModel& g = c.gyro.model;
+    const std::vector<double> cov = coefficient_covariance(
+        c.result_temperature, c.run.generator.sample_rate_hz, s.t_ref_c, 2,
+        {.N = g.N, .B = g.B, .K = g.K, .gm_sigma = g.gm_sigma, .gm_tc = g.gm_tc});
+    for (int j = 1; j <= 2; ++j) {
+      const double se = std::sqrt(cov[static_cast<std::size_t>(j * 3 + j)]);
+      EXPECT_NEAR(s.coefficients[static_cast<std::size_t>(j)],
+                  g.temp_coefs[static_cast<std::size_t>(j - 1)], 4.0 * se)
+          << "c" << j << " seed " << seed;
+      // Never overconfident; conservative (up to the random walk's 95 %
+      // bound, analysis.h) when the record cannot resolve the random walk.
+      EXPECT_GT(s.standard_errors[static_cast<std::size_t>(j)] / se, 0.6)
+          << "c" << j << " seed " << seed;
+      EXPECT_LT(s.standard_errors[static_cast<std::size_t>(j)] / se, 2.5)
+          << "c" << j << " seed " << seed;
+    }
+    EXPECT_NEAR(r.noise.model.N, c.gyro.model.N, 0.03 * c.gyro.model.N) << "seed " << seed;
+    EXPECT_EQ(r.noise.N.status, TermStatus::resolved);
+    // The ADEV-minimum bias instability against the key's theoretical one.
+    EXPECT_NEAR(r.bias_instability_deg_h / c.run.bias_instability.adev_deg_h, 1.0, 0.3)
+        << "seed " << seed;
+    EXPECT_GT(r.allan.tau_s.size(), 8u);
+    EXPECT_EQ(r.allan.tau_s.size(), r.allan.ci95_low.size());
+    // Ten clusters at least in what is reported.
+    EXPECT_LE(r.allan.tau_s.back(), r.duration_s / 10.0);
+  }
+}
+
+TEST(Analysis, WienerRandomBiasIsNamedWithEvidence) {
+  // The validation's Wiener scenario (docs/validation.md): the random walk
+  // meets the flicker plateau at a sixteenth of the usable tau range's end.
+  sim::ErrorModel m = sim::find_preset("class-tactical").model;
+  const double duration = 12 * 3600.0;
+  const double plateau = 2.0 * std::log(2.0) / M_PI * m.B * m.B;
+  m.K = std::sqrt(3.0 * plateau / (duration / 10.0 / 16.0));
+  int wiener = 0, covered = 0;
+  for (std::uint64_t seed : {21u, 22u, 23u, 24u, 25u, 26u}) {
+    sim::GeneratorOptions o;
+    o.sample_rate_hz = 10.0;
+    o.duration_s = duration;
+    o.seed = seed;
+    sim::Recording rec = sim::generate(m, sim::parse_temperature("const:25"), o);
+    const AnalysisResult r = analyze(rec.rate_deg_h, rec.temperature_c, 10.0);
+    covered += r.noise.K.ci95_low <= m.K && m.K <= r.noise.K.ci95_high;
+    if (r.noise.random_bias_process == RandomBiasProcess::wiener) {
+      ++wiener;
+      EXPECT_LT(r.evidence.criterion_wiener, r.evidence.criterion_none);
+      EXPECT_NE(r.evidence.summary.find("Wiener"), std::string::npos);
+    }
+    EXPECT_TRUE(r.systematic->constant_fallback);
+    EXPECT_TRUE(contains(r.notes, "too little"));
+  }
+  // Right, and covered, in >= 90 % of such records; 3 of 6 or fewer would
+  // have a probability below 2 %.
+  EXPECT_GE(wiener, 4);
+  EXPECT_GE(covered, 4);
+}
+
+TEST(Analysis, GaussMarkovRandomBiasIsNamedWithItsCorrelationTime) {
+  sim::ErrorModel m = sim::find_preset("class-intermediate").model;
+  const double duration = 12 * 3600.0;
+  m.gm_tc = duration / 200.0;
+  m.gm_sigma = std::sqrt(3.0 * 2.0 * std::log(2.0) / M_PI * m.B * m.B / 0.433);
+  int named = 0, covered = 0;
+  for (std::uint64_t seed : {31u, 32u, 33u, 34u}) {
+    sim::GeneratorOptions o;
+    o.sample_rate_hz = 10.0;
+    o.duration_s = duration;
+    o.seed = seed;
+    sim::Recording rec = sim::generate(m, sim::parse_temperature("const:25"), o);
+    const AnalysisResult r = analyze(rec.rate_deg_h, rec.temperature_c, 10.0);
+    if (r.noise.random_bias_process != RandomBiasProcess::gauss_markov) continue;
+    ++named;
+    covered += r.noise.gm_tc.ci95_low <= m.gm_tc && m.gm_tc <= r.noise.gm_tc.ci95_high;
+    EXPECT_LT(r.evidence.adev_end_slope, 0.5);
+  }
+  EXPECT_GE(named, 3);
+  EXPECT_GE(covered, named - 1);
+}
+
+TEST(Analysis, WithoutTemperatureTheSystematicStepIsSkippedWithANote) {
+  sim::ErrorModel m;
+  m.N = 0.3;
+  m.B = 0.02;
+  sim::GeneratorOptions o;
+  o.sample_rate_hz = 10.0;
+  o.duration_s = 3600.0;
+  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
+  const AnalysisResult r = analyze(rec.rate_deg_h, {}, 10.0);
+  EXPECT_FALSE(r.systematic.has_value());
+  EXPECT_TRUE(contains(r.notes, "no temperature"));
+  EXPECT_NEAR(r.arw_deg_sqrt_h, 0.3 / 60.0, 0.03 * 0.3 / 60.0);
+  // Table 1 from the ADEV minimum and the ARW; the worse class wins.
+  EXPECT_EQ(r.verdict.accuracy_class,
+            classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h).accuracy_class);
+}
+
+TEST(Analysis, TooShortARecordIsADataErrorThatSaysHowMany) {
+  std::vector<double> rate(40, 1.0);
+  EXPECT_NE(test::message_of<DataError>([&] { analyze(rate, {}, 10.0); }).find("40 samples"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace foglab::model
