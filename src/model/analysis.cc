@@ -61,6 +61,21 @@ stats::AllanResult reported_part(const stats::AllanResult& all, const stats::Tau
   return r;
 }
 
+// The OADEV the noise fit uses: the grid asked for, extended to the long
+// taus the lab's ten-cluster rule leaves out (down to `fit_min_clusters`):
+// their few degrees of freedom are weighted as such, and they show where a
+// random walk turns into a Gauss-Markov hump.
+stats::AllanOptions fit_allan_options(const AnalysisOptions& options, bool confidence) {
+  stats::AllanOptions allan;
+  allan.kind = stats::AllanKind::oadev;
+  allan.grid = options.grid;
+  allan.confidence = confidence;
+  if (options.grid.kind != stats::TauGridKind::list) {
+    allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
+  }
+  return allan;
+}
+
 struct Statistics {
   stats::PsdResult psd, smoothed;
   stats::AllanResult allan;
@@ -78,18 +93,8 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
   welch.segment_length = options.psd_segment;
   s.psd = stats::welch_psd(residual, fs, welch);
   s.smoothed = stats::log_smooth(s.psd, options.psd_bins_per_decade);
-  // The fit sees the long taus the lab's ten-cluster rule leaves out (down
-  // to `fit_min_clusters`): their few degrees of freedom are weighted as
-  // such, and they show where a random walk turns into a Gauss-Markov hump.
-  stats::AllanOptions allan;
-  allan.kind = stats::AllanKind::oadev;
-  allan.grid = options.grid;
-  allan.confidence = true;
-  if (options.grid.kind != stats::TauGridKind::list) {
-    allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
-  }
-  const stats::AllanResult all =
-      stats::allan_deviation_in_place(residual, fs, InputKind::rate, allan);
+  const stats::AllanResult all = stats::allan_deviation_in_place(
+      residual, fs, InputKind::rate, fit_allan_options(options, true));
   s.allan = reported_part(all, options.grid);
   if (s.allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -113,14 +118,8 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
 NoiseFitResult quick_noise_model(std::span<const double> residual, double fs,
                                  const AnalysisOptions& options, const SystematicFit& fit,
                                  std::span<const double> temperature) {
-  stats::AllanOptions allan;
-  allan.kind = stats::AllanKind::oadev;
-  allan.grid = options.grid;
-  allan.confidence = false;
-  if (options.grid.kind != stats::TauGridKind::list) {
-    allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
-  }
-  const stats::AllanResult all = stats::allan_deviation(residual, fs, InputKind::rate, allan);
+  const stats::AllanResult all =
+      stats::allan_deviation(residual, fs, InputKind::rate, fit_allan_options(options, false));
   if (all.tau_s.size() < 3) {
     throw DataError(fmt::format(
         "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s); the noise "

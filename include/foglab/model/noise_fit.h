@@ -25,11 +25,17 @@
 // a fixed Tc the fit is a positive weighted linear least-squares problem;
 // Tc is profiled on a log grid and refined (several starts).
 //
+// The edf of each point is Greenhall's for the noise type that dominates the
+// candidate model there (white N: alpha 0, flicker B: -1, random walk K and
+// ramp R: -2, quantisation Q: +2, Gauss-Markov: -2 below Tc, 0 above), fit
+// and edf alternating a few times, so a random walk's long-tau points carry
+// the few degrees of freedom they really have.
+//
 // Which terms are present: every admissible subset of {N, B, K, R, Q, GM}
 // is fitted, a subset counting only when all its coefficients come out
 // positive (otherwise its optimum is one of its subsets), and the subset
-// minimising D + penalty * (number of parameters) is chosen (a BIC-like
-// criterion; the penalty was set by the simulation study in
+// minimising -2 ln L + penalty * (number of parameters) is chosen (an
+// information criterion; the penalty 6 was set by the simulation study in
 // docs/validation.md). Wiener and Gauss-Markov random bias are alternatives
 // (the lab's question), not combined, unless the options allow it.
 //
@@ -40,7 +46,8 @@
 // neighbouring tau estimates (which the independent-points likelihood
 // ignores), then mapped back (so the interval is positive and asymmetric).
 // A term left out gets a one-sided 95 % upper bound from the profile
-// deviance (the value at which adding it costs 2.71 in D), and the status
+// deviance (the value at which adding it costs 2.71 in D, times the same
+// scale), reported as the interval [0, bound], and the status
 // `upper_bound` when the data pull it above zero but not significantly, or
 // `absent` when they pull it to zero.
 #pragma once
