@@ -60,6 +60,7 @@ std::vector<double> block_means(std::span<const double> values, int blocks) {
 struct Moments {
   std::array<double, 2 * kMaxDegree + 1> u{};
   std::array<double, kMaxDegree + 1> yu{};
+  double yy = 0.0;  // sum of (y - y0)^2
   double y0 = 0.0;
   double t_ref = 0.0, scale = 1.0;
   std::size_t n = 0;
@@ -76,9 +77,11 @@ Moments moments(std::span<const double> rate, std::span<const double> temperatur
     const std::size_t end = std::min(m.n, begin + kChunkSamples);
     std::array<double, 2 * kMaxDegree + 1> u{};
     std::array<double, kMaxDegree + 1> yu{};
+    double yy = 0.0;
     for (std::size_t k = begin; k < end; ++k) {
       const double x = (temperature[k] - t_ref) / scale;
       const double y = rate.empty() ? 0.0 : rate[k] - m.y0;
+      yy += y * y;
       double power = 1.0;
       for (int p = 0; p <= 2 * kMaxDegree; ++p) {
         u[p] += power;
@@ -88,6 +91,7 @@ Moments moments(std::span<const double> rate, std::span<const double> temperatur
     }
     for (int p = 0; p <= 2 * kMaxDegree; ++p) m.u[p] += u[p];
     for (int p = 0; p <= kMaxDegree; ++p) m.yu[p] += yu[p];
+    m.yy += yy;
   }
   return m;
 }
@@ -276,14 +280,16 @@ double polynomial(const std::vector<double>& c, double u) {
   return value;
 }
 
-double residual_rms(const SystematicFit& fit, std::span<const double> rate,
-                    std::span<const double> temperature) {
-  double ss = 0.0;
-  for (std::size_t k = 0; k < rate.size(); ++k) {
-    const double r = rate[k] - polynomial(fit.coefficients, temperature[k] - fit.t_ref_c);
-    ss += r * r;
-  }
-  return std::sqrt(ss / static_cast<double>(rate.size()));
+// RMS of the residual of the degree-d fit from the moments alone (no pass
+// over the record): sum (y - Xb)^2 = yy - 2 b'X'y + b'X'X b, b the scaled
+// coefficients of y - y0.
+double residual_rms(const Moments& mo, int degree) {
+  Eigen::VectorXd rhs(degree + 1);
+  for (int j = 0; j <= degree; ++j) rhs(j) = mo.yu[j];
+  const Eigen::MatrixXd g = gram(mo, degree);
+  const Eigen::VectorXd b = g.colPivHouseholderQr().solve(rhs);
+  const double ss = mo.yy - 2.0 * b.dot(rhs) + b.dot(g * b);
+  return std::sqrt(std::max(0.0, ss) / static_cast<double>(mo.n));
 }
 
 double temperature_scale(std::span<const double> temperature, double t_ref) {
@@ -352,7 +358,7 @@ SystematicFit fit_temperature(std::span<const double> rate_deg_h,
   fit.coefficients = unscale(solve_scaled(mo, fit.degree), scale);
   fit.standard_errors.assign(fit.coefficients.size(), kNaN);
   fit.bias_deg_h = fit.coefficients[0];
-  fit.residual_rms_deg_h = residual_rms(fit, rate_deg_h, temperature_c);
+  fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
   return fit;
 }
 
@@ -505,7 +511,7 @@ SystematicFit finish_temperature_fit(const SystematicFit& first,
     fit.standard_errors[static_cast<std::size_t>(j)] =
         std::sqrt(std::max(0.0, cov[static_cast<std::size_t>(j * (fit.degree + 1) + j)]));
   }
-  fit.residual_rms_deg_h = residual_rms(fit, rate_deg_h, temperature_c);
+  fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
   return fit;
 }
 

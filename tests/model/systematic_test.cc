@@ -55,6 +55,7 @@ TEST(Systematic, NoiselessPolynomialIsRecoveredAndTheLabConstantMatchesPolyfit) 
   const Eigen::VectorXd p = x.colPivHouseholderQr().solve(y);
   EXPECT_NEAR(fit.lab_constant_term_deg_h, p(2), 1e-6 * std::fabs(p(2)));
   EXPECT_NEAR(fit.lab_polyfit[0], p(0), 1e-9);
+  EXPECT_NEAR(fit.residual_rms_deg_h, 0.0, 1e-6);
   EXPECT_TRUE(fit.lab_constant_meaningful);
 }
 
@@ -93,6 +94,8 @@ TEST(Systematic, ThermostatRunFallsBackToAConstantAndSaysSo) {
   EXPECT_NE(fit.note.find("degC"), std::string::npos);
   EXPECT_NE(fit.note.find("degree 2 was asked"), std::string::npos);
   EXPECT_NEAR(fit.bias_deg_h, 2.0, 0.05);
+  // White rate noise of density N has a per-sample sd of N sqrt(fs).
+  EXPECT_NEAR(fit.residual_rms_deg_h, 0.5 * std::sqrt(10.0), 0.02 * 0.5 * std::sqrt(10.0));
 }
 
 // Standard deviation of c1..c3 of cubic fits over many records, against the
