@@ -45,43 +45,50 @@ struct Scenario {
 };
 
 // The parameters compared, with the truth's and the estimate's value.
-const char* const kParams[] = {"N", "B", "K", "R", "Q", "gm_sigma", "gm_tc"};
 constexpr int kParamCount = 7;
 
 double truth_of(const foglab::sim::ErrorModel& m, int p) {
   switch (p) {
-    case 0: return m.N;
-    case 1: return m.B;
-    case 2: return m.K;
-    case 3: return m.R;
-    case 4: return m.Q;
-    case 5: return m.gm_sigma;
-    default: return m.gm_sigma > 0 ? m.gm_tc : 0.0;
+    case 0:
+      return m.N;
+    case 1:
+      return m.B;
+    case 2:
+      return m.K;
+    case 3:
+      return m.R;
+    case 4:
+      return m.Q;
+    case 5:
+      return m.gm_sigma;
+    default:
+      return m.gm_sigma > 0 ? m.gm_tc : 0.0;
   }
 }
 
-const foglab::model::ParameterEstimate& estimate_of(const foglab::model::NoiseFitResult& r,
-                                                    int p) {
-  switch (p) {
-    case 0: return r.N;
-    case 1: return r.B;
-    case 2: return r.K;
-    case 3: return r.R;
-    case 4: return r.Q;
-    case 5: return r.gm_sigma;
-    default: return r.gm_tc;
-  }
+const foglab::model::ParameterEstimate& estimate_of(const foglab::model::NoiseFitResult& r, int p) {
+  return r.*(foglab::model::reported_parameters()[static_cast<std::size_t>(p)].estimate);
 }
 
 // Allan variance of one term of the truth (sim's model) at tau.
 double term_avar(const foglab::sim::ErrorModel& m, int p, double tau) {
   foglab::sim::ErrorModel only;
   switch (p) {
-    case 0: only.N = m.N; break;
-    case 1: only.B = m.B; break;
-    case 2: only.K = m.K; break;
-    case 3: only.R = m.R; break;
-    case 4: only.Q = m.Q; break;
+    case 0:
+      only.N = m.N;
+      break;
+    case 1:
+      only.B = m.B;
+      break;
+    case 2:
+      only.K = m.K;
+      break;
+    case 3:
+      only.R = m.R;
+      break;
+    case 4:
+      only.Q = m.Q;
+      break;
     default:
       only.gm_sigma = m.gm_sigma;
       only.gm_tc = m.gm_tc;
@@ -215,8 +222,8 @@ Outcome run(const Scenario& s, std::uint64_t seed) {
     o.low[p] = e.ci95_low;
     o.high[p] = e.ci95_high;
     o.status[p] = e.status;
-    o.octaves[p] = o.truth[p] > 0 ? visible_octaves(s.model, p == 6 ? 5 : p, tau_min, tau_max)
-                                  : 0.0;
+    o.octaves[p] =
+        o.truth[p] > 0 ? visible_octaves(s.model, p == 6 ? 5 : p, tau_min, tau_max) : 0.0;
   }
   if (a.systematic) {
     o.degree = a.systematic->degree;
@@ -307,26 +314,26 @@ void report(const std::vector<Outcome>& outcomes, const std::string& title) {
     for (const auto& [d, count] : degrees) deg += fmt::format("{}:{} ", d, count);
     fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {}/{} | {}|\n", name, list.size(),
                cell(t[0], true), cell(t[1], false), cell(t[2], false), cell(t[5], false),
-               cell(t[6], false),
-               visible ? fmt::format("{:.0f}", 100.0 * covered / visible) : "-",
-               decisions ? fmt::format("{:.0f}", 100.0 * right / decisions) : "-",
-               false_resolved, absent, deg);
+               cell(t[6], false), visible ? fmt::format("{:.0f}", 100.0 * covered / visible) : "-",
+               decisions ? fmt::format("{:.0f}", 100.0 * right / decisions) : "-", false_resolved,
+               absent, deg);
   }
   fmt::print("\nOverall ({} runs):\n\n", outcomes.size());
-  fmt::print("| parameter | visible cases | resolved % | median error % | worst error % | "
-             "coverage % | absent cases | reported resolved % |\n|---|---|---|---|---|---|---|---|\n");
+  fmt::print(
+      "| parameter | visible cases | resolved % | median error % | worst error % | "
+      "coverage % | absent cases | reported resolved % |\n|---|---|---|---|---|---|---|---|\n");
   for (int p = 0; p < kParamCount; ++p) {
     const Tally& t = total[p];
-    fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} |\n", kParams[p], t.visible,
-               t.visible ? fmt::format("{:.1f}", 100.0 * t.resolved / t.visible) : "-",
-               t.visible ? fmt::format("{:.1f}", 100.0 * median(t.errors)) : "-",
-               t.visible ? fmt::format("{:.1f}", 100.0 * *std::max_element(t.errors.begin(),
-                                                                            t.errors.end()))
-                         : "-",
-               t.visible ? fmt::format("{:.1f}", 100.0 * t.covered / t.visible) : "-",
-               t.absent_cases,
-               t.absent_cases ? fmt::format("{:.1f}", 100.0 * t.absent_resolved / t.absent_cases)
-                              : "-");
+    fmt::print(
+        "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+        foglab::model::reported_parameters()[static_cast<std::size_t>(p)].name, t.visible,
+        t.visible ? fmt::format("{:.1f}", 100.0 * t.resolved / t.visible) : "-",
+        t.visible ? fmt::format("{:.1f}", 100.0 * median(t.errors)) : "-",
+        t.visible
+            ? fmt::format("{:.1f}", 100.0 * *std::max_element(t.errors.begin(), t.errors.end()))
+            : "-",
+        t.visible ? fmt::format("{:.1f}", 100.0 * t.covered / t.visible) : "-", t.absent_cases,
+        t.absent_cases ? fmt::format("{:.1f}", 100.0 * t.absent_resolved / t.absent_cases) : "-");
   }
   fmt::print("\nRandom-bias decision right: {}/{} ({:.1f} %)\n", total_right, total_decisions,
              total_decisions ? 100.0 * total_right / total_decisions : NAN);
@@ -350,7 +357,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--csv" && i + 1 < argc) {
       csv_path = argv[++i];
     } else {
-      fmt::print(stderr, "usage: validate_analyze [--seeds N] [--filter TEXT] [--penalty P] [--inflation F] [--csv FILE]\n");
+      fmt::print(stderr,
+                 "usage: validate_analyze [--seeds N] [--filter TEXT] [--penalty P] [--inflation "
+                 "F] [--csv FILE]\n");
       return 2;
     }
   }
@@ -373,15 +382,16 @@ int main(int argc, char** argv) {
   if (!csv_path.empty()) {
     std::ofstream csv(csv_path);
     csv << "scenario,seed,process,found_process,degree,c1,c1_se,c1_truth";
-    for (const char* p : kParams) csv << fmt::format(",{0}_truth,{0},{0}_lo,{0}_hi,{0}_status,{0}_octaves", p);
+    for (const auto& p : foglab::model::reported_parameters())
+      csv << fmt::format(",{0}_truth,{0},{0}_lo,{0}_hi,{0}_status,{0}_octaves", p.name);
     csv << "\n";
     for (const auto* list : {&class_outcomes, &lab_outcomes}) {
       for (const Outcome& o : *list) {
         csv << fmt::format("{},{},{},{},{},{},{},{}", o.scenario, o.seed, o.process,
                            o.found_process, o.degree, o.c1, o.c1_se, o.c1_truth);
         for (int p = 0; p < kParamCount; ++p) {
-          csv << fmt::format(",{},{},{},{},{},{:.2f}", o.truth[p], o.value[p], o.low[p],
-                             o.high[p], foglab::model::to_string(o.status[p]), o.octaves[p]);
+          csv << fmt::format(",{},{},{},{},{},{:.2f}", o.truth[p], o.value[p], o.low[p], o.high[p],
+                             foglab::model::to_string(o.status[p]), o.octaves[p]);
         }
         csv << "\n";
       }

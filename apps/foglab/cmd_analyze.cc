@@ -118,13 +118,15 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
     notes.push_back(text);
   };
   if (path.empty()) {
-    tell("the built-in sample has no temperature: the systematic part is a constant (the "
-         "record mean)");
+    tell(
+        "the built-in sample has no temperature: the systematic part is a constant (the "
+        "record mean)");
     return {};
   }
   if (path == "-") {
-    tell("data from standard input: no temperature read, the systematic part is a constant "
-         "(the record mean)");
+    tell(
+        "data from standard input: no temperature read, the systematic part is a constant "
+        "(the record mean)");
     return {};
   }
 
@@ -150,18 +152,18 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
       }
     }
     if (name.empty()) {
-      tell(fmt::format(
-          "no temperature channel {} in '{}' (channels: {}): the systematic part is a "
-          "constant (the record mean); name one with --temp",
-          wanted.empty() ? std::string("paired with channel " + series.channel)
-                         : fmt::format("{}", fmt::join(wanted, " or ")),
-          path, fmt::join(series.available_channels, ", ")));
+      tell(
+          fmt::format("no temperature channel {} in '{}' (channels: {}): the systematic part is a "
+                      "constant (the record mean); name one with --temp",
+                      wanted.empty() ? std::string("paired with channel " + series.channel)
+                                     : fmt::format("{}", fmt::join(wanted, " or ")),
+                      path, fmt::join(series.available_channels, ", ")));
       return {};
     }
   }
   if (name == series.channel) {
-    throw UsageError(fmt::format("--temp {}: the temperature cannot be the rate channel itself",
-                                 name));
+    throw UsageError(
+        fmt::format("--temp {}: the temperature cannot be the rate channel itself", name));
   }
 
   progress(fmt::format("reading temperature '{}' from '{}'", name, path));
@@ -187,17 +189,18 @@ nlohmann::json parameter_json(const model::ParameterEstimate& p) {
   // Resolved: the two-sided interval; left out: the one-sided [0, bound].
   const bool interval = std::isfinite(p.ci95_low) && std::isfinite(p.ci95_high);
   return {{"value", number(p.value)},
-          {"ci95", interval ? nlohmann::json::array({p.ci95_low, p.ci95_high})
-                            : nlohmann::json(nullptr)},
+          {"ci95",
+           interval ? nlohmann::json::array({p.ci95_low, p.ci95_high}) : nlohmann::json(nullptr)},
           {"status", std::string(model::to_string(p.status))},
           {"upper_95", number(p.upper_95)}};
 }
 
 nlohmann::json noise_model_values_json(const model::NoiseModel& m) {
-  return {{"N", m.N}, {"B", m.B},
-          {"K", m.K}, {"R", m.R},
-          {"Q", m.Q}, {"gm_sigma", m.gm_sigma},
-          {"gm_tc", m.gm_tc}};
+  nlohmann::json j;
+  for (const model::ReportedParameter& p : model::reported_parameters()) {
+    j[std::string(p.name)] = m.*p.value;
+  }
+  return j;
 }
 
 nlohmann::json optional_json(const std::optional<double>& v) {
@@ -241,8 +244,9 @@ nlohmann::json systematic_json(const model::AnalysisResult& r, const Temperature
          {"degree_chosen", false},
          {"criterion", nlohmann::json::array()},
          {"residual_rms_deg_h", nullptr},
-         {"note", "no temperature: the systematic part is the record mean; t_ref_c, the lab's "
-                  "polyfit and the span are null"}};
+         {"note",
+          "no temperature: the systematic part is the record mean; t_ref_c, the lab's "
+          "polyfit and the span are null"}};
   }
   j["temperature_channel"] =
       temperature.channel.empty() ? nlohmann::json(nullptr) : nlohmann::json(temperature.channel);
@@ -327,54 +331,52 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
 }
 
 nlohmann::json units_json() {
-  return {{"input.sample_rate_hz", "Hz"},
-          {"input.duration_s", "s"},
-          {"input.rate", "deg/h (converted on reading from input.units)"},
-          {"input.temperature", "degC"},
-          {"systematic.coefficients", "deg/h/degC^j, j = 0, 1, ... in powers of (T - t_ref_c)"},
-          {"systematic.standard_errors", "deg/h/degC^j, as coefficients"},
-          {"systematic.t_ref_c", "degC"},
-          {"systematic.bias_deg_h", "deg/h"},
-          {"systematic.lab_constant_term_deg_h", "deg/h"},
-          {"systematic.lab_polyfit", "[deg/h/degC^2, deg/h/degC, deg/h] (MATLAB order, raw degC)"},
-          {"systematic.temperature_span_c", "degC"},
-          {"systematic.temperature_min_c", "degC"},
-          {"systematic.temperature_max_c", "degC"},
-          {"systematic.residual_rms_deg_h", "deg/h"},
-          {"allan.tau_s", "s"},
-          {"allan.adev_deg_h", "deg/h"},
-          {"allan.ci95_low", "deg/h"},
-          {"allan.ci95_high", "deg/h"},
-          {"allan.ci68_low", "deg/h"},
-          {"allan.ci68_high", "deg/h"},
-          {"allan.model_adev_deg_h", "deg/h"},
-          {"psd.frequency_hz", "Hz"},
-          {"psd.sqrt_psd_deg_h_per_sqrt_hz", "deg/h/sqrt(Hz)"},
-          {"psd.psd_deg2_h2_per_hz", "(deg/h)^2/Hz"},
-          {"psd.resolution_hz", "Hz"},
-          {"N", "deg/h/sqrt(Hz)"},
-          {"B", "deg/h"},
-          {"K", "deg/h/sqrt(s)"},
-          {"R", "deg/h/s"},
-          {"Q", "deg/h*s"},
-          {"gm_sigma", "deg/h"},
-          {"gm_tc", "s"},
-          {"arw_deg_per_sqrt_h", "deg/sqrt(h)"},
-          {"bias_instability_deg_h", "deg/h"},
-          {"bias_instability_tau_s", "s"},
-          {"readings.adev.N", "deg/h/sqrt(Hz)"},
-          {"readings.adev.K", "deg/h/sqrt(s)"},
-          {"readings.adev.B", "deg/h (the ADEV minimum)"},
-          {"readings.adev.tau_s", "s"},
-          {"readings.psd.N", "deg/h/sqrt(Hz)"},
-          {"readings.psd.K", "deg/h/sqrt(s)"},
-          {"random_bias_evidence.deviance_*", "gamma deviance (dimensionless)"},
-          {"random_bias_evidence.criterion_*", "deviance + penalty x parameters (dimensionless)"},
-          {"systematic.criterion", "Wald statistic + ln(n) x degree (dimensionless)"},
-          {"fit.deviance", "gamma deviance (dimensionless)"},
-          {"fit.model", "N, B, K, R, Q, gm_sigma, gm_tc in the units above"},
-          {"random_bias_evidence.adev_end_slope", "log-log slope (dimensionless)"},
-          {"random_bias_evidence.psd_low_frequency_slope", "log-log slope (dimensionless)"}};
+  nlohmann::json units = {
+      {"input.sample_rate_hz", "Hz"},
+      {"input.duration_s", "s"},
+      {"input.rate", "deg/h (converted on reading from input.units)"},
+      {"input.temperature", "degC"},
+      {"systematic.coefficients", "deg/h/degC^j, j = 0, 1, ... in powers of (T - t_ref_c)"},
+      {"systematic.standard_errors", "deg/h/degC^j, as coefficients"},
+      {"systematic.t_ref_c", "degC"},
+      {"systematic.bias_deg_h", "deg/h"},
+      {"systematic.lab_constant_term_deg_h", "deg/h"},
+      {"systematic.lab_polyfit", "[deg/h/degC^2, deg/h/degC, deg/h] (MATLAB order, raw degC)"},
+      {"systematic.temperature_span_c", "degC"},
+      {"systematic.temperature_min_c", "degC"},
+      {"systematic.temperature_max_c", "degC"},
+      {"systematic.residual_rms_deg_h", "deg/h"},
+      {"allan.tau_s", "s"},
+      {"allan.adev_deg_h", "deg/h"},
+      {"allan.ci95_low", "deg/h"},
+      {"allan.ci95_high", "deg/h"},
+      {"allan.ci68_low", "deg/h"},
+      {"allan.ci68_high", "deg/h"},
+      {"allan.model_adev_deg_h", "deg/h"},
+      {"psd.frequency_hz", "Hz"},
+      {"psd.sqrt_psd_deg_h_per_sqrt_hz", "deg/h/sqrt(Hz)"},
+      {"psd.psd_deg2_h2_per_hz", "(deg/h)^2/Hz"},
+      {"psd.resolution_hz", "Hz"},
+      {"arw_deg_per_sqrt_h", "deg/sqrt(h)"},
+      {"bias_instability_deg_h", "deg/h"},
+      {"bias_instability_tau_s", "s"},
+      {"readings.adev.N", "deg/h/sqrt(Hz)"},
+      {"readings.adev.K", "deg/h/sqrt(s)"},
+      {"readings.adev.B", "deg/h (the ADEV minimum)"},
+      {"readings.adev.tau_s", "s"},
+      {"readings.psd.N", "deg/h/sqrt(Hz)"},
+      {"readings.psd.K", "deg/h/sqrt(s)"},
+      {"random_bias_evidence.deviance_*", "gamma deviance (dimensionless)"},
+      {"random_bias_evidence.criterion_*", "-2 ln L + penalty x parameters (dimensionless)"},
+      {"systematic.criterion", "Wald statistic + penalty x degree (dimensionless)"},
+      {"fit.deviance", "gamma deviance (dimensionless)"},
+      {"fit.model", "N, B, K, R, Q, gm_sigma, gm_tc in the units above"},
+      {"random_bias_evidence.adev_end_slope", "log-log slope (dimensionless)"},
+      {"random_bias_evidence.psd_low_frequency_slope", "log-log slope (dimensionless)"}};
+  for (const model::ReportedParameter& p : model::reported_parameters()) {
+    units[std::string(p.name)] = p.unit;
+  }
+  return units;
 }
 
 nlohmann::json to_json(const model::AnalysisResult& r, const io::Series& series,
@@ -389,13 +391,10 @@ nlohmann::json to_json(const model::AnalysisResult& r, const io::Series& series,
   input["temperature_channel"] =
       temperature.channel.empty() ? nlohmann::json(nullptr) : nlohmann::json(temperature.channel);
 
-  nlohmann::json noise = {{"N", parameter_json(r.noise.N)},
-                          {"B", parameter_json(r.noise.B)},
-                          {"K", parameter_json(r.noise.K)},
-                          {"R", parameter_json(r.noise.R)},
-                          {"Q", parameter_json(r.noise.Q)},
-                          {"gm_sigma", parameter_json(r.noise.gm_sigma)},
-                          {"gm_tc", parameter_json(r.noise.gm_tc)}};
+  nlohmann::json noise;
+  for (const model::ReportedParameter& p : model::reported_parameters()) {
+    noise[std::string(p.name)] = parameter_json(r.noise.*p.estimate);
+  }
 
   nlohmann::json readings = {
       {"adev",
@@ -448,8 +447,7 @@ std::string to_csv(const model::AnalysisResult& r) {
   const std::vector<double> fitted = model_adev(r);
   for (std::size_t k = 0; k < a.tau_s.size(); ++k) {
     out += fmt::format("{:.10g},{},{},{},{},{},{},{}", a.tau_s[k], a.m[k], a.n[k], cell(a.dev[k]),
-                       cell(a.edf[k]), cell(a.ci95_low[k]), cell(a.ci95_high[k]),
-                       cell(fitted[k]));
+                       cell(a.edf[k]), cell(a.ci95_low[k]), cell(a.ci95_high[k]), cell(fitted[k]));
     for (const NoiseTerm t : kTerms) {
       out += ',';
       out += cell(std::sqrt(model::allan_variance(r.noise.model, t, a.tau_s[k])));
@@ -497,23 +495,14 @@ std::string summary(const model::AnalysisResult& r, const io::Series& series, st
                        record_mean_deg_h);
   }
 
-  out += fmt::format("\nNoise model (fit to the OADEV of the residual: terms {}, {} points, "
-                     "dispersion {:.3g})\n",
-                     r.noise.terms.empty() ? "none" : r.noise.terms, r.noise.points,
-                     r.noise.dispersion);
+  out += fmt::format(
+      "\nNoise model (fit to the OADEV of the residual: terms {}, {} points, "
+      "dispersion {:.3g})\n",
+      r.noise.terms.empty() ? "none" : r.noise.terms, r.noise.points, r.noise.dispersion);
   out += fmt::format("  {:<9} {:>11}  {:<15} {:<12} {}\n", "parameter", "value", "unit", "status",
                      "95% interval");
-  struct Row {
-    const char* name;
-    const model::ParameterEstimate* p;
-    const char* unit;
-  };
-  const Row rows[] = {{"N", &r.noise.N, "deg/h/sqrt(Hz)"}, {"B", &r.noise.B, "deg/h"},
-                      {"K", &r.noise.K, "deg/h/sqrt(s)"},  {"R", &r.noise.R, "deg/h/s"},
-                      {"Q", &r.noise.Q, "deg/h*s"},        {"gm_sigma", &r.noise.gm_sigma, "deg/h"},
-                      {"gm_tc", &r.noise.gm_tc, "s"}};
-  for (const Row& row : rows) {
-    const model::ParameterEstimate& p = *row.p;
+  for (const model::ReportedParameter& row : model::reported_parameters()) {
+    const model::ParameterEstimate& p = r.noise.*row.estimate;
     std::string value = g(p.value);
     std::string interval;
     if (p.status == model::TermStatus::resolved) {
@@ -529,8 +518,7 @@ std::string summary(const model::AnalysisResult& r, const io::Series& series, st
                        model::to_string(p.status), interval);
   }
   out += fmt::format("  ARW {} deg/sqrt(h); bias instability (ADEV minimum) {} deg/h at {} s{}\n",
-                     g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h),
-                     g(r.bias_instability_tau_s),
+                     g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h), g(r.bias_instability_tau_s),
                      r.bias_instability_at_edge ? " (at the end of the tau range)" : "");
   auto opt = [](const std::optional<double>& v) { return v ? g(*v) : std::string("not visible"); };
   out += fmt::format("  graphical readings: ADEV N {}, K {}, minimum {} deg/h; PSD N {}, K {}\n",
@@ -588,12 +576,11 @@ void run(const AnalyzeCommand& c) {
   series.values.shrink_to_fit();
 
   // Render everything first, then write: a failure never leaves half the outputs.
-  const std::string json =
-      c.json_path.empty() ? ""
-                          : to_json(result, series, samples, temperature, record_mean_deg_h, c,
-                                    options, notes)
-                                    .dump(2) +
-                                "\n";
+  const std::string json = c.json_path.empty() ? ""
+                                               : to_json(result, series, samples, temperature,
+                                                         record_mean_deg_h, c, options, notes)
+                                                         .dump(2) +
+                                                     "\n";
   const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
   if (!c.json_path.empty()) write_text_file(c.json_path, json);
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);

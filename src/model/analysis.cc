@@ -93,8 +93,8 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
   welch.segment_length = options.psd_segment;
   s.psd = stats::welch_psd(residual, fs, welch);
   s.smoothed = stats::log_smooth(s.psd, options.psd_bins_per_decade);
-  const stats::AllanResult all = stats::allan_deviation_in_place(
-      residual, fs, InputKind::rate, fit_allan_options(options, true));
+  const stats::AllanResult all = stats::allan_deviation_in_place(residual, fs, InputKind::rate,
+                                                                 fit_allan_options(options, true));
   s.allan = reported_part(all, options.grid);
   if (s.allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -139,9 +139,8 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
   const NoiseFitResult& n = s.noise;
   auto dev = [](bool have, const CandidateModel& c) { return have ? c.deviance : kNaN; };
   auto crit = [](bool have, const CandidateModel& c) { return have ? c.criterion : kNaN; };
-  const bool have_none = std::isfinite(n.best_without_random_bias.deviance);
-  e.deviance_none = dev(have_none, n.best_without_random_bias);
-  e.criterion_none = crit(have_none, n.best_without_random_bias);
+  e.deviance_none = dev(n.has_candidate_without_random_bias, n.best_without_random_bias);
+  e.criterion_none = crit(n.has_candidate_without_random_bias, n.best_without_random_bias);
   e.deviance_wiener = dev(n.has_wiener_candidate, n.best_wiener);
   e.criterion_wiener = crit(n.has_wiener_candidate, n.best_wiener);
   e.deviance_gauss_markov = dev(n.has_gauss_markov_candidate, n.best_gauss_markov);
@@ -155,8 +154,7 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
   const auto& f = s.psd.frequency_hz;
   std::size_t end = 0;
   while (end < f.size() && f[end] <= 10.0 * f.front()) ++end;
-  e.psd_low_frequency_slope =
-      log_slope(std::span(f).first(end), std::span(s.psd.psd).first(end));
+  e.psd_low_frequency_slope = log_slope(std::span(f).first(end), std::span(s.psd.psd).first(end));
 
   const std::string fits = fmt::format(
       "criterion (-2 ln L + penalty x parameters): no random bias {:.1f}, Wiener {:.1f}, "
@@ -218,8 +216,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       // quick first look (deviations only, on a copy, the cubic removed)
       // gives the model for the degree criterion.
       subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
-      const NoiseFitResult look = quick_noise_model(rate_deg_h, sample_rate_hz, options, *fit,
-                                                    temperature_c);
+      const NoiseFitResult look =
+          quick_noise_model(rate_deg_h, sample_rate_hz, options, *fit, temperature_c);
       subtract_temperature_fit(negated(*fit), rate_deg_h, temperature_c);  // the record again
       fit = finish_temperature_fit(*fit, rate_deg_h, temperature_c, sample_rate_hz, look.model,
                                    options.systematic);
@@ -229,8 +227,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     r.notes.push_back(
         "no temperature: the systematic part is the mean rate only (removed by the statistics)");
   }
-  Statistics s = statistics(rate_deg_h, sample_rate_hz, options, fit ? &*fit : nullptr,
-                            temperature_c);
+  Statistics s =
+      statistics(rate_deg_h, sample_rate_hz, options, fit ? &*fit : nullptr, temperature_c);
   if (fit) {
     // Standard errors with the noise model of the final residual. A random
     // walk the record cannot resolve is confounded with a temperature ramp
@@ -241,14 +239,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         s.noise.random_bias_process != RandomBiasProcess::gauss_markov) {
       for_errors.K = s.noise.K.upper_95;
     }
-    const std::vector<double> cov =
-        coefficient_covariance(temperature_c, sample_rate_hz, fit->t_ref_c, fit->degree,
-                               for_errors, options.systematic.blocks);
-    fit->standard_errors.assign(static_cast<std::size_t>(fit->degree + 1), 0.0);
-    for (int j = 0; j <= fit->degree; ++j) {
-      fit->standard_errors[static_cast<std::size_t>(j)] =
-          std::sqrt(std::max(0.0, cov[static_cast<std::size_t>(j * (fit->degree + 1) + j)]));
-    }
+    set_standard_errors(*fit, temperature_c, sample_rate_hz, for_errors, options.systematic.blocks);
     r.notes.push_back(fit->note);
     r.systematic = std::move(fit);
   }
@@ -264,15 +255,16 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.bias_instability_tau_s = r.adev_readings.bias_instability_tau_s;
   r.bias_instability_at_edge = r.adev_readings.minimum_at_edge;
   if (r.bias_instability_at_edge) {
-    r.notes.push_back(fmt::format(
-        "the Allan deviation is lowest at the {} of its tau range ({:.4g} s): the bias "
-        "instability may be lower than reported",
-        r.bias_instability_tau_s == r.allan.tau_s.back() ? "end" : "start",
-        r.bias_instability_tau_s));
+    r.notes.push_back(
+        fmt::format("the Allan deviation is lowest at the {} of its tau range ({:.4g} s): the bias "
+                    "instability may be lower than reported",
+                    r.bias_instability_tau_s == r.allan.tau_s.back() ? "end" : "start",
+                    r.bias_instability_tau_s));
   }
   r.arw_deg_sqrt_h = r.noise.model.N / 60.0;
   if (r.noise.N.status != TermStatus::resolved) {
-    r.notes.push_back("no white rate noise resolved: the ARW for the class verdict is its upper bound");
+    r.notes.push_back(
+        "no white rate noise resolved: the ARW for the class verdict is its upper bound");
     if (std::isfinite(r.noise.N.upper_95)) r.arw_deg_sqrt_h = r.noise.N.upper_95 / 60.0;
   }
   r.verdict = classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h);

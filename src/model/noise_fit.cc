@@ -40,36 +40,60 @@ double gm_shape(double tau_s, double tc_s) {
 // The Allan variance of a linear term per unit squared coefficient.
 double basis(NoiseTerm t, double tau_s, double tc_s) {
   switch (t) {
-    case NoiseTerm::N: return 1.0 / tau_s;
-    case NoiseTerm::B: return kFlickerFactor;
-    case NoiseTerm::K: return tau_s / 3.0;
-    case NoiseTerm::R: return tau_s * tau_s / 2.0;
-    case NoiseTerm::Q: return 3.0 / (tau_s * tau_s);
-    case NoiseTerm::gm: return gm_shape(tau_s, tc_s);
+    case NoiseTerm::N:
+      return 1.0 / tau_s;
+    case NoiseTerm::B:
+      return kFlickerFactor;
+    case NoiseTerm::K:
+      return tau_s / 3.0;
+    case NoiseTerm::R:
+      return tau_s * tau_s / 2.0;
+    case NoiseTerm::Q:
+      return 3.0 / (tau_s * tau_s);
+    case NoiseTerm::gm:
+      return gm_shape(tau_s, tc_s);
   }
   return 0.0;
 }
 
 double coefficient(const NoiseModel& m, NoiseTerm t) {
   switch (t) {
-    case NoiseTerm::N: return m.N;
-    case NoiseTerm::B: return m.B;
-    case NoiseTerm::K: return m.K;
-    case NoiseTerm::R: return m.R;
-    case NoiseTerm::Q: return m.Q;
-    case NoiseTerm::gm: return m.gm_sigma;
+    case NoiseTerm::N:
+      return m.N;
+    case NoiseTerm::B:
+      return m.B;
+    case NoiseTerm::K:
+      return m.K;
+    case NoiseTerm::R:
+      return m.R;
+    case NoiseTerm::Q:
+      return m.Q;
+    case NoiseTerm::gm:
+      return m.gm_sigma;
   }
   return 0.0;
 }
 
 void set_coefficient(NoiseModel& m, NoiseTerm t, double value) {
   switch (t) {
-    case NoiseTerm::N: m.N = value; break;
-    case NoiseTerm::B: m.B = value; break;
-    case NoiseTerm::K: m.K = value; break;
-    case NoiseTerm::R: m.R = value; break;
-    case NoiseTerm::Q: m.Q = value; break;
-    case NoiseTerm::gm: m.gm_sigma = value; break;
+    case NoiseTerm::N:
+      m.N = value;
+      break;
+    case NoiseTerm::B:
+      m.B = value;
+      break;
+    case NoiseTerm::K:
+      m.K = value;
+      break;
+    case NoiseTerm::R:
+      m.R = value;
+      break;
+    case NoiseTerm::Q:
+      m.Q = value;
+      break;
+    case NoiseTerm::gm:
+      m.gm_sigma = value;
+      break;
   }
 }
 
@@ -120,8 +144,8 @@ struct SubsetFit {
   std::vector<double> mu;
   double deviance = kInf;
   bool feasible = false;
-  std::vector<double> v;        // the edf the fit used
-  double neg2_loglik = kInf;    // -2 ln L of the gamma likelihood with those edf
+  std::vector<double> v;      // the edf the fit used
+  double neg2_loglik = kInf;  // -2 ln L of the gamma likelihood with those edf
 };
 
 // Maximum gamma likelihood of the terms in `mask` for a fixed Tc, with an
@@ -282,12 +306,22 @@ std::vector<double> model_edf(const Points& p, const SubsetFit& f) {
       if (share <= best) continue;
       best = share;
       switch (t) {
-        case NoiseTerm::N: alpha_index = 2; break;
-        case NoiseTerm::B: alpha_index = 1; break;
+        case NoiseTerm::N:
+          alpha_index = 2;
+          break;
+        case NoiseTerm::B:
+          alpha_index = 1;
+          break;
         case NoiseTerm::K:
-        case NoiseTerm::R: alpha_index = 0; break;
-        case NoiseTerm::Q: alpha_index = 3; break;
-        case NoiseTerm::gm: alpha_index = p.tau[i] < f.tc ? 0 : 2; break;
+        case NoiseTerm::R:
+          alpha_index = 0;
+          break;
+        case NoiseTerm::Q:
+          alpha_index = 3;
+          break;
+        case NoiseTerm::gm:
+          alpha_index = p.tau[i] < f.tc ? 0 : 2;
+          break;
       }
     }
     const double e = p.edf_by_alpha[i][static_cast<std::size_t>(alpha_index)];
@@ -424,32 +458,56 @@ CandidateModel candidate(const SubsetFit& f, double penalty) {
 
 std::string_view to_string(NoiseTerm term) {
   switch (term) {
-    case NoiseTerm::N: return "N";
-    case NoiseTerm::B: return "B";
-    case NoiseTerm::K: return "K";
-    case NoiseTerm::R: return "R";
-    case NoiseTerm::Q: return "Q";
-    case NoiseTerm::gm: return "GM";
+    case NoiseTerm::N:
+      return "N";
+    case NoiseTerm::B:
+      return "B";
+    case NoiseTerm::K:
+      return "K";
+    case NoiseTerm::R:
+      return "R";
+    case NoiseTerm::Q:
+      return "Q";
+    case NoiseTerm::gm:
+      return "GM";
   }
   return "?";
 }
 
 std::string_view to_string(TermStatus status) {
   switch (status) {
-    case TermStatus::resolved: return "resolved";
-    case TermStatus::upper_bound: return "upper_bound";
-    case TermStatus::absent: return "absent";
+    case TermStatus::resolved:
+      return "resolved";
+    case TermStatus::upper_bound:
+      return "upper_bound";
+    case TermStatus::absent:
+      return "absent";
   }
   return "?";
 }
 
 std::string_view to_string(RandomBiasProcess process) {
   switch (process) {
-    case RandomBiasProcess::none: return "none";
-    case RandomBiasProcess::wiener: return "wiener";
-    case RandomBiasProcess::gauss_markov: return "gauss_markov";
+    case RandomBiasProcess::none:
+      return "none";
+    case RandomBiasProcess::wiener:
+      return "wiener";
+    case RandomBiasProcess::gauss_markov:
+      return "gauss_markov";
   }
   return "?";
+}
+
+std::span<const ReportedParameter> reported_parameters() {
+  static const ReportedParameter table[] = {
+      {"N", "deg/h/sqrt(Hz)", &NoiseFitResult::N, &NoiseModel::N},
+      {"B", "deg/h", &NoiseFitResult::B, &NoiseModel::B},
+      {"K", "deg/h/sqrt(s)", &NoiseFitResult::K, &NoiseModel::K},
+      {"R", "deg/h/s", &NoiseFitResult::R, &NoiseModel::R},
+      {"Q", "deg/h*s", &NoiseFitResult::Q, &NoiseModel::Q},
+      {"gm_sigma", "deg/h", &NoiseFitResult::gm_sigma, &NoiseModel::gm_sigma},
+      {"gm_tc", "s", &NoiseFitResult::gm_tc, &NoiseModel::gm_tc}};
+  return table;
 }
 
 double allan_variance(const NoiseModel& model, NoiseTerm term, double tau_s) {
@@ -488,17 +546,17 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
                                  detrend->tau_s.size(), tau_s.size()));
   }
   if (tau_s.size() != adev_deg_h.size() || tau_s.size() != edf.size()) {
-    throw UsageError(fmt::format(
-        "noise-model fit: tau, deviation and edf need equal counts, got {}, {} and {}",
-        tau_s.size(), adev_deg_h.size(), edf.size()));
+    throw UsageError(
+        fmt::format("noise-model fit: tau, deviation and edf need equal counts, got {}, {} and {}",
+                    tau_s.size(), adev_deg_h.size(), edf.size()));
   }
   Points p;
   for (std::size_t i = 0; i < tau_s.size(); ++i) {
     if (!(tau_s[i] > 0) || !(adev_deg_h[i] > 0) || !std::isfinite(adev_deg_h[i])) {
-      throw UsageError(fmt::format(
-          "noise-model fit: point {} has tau {} s and deviation {} deg/h; both must be "
-          "positive and finite",
-          i + 1, tau_s[i], adev_deg_h[i]));
+      throw UsageError(
+          fmt::format("noise-model fit: point {} has tau {} s and deviation {} deg/h; both must be "
+                      "positive and finite",
+                      i + 1, tau_s[i], adev_deg_h[i]));
     }
     if (!(edf[i] >= options.min_edf)) continue;
     p.tau.push_back(tau_s[i]);
@@ -556,13 +614,11 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
 
   // Evidence: the best candidate of each random-bias hypothesis.
   const int k_bit = bit(NoiseTerm::K), gm_bit = bit(NoiseTerm::gm);
-  r.best_without_random_bias.deviance = kNaN;
-  bool have_none = false;
   for (const SubsetFit& f : fits) {  // sorted by criterion
     const bool has_k = f.mask & k_bit, has_gm = f.mask & gm_bit;
-    if (!has_k && !has_gm && !have_none) {
+    if (!has_k && !has_gm && !r.has_candidate_without_random_bias) {
       r.best_without_random_bias = candidate(f, penalty);
-      have_none = true;
+      r.has_candidate_without_random_bias = true;
     }
     if (has_k && !has_gm && !r.has_wiener_candidate) {
       r.best_wiener = candidate(f, penalty);
@@ -583,23 +639,17 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   const double scale = r.dispersion * options.correlation_inflation;
   std::vector<NoiseTerm> order;
   const Eigen::MatrixXd cov = log_parameter_covariance(pc, chosen, order);
+  // The reported parameter of each term (gm: its sigma), in kTerms order.
   auto estimate_for = [&](NoiseTerm t) -> ParameterEstimate& {
-    switch (t) {
-      case NoiseTerm::N: return r.N;
-      case NoiseTerm::B: return r.B;
-      case NoiseTerm::K: return r.K;
-      case NoiseTerm::R: return r.R;
-      case NoiseTerm::Q: return r.Q;
-      case NoiseTerm::gm: return r.gm_sigma;
-    }
-    return r.N;
+    return r.*(reported_parameters()[static_cast<std::size_t>(t)].estimate);
   };
   for (std::size_t j = 0; j < order.size(); ++j) {
     ParameterEstimate& e = estimate_for(order[j]);
     const double value = coefficient(r.model, order[j]);
     // ln(coefficient) = ln(c)/2
-    const double sd = 0.5 * std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(j),
-                                                          static_cast<Eigen::Index>(j)) * scale));
+    const double sd =
+        0.5 * std::sqrt(std::max(
+                  0.0, cov(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j)) * scale));
     e = {value, value * std::exp(-kZ95 * sd), value * std::exp(kZ95 * sd), kNaN,
          TermStatus::resolved};
   }
@@ -607,8 +657,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     const Eigen::Index last = cov.rows() - 1;
     const double sd = std::sqrt(std::max(0.0, cov(last, last) * scale));
     const double tc = r.model.gm_tc;
-    r.gm_tc = {tc, tc * std::exp(-kZ95 * sd), tc * std::exp(kZ95 * sd), kNaN,
-               TermStatus::resolved};
+    r.gm_tc = {tc, tc * std::exp(-kZ95 * sd), tc * std::exp(kZ95 * sd), kNaN, TermStatus::resolved};
   }
 
   // Terms left out: status and one-sided bound.
@@ -616,8 +665,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     if (chosen.mask & bit(t)) continue;
     const int enlarged = chosen.mask | bit(t);
     TermStatus status = TermStatus::absent;
-    if (admissible(enlarged, options) &&
-        parameter_count(enlarged) < static_cast<int>(p.y.size())) {
+    if (admissible(enlarged, options) && parameter_count(enlarged) < static_cast<int>(p.y.size())) {
       const SubsetFit bigger = fit_subset_profiled(pc, enlarged);
       if (bigger.feasible) status = TermStatus::upper_bound;
     }
@@ -625,8 +673,8 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     ParameterEstimate& e = estimate_for(t);
     // A one-sided interval [0, bound]: the term may be there, this small.
     const bool bounded = std::isfinite(ub);
-    e = {status == TermStatus::upper_bound ? ub : kNaN, bounded ? 0.0 : kNaN,
-         bounded ? ub : kNaN, ub, status};
+    e = {status == TermStatus::upper_bound ? ub : kNaN, bounded ? 0.0 : kNaN, bounded ? ub : kNaN,
+         ub, status};
     if (t == NoiseTerm::gm) {
       r.gm_tc = {kNaN, kNaN, kNaN, kNaN, status};
     }

@@ -32,13 +32,13 @@ void check_inputs(std::span<const double> rate, std::span<const double> temperat
         fmt::format("temperature fit: {} samples; at least 8 are needed", rate.size()));
   }
   if (!(sample_rate_hz > 0) || !std::isfinite(sample_rate_hz)) {
-    throw UsageError(fmt::format("temperature fit: sample rate {} Hz must be positive",
-                                 sample_rate_hz));
+    throw UsageError(
+        fmt::format("temperature fit: sample rate {} Hz must be positive", sample_rate_hz));
   }
   for (std::size_t k = 0; k < temperature.size(); ++k) {
     if (!std::isfinite(temperature[k])) {
-      throw DataError(fmt::format("temperature sample {} is {}; temperatures must be finite",
-                                  k + 1, temperature[k]));
+      throw DataError(fmt::format("temperature sample {} is {}; temperatures must be finite", k + 1,
+                                  temperature[k]));
     }
   }
 }
@@ -66,8 +66,8 @@ struct Moments {
   std::size_t n = 0;
 };
 
-Moments moments(std::span<const double> rate, std::span<const double> temperature,
-                double t_ref, double scale) {
+Moments moments(std::span<const double> rate, std::span<const double> temperature, double t_ref,
+                double scale) {
   Moments m;
   m.n = temperature.size();
   m.t_ref = t_ref;
@@ -218,7 +218,8 @@ Eigen::MatrixXd allan_form_times(const Eigen::MatrixXd& z, std::size_t m) {
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(z.rows(), z.cols());
   for (Eigen::Index col = 0; col < z.cols(); ++col) {
     std::vector<double> cum(total + 1, 0.0);
-    for (std::size_t k = 0; k < total; ++k) cum[k + 1] = cum[k] + z(static_cast<Eigen::Index>(k), col);
+    for (std::size_t k = 0; k < total; ++k)
+      cum[k + 1] = cum[k] + z(static_cast<Eigen::Index>(k), col);
     std::vector<double> mark(total + 1, 0.0);  // difference array of D'd
     const double inv = 1.0 / static_cast<double>(m);
     for (std::size_t i = 0; i < n; ++i) {
@@ -261,8 +262,7 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> middle(std::span<const double> tempe
                                                    double sample_rate_hz, double t_ref,
                                                    double scale, int degree,
                                                    const NoiseModel& noise, int blocks) {
-  const std::size_t m = std::min<std::size_t>(static_cast<std::size_t>(blocks),
-                                              temperature.size());
+  const std::size_t m = std::min<std::size_t>(static_cast<std::size_t>(blocks), temperature.size());
   const std::size_t length = temperature.size() / m;
   const double tau = static_cast<double>(length) / sample_rate_hz;
   const Eigen::MatrixXd x = block_regressors(temperature, t_ref, scale, degree, m, length);
@@ -390,8 +390,8 @@ DetrendFactors detrend_factors(std::span<const double> temperature_c, double sam
   std::vector<std::size_t> lag(count);
   std::map<std::size_t, std::pair<std::vector<double>, Eigen::MatrixXd>> forms;
   for (std::size_t i = 0; i < count; ++i) {
-    lag[i] = std::clamp<std::size_t>(
-        static_cast<std::size_t>(std::llround(tau_s[i] / tau_b)), 1, max_lag);
+    lag[i] = std::clamp<std::size_t>(static_cast<std::size_t>(std::llround(tau_s[i] / tau_b)), 1,
+                                     max_lag);
     if (!forms.count(lag[i])) {
       forms[lag[i]] = {filter_autocorrelation(lag[i]), allan_form_times(q, lag[i])};
     }
@@ -444,8 +444,8 @@ DetrendFactors detrend_factors(std::span<const double> temperature_c, double sam
   for (int s = 0; s <= steps; ++s) {
     const double tc = std::exp(lo + (hi - lo) * s / steps);
     f.gm_tc_s.push_back(tc);
-    f.gm.push_back(factors_of(
-        block_covariance({.gm_sigma = 1.0, .gm_tc = tc}, tau_b, m_blocks, true)));
+    f.gm.push_back(
+        factors_of(block_covariance({.gm_sigma = 1.0, .gm_tc = tc}, tau_b, m_blocks, true)));
   }
   return f;
 }
@@ -470,11 +470,9 @@ std::vector<double> coefficient_covariance(std::span<const double> temperature_c
   return out;
 }
 
-SystematicFit finish_temperature_fit(const SystematicFit& first,
-                                     std::span<const double> rate_deg_h,
-                                     std::span<const double> temperature_c,
-                                     double sample_rate_hz, const NoiseModel& noise,
-                                     const SystematicOptions& options) {
+SystematicFit finish_temperature_fit(const SystematicFit& first, std::span<const double> rate_deg_h,
+                                     std::span<const double> temperature_c, double sample_rate_hz,
+                                     const NoiseModel& noise, const SystematicOptions& options) {
   check_inputs(rate_deg_h, temperature_c, sample_rate_hz);
   SystematicFit fit = first;
   const double scale = temperature_scale(temperature_c, fit.t_ref_c);
@@ -493,8 +491,8 @@ SystematicFit finish_temperature_fit(const SystematicFit& first,
       fit.criterion[static_cast<std::size_t>(d)] = b.dot(v.ldlt().solve(b)) + penalty * d;
     }
     fit.criterion[static_cast<std::size_t>(top)] = penalty * top;
-    const int best = static_cast<int>(
-        std::min_element(fit.criterion.begin(), fit.criterion.end()) - fit.criterion.begin());
+    const int best = static_cast<int>(std::min_element(fit.criterion.begin(), fit.criterion.end()) -
+                                      fit.criterion.begin());
     fit.degree = best;
     fit.note = fmt::format(
         "degree {} chosen by the criterion W_d + {:.3g} d (Wald statistic of the higher "
@@ -503,16 +501,20 @@ SystematicFit finish_temperature_fit(const SystematicFit& first,
   }
   fit.coefficients = unscale(solve_scaled(mo, fit.degree), scale);
   fit.bias_deg_h = fit.coefficients[0];
-  const std::vector<double> cov = coefficient_covariance(temperature_c, sample_rate_hz,
-                                                         fit.t_ref_c, fit.degree, noise,
-                                                         options.blocks);
-  fit.standard_errors.resize(fit.coefficients.size());
+  set_standard_errors(fit, temperature_c, sample_rate_hz, noise, options.blocks);
+  fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
+  return fit;
+}
+
+void set_standard_errors(SystematicFit& fit, std::span<const double> temperature_c,
+                         double sample_rate_hz, const NoiseModel& noise, int blocks) {
+  const std::vector<double> cov =
+      coefficient_covariance(temperature_c, sample_rate_hz, fit.t_ref_c, fit.degree, noise, blocks);
+  fit.standard_errors.assign(static_cast<std::size_t>(fit.degree + 1), 0.0);
   for (int j = 0; j <= fit.degree; ++j) {
     fit.standard_errors[static_cast<std::size_t>(j)] =
         std::sqrt(std::max(0.0, cov[static_cast<std::size_t>(j * (fit.degree + 1) + j)]));
   }
-  fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
-  return fit;
 }
 
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,

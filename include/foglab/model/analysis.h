@@ -29,8 +29,8 @@ namespace foglab::model {
 
 struct AnalysisOptions {
   SystematicOptions systematic;
-  stats::TauGrid grid;       ///< for the Allan deviation (default octave, >= 10 clusters)
-  std::size_t psd_segment = 0;   ///< Welch segment (0: automatic, psd.h)
+  stats::TauGrid grid;                ///< for the Allan deviation (default octave, >= 10 clusters)
+  std::size_t psd_segment = 0;        ///< Welch segment (0: automatic, psd.h)
   double psd_bins_per_decade = 20.0;  ///< log smoothing for display and readings
   NoiseFitOptions noise_fit;
   /// The noise fit also uses the longer taus down to this many clusters
@@ -58,11 +58,11 @@ struct RandomBiasEvidence {
 struct AnalysisResult {
   double sample_rate_hz = 0.0;  ///< [Hz]
   std::int64_t samples = 0;
-  double duration_s = 0.0;      ///< [s]
+  double duration_s = 0.0;                  ///< [s]
   std::optional<SystematicFit> systematic;  ///< empty without temperature
-  stats::PsdResult psd;           ///< Welch PSD of the residual, (deg/h)^2/Hz two-sided
-  stats::PsdResult psd_smoothed;  ///< the same, log-smoothed
-  stats::AllanResult allan;       ///< OADEV of the residual with intervals
+  stats::PsdResult psd;                     ///< Welch PSD of the residual, (deg/h)^2/Hz two-sided
+  stats::PsdResult psd_smoothed;            ///< the same, log-smoothed
+  stats::AllanResult allan;                 ///< OADEV of the residual with intervals
   NoiseFitResult noise;
   AdevReadings adev_readings;
   PsdReadings psd_readings;

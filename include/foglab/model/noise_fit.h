@@ -88,7 +88,8 @@ std::string_view to_string(TermStatus status);
 
 /// One reported parameter.
 struct ParameterEstimate {
-  double value = 0.0;  ///< the estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent
+  double value =
+      0.0;  ///< the estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent
   /// The 95 % interval; for a term left out, the one-sided [0, upper_95]
   /// (NaN when no bound could be set).
   double ci95_low = 0.0;
@@ -122,10 +123,10 @@ struct NoiseFitOptions {
 /// factors (1 everywhere when nothing but the mean was removed). Computed by
 /// detrend_factors() (systematic.h).
 struct DetrendFactors {
-  std::vector<double> tau_s;                     ///< [s] the fit's tau points
-  std::array<std::vector<double>, 5> linear;     ///< N, B, K, R, Q: factor at each tau
-  std::vector<double> gm_tc_s;                   ///< [s] Gauss-Markov Tc grid, increasing
-  std::vector<std::vector<double>> gm;           ///< [Tc index][tau index]
+  std::vector<double> tau_s;                  ///< [s] the fit's tau points
+  std::array<std::vector<double>, 5> linear;  ///< N, B, K, R, Q: factor at each tau
+  std::vector<double> gm_tc_s;                ///< [s] Gauss-Markov Tc grid, increasing
+  std::vector<std::vector<double>> gm;        ///< [Tc index][tau index]
   /// The factor of `term` at tau point `index` (Tc for the Gauss-Markov
   /// term, interpolated in ln Tc, clamped at the grid's ends).
   double factor(NoiseTerm term, std::size_t index, double tc_s) const;
@@ -133,28 +134,39 @@ struct DetrendFactors {
 
 /// One fitted candidate model (for the evidence in the output).
 struct CandidateModel {
-  std::string terms;         ///< e.g. "N+B+K"
+  std::string terms;  ///< e.g. "N+B+K"
   NoiseModel model;
-  double deviance = 0.0;     ///< gamma deviance D
+  double deviance = 0.0;  ///< gamma deviance D
   int parameters = 0;
-  double criterion = 0.0;    ///< D + penalty * parameters
+  double criterion = 0.0;  ///< D + penalty * parameters
 };
 
 struct NoiseFitResult {
   NoiseModel model;  ///< the chosen model (terms left out are 0)
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
   RandomBiasProcess random_bias_process = RandomBiasProcess::none;
-  std::string terms;     ///< the chosen terms, e.g. "N+B+K"
+  std::string terms;  ///< the chosen terms, e.g. "N+B+K"
   double deviance = 0.0;
-  int points = 0;        ///< tau points used
+  int points = 0;  ///< tau points used
   int parameters = 0;
   double dispersion = 1.0;  ///< max(1, D / (points - parameters))
   /// The best candidate of each random-bias hypothesis (terms "none",
   /// "wiener", "gauss_markov" in `random_bias`), the evidence for the answer.
   CandidateModel best_without_random_bias, best_wiener, best_gauss_markov;
+  bool has_candidate_without_random_bias = false;
   bool has_wiener_candidate = false, has_gauss_markov_candidate = false;
   std::vector<CandidateModel> candidates;  ///< every admissible subset, best first
 };
+
+/// The seven reported parameters in SPEC.md order, with their JSON names
+/// and units: N, B, K, R, Q, gm_sigma, gm_tc.
+struct ReportedParameter {
+  std::string_view name;  ///< "N", ..., "gm_sigma", "gm_tc"
+  std::string_view unit;  ///< e.g. "deg/h/sqrt(Hz)"
+  ParameterEstimate NoiseFitResult::*estimate;
+  double NoiseModel::*value;
+};
+std::span<const ReportedParameter> reported_parameters();
 
 /// Fits the model to Allan deviations `adev_deg_h` at `tau_s` with their
 /// equivalent degrees of freedom `edf` (stats::AllanResult's fields).
@@ -166,8 +178,7 @@ NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const do
                                const DetrendFactors* detrend = nullptr);
 
 /// The same on an Allan result computed with confidence intervals.
-NoiseFitResult fit_noise_model(const stats::AllanResult& allan,
-                               const NoiseFitOptions& options = {},
+NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOptions& options = {},
                                const DetrendFactors* detrend = nullptr);
 
 }  // namespace foglab::model

@@ -24,11 +24,11 @@
 // -2 ln(L_d / L_3) — and p = 6.63, the 99 % point of chi-square with one
 // degree of freedom: a coefficient must be significant at the 1 % level to
 // enter. (BIC's ln(n) would count every sample as independent, which a
-// random-walk bias is not; AIC's 2 lets one spurious term in six.) When the temperature barely moves
-// (the spread of its block means below `min_span_c`) the fit falls back to a
-// constant, whatever was asked, and says so. The lab's number — the constant
-// term of polyfit(T, Y, 2) in raw degC — is reported from the quadratic fit
-// in every case (with `lab_constant_meaningful` false on a thermostat run).
+// random-walk bias is not; AIC's 2 lets one spurious term in six.) When the temperature barely
+// moves (the spread of its block means below `min_span_c`) the fit falls back to a constant,
+// whatever was asked, and says so. The lab's number — the constant term of polyfit(T, Y, 2) in raw
+// degC — is reported from the quadratic fit in every case (with `lab_constant_meaningful` false on
+// a thermostat run).
 #pragma once
 
 #include <span>
@@ -40,21 +40,22 @@
 namespace foglab::model {
 
 struct SystematicOptions {
-  int degree = -1;           ///< -1: choose by the criterion; 0..3 forces it
-  int max_degree = 3;        ///< highest degree the criterion considers (0..3)
-  double min_span_c = 0.5;   ///< [degC] below this spread, fit a constant
-  int blocks = 1024;         ///< block means used for the covariance
+  int degree = -1;          ///< -1: choose by the criterion; 0..3 forces it
+  int max_degree = 3;       ///< highest degree the criterion considers (0..3)
+  double min_span_c = 0.5;  ///< [degC] below this spread, fit a constant
+  int blocks = 1024;        ///< block means used for the covariance
   /// Cost of one coefficient in the degree criterion (chi-square_1 at 99 %).
   double degree_penalty = 6.635;
 };
 
 struct SystematicFit {
-  int degree = 0;                     ///< degree used
-  std::vector<double> coefficients;   ///< c_j [deg/h/degC^j] about t_ref_c
-  std::vector<double> standard_errors;///< [deg/h/degC^j] from the noise model (NaN before it is known)
-  double t_ref_c = 0.0;               ///< [degC] mean temperature
-  double bias_deg_h = 0.0;            ///< [deg/h] c_0: the bias at t_ref_c
-  double temperature_span_c = 0.0;    ///< [degC] max - min of the block-mean temperature
+  int degree = 0;                    ///< degree used
+  std::vector<double> coefficients;  ///< c_j [deg/h/degC^j] about t_ref_c
+  std::vector<double>
+      standard_errors;      ///< [deg/h/degC^j] from the noise model (NaN before it is known)
+  double t_ref_c = 0.0;     ///< [degC] mean temperature
+  double bias_deg_h = 0.0;  ///< [deg/h] c_0: the bias at t_ref_c
+  double temperature_span_c = 0.0;  ///< [degC] max - min of the block-mean temperature
   double temperature_min_c = 0.0, temperature_max_c = 0.0;  ///< [degC] of the block means
   /// Constant term of polyfit(T, Y, 2) in raw degC [deg/h] (the lab's number).
   double lab_constant_term_deg_h = 0.0;
@@ -78,11 +79,14 @@ SystematicFit fit_temperature(std::span<const double> rate_deg_h,
 
 /// With the noise model fitted to the residual: standard errors, and (for
 /// automatic degree) the degree chosen and the coefficients refitted.
-SystematicFit finish_temperature_fit(const SystematicFit& first,
-                                     std::span<const double> rate_deg_h,
-                                     std::span<const double> temperature_c,
-                                     double sample_rate_hz, const NoiseModel& noise,
+SystematicFit finish_temperature_fit(const SystematicFit& first, std::span<const double> rate_deg_h,
+                                     std::span<const double> temperature_c, double sample_rate_hz,
+                                     const NoiseModel& noise,
                                      const SystematicOptions& options = {});
+
+/// Sets fit.standard_errors from coefficient_covariance() under `noise`.
+void set_standard_errors(SystematicFit& fit, std::span<const double> temperature_c,
+                         double sample_rate_hz, const NoiseModel& noise, int blocks = 1024);
 
 /// Subtracts the fitted polynomial from `rate_deg_h` in place.
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,
