@@ -380,13 +380,15 @@ NoiseModel to_model(const SubsetFit& f) {
 // Covariance of (ln c_j for the linear terms, then ln sigma^2, ln Tc) from
 // the Fisher information of the gamma likelihood: sum_i (v_i/2) g_i g_i'
 // with g_i = d ln mu_i / d theta.
+// Without `with_tc`, Tc is held at its value (the conditional covariance of
+// the others).
 Eigen::MatrixXd log_parameter_covariance(const Points& p, const SubsetFit& f,
-                                         std::vector<NoiseTerm>& order) {
+                                         std::vector<NoiseTerm>& order, bool with_tc = true) {
   order.clear();
   for (NoiseTerm t : kTerms) {
     if (f.mask & bit(t)) order.push_back(t);
   }
-  const bool gm = (f.mask & bit(NoiseTerm::gm)) != 0;
+  const bool gm = with_tc && (f.mask & bit(NoiseTerm::gm)) != 0;
   const Eigen::Index k = static_cast<Eigen::Index>(order.size()) + (gm ? 1 : 0);
   Eigen::MatrixXd info = Eigen::MatrixXd::Zero(k, k);
   for (std::size_t i = 0; i < p.y.size(); ++i) {
@@ -409,6 +411,80 @@ Eigen::MatrixXd log_parameter_covariance(const Points& p, const SubsetFit& f,
     return Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::infinity());
   }
   return lu.inverse();
+}
+
+// Profile-likelihood 95 % intervals of the Gauss-Markov pair. When the hump
+// of the Allan variance is only partly inside the record the likelihood of
+// (sigma, Tc) is far from quadratic (a long ridge along sigma^2/Tc = K^2/2
+// towards the random walk), and the Fisher interval is too short. Tc's
+// interval is the set where the deviance profiled over the other
+// parameters stays within chi2(1, 0.95) * scale of its minimum; sigma's is
+// the union, over the Tc in that set, of its conditional interval (the
+// projection of the joint confidence region). An end that the data do not
+// close (the process indistinguishable from a random walk) is infinite.
+struct GaussMarkovIntervals {
+  double sigma_low = kNaN, sigma_high = kNaN, tc_low = kNaN, tc_high = kNaN;
+};
+
+GaussMarkovIntervals gauss_markov_intervals(const Points& p, const SubsetFit& chosen,
+                                            double scale) {
+  constexpr double kChi2_95 = 3.841458820694124;
+  const int gm = static_cast<int>(NoiseTerm::gm);
+  const double threshold = chosen.deviance + kChi2_95 * scale;
+  // Twelve points per decade from well below the shortest tau to far beyond
+  // the longest, and the optimum itself.
+  const double lo = std::log(std::min(p.tau.front() * 0.1, chosen.tc));
+  const double hi = std::log(std::max(p.tau.back() * 1000.0, chosen.tc));
+  const int steps = static_cast<int>(std::ceil((hi - lo) / std::log(10.0) * 12.0));
+  std::vector<double> ln_tc;
+  for (int s = 0; s <= steps; ++s) ln_tc.push_back(lo + (hi - lo) * s / steps);
+  ln_tc.push_back(std::log(chosen.tc));
+  std::sort(ln_tc.begin(), ln_tc.end());
+  std::vector<double> excess(ln_tc.size());  // deviance above the threshold
+  GaussMarkovIntervals r;
+  r.sigma_low = std::sqrt(chosen.c[gm]);
+  r.sigma_high = r.sigma_low;
+  for (std::size_t s = 0; s < ln_tc.size(); ++s) {
+    const SubsetFit f = fit_subset(p, chosen.mask, std::exp(ln_tc[s]));
+    excess[s] = f.feasible ? f.deviance - threshold : kInf;
+    if (!(excess[s] <= 0.0)) continue;
+    // Conditional interval of ln sigma^2 at this Tc: the quadratic
+    // deviance reaches the threshold at +-sqrt(-excess * variance).
+    std::vector<NoiseTerm> order;
+    const Eigen::MatrixXd cov = log_parameter_covariance(p, f, order, /*with_tc=*/false);
+    const auto j = static_cast<Eigen::Index>(std::find(order.begin(), order.end(), NoiseTerm::gm) -
+                                             order.begin());
+    const double half = std::sqrt(std::max(0.0, -excess[s] * cov(j, j)));
+    const double sigma = std::sqrt(f.c[gm]);
+    r.sigma_low = std::min(r.sigma_low, sigma * std::exp(-0.5 * half));
+    r.sigma_high = std::max(r.sigma_high, sigma * std::exp(0.5 * half));
+  }
+  // Tc's ends: where the excess crosses zero either side of the optimum
+  // (linear in ln Tc between grid points); infinite when it never does.
+  const auto best = static_cast<std::size_t>(
+      std::find(ln_tc.begin(), ln_tc.end(), std::log(chosen.tc)) - ln_tc.begin());
+  auto crossing = [&](std::size_t inside, std::size_t outside) {
+    const double e0 = excess[inside], e1 = excess[outside];
+    const double w = std::isfinite(e1) ? e0 / (e0 - e1) : 0.0;
+    return std::exp(ln_tc[inside] + w * (ln_tc[outside] - ln_tc[inside]));
+  };
+  r.tc_low = 0.0;
+  for (std::size_t s = best; s > 0; --s) {
+    if (!(excess[s - 1] <= 0.0)) {
+      r.tc_low = crossing(s, s - 1);
+      break;
+    }
+  }
+  r.tc_high = kInf;
+  for (std::size_t s = best; s + 1 < ln_tc.size(); ++s) {
+    if (!(excess[s + 1] <= 0.0)) {
+      r.tc_high = crossing(s, s + 1);
+      break;
+    }
+  }
+  if (!std::isfinite(r.tc_high)) r.sigma_high = kInf;
+  if (r.tc_low == 0.0) r.sigma_low = 0.0;
+  return r;
 }
 
 // The one-sided 95 % upper bound of a term left out of `chosen`: the squared
@@ -654,10 +730,10 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
          TermStatus::resolved};
   }
   if (chosen.mask & gm_bit) {
-    const Eigen::Index last = cov.rows() - 1;
-    const double sd = std::sqrt(std::max(0.0, cov(last, last) * scale));
-    const double tc = r.model.gm_tc;
-    r.gm_tc = {tc, tc * std::exp(-kZ95 * sd), tc * std::exp(kZ95 * sd), kNaN, TermStatus::resolved};
+    const GaussMarkovIntervals g = gauss_markov_intervals(pc, chosen, scale);
+    r.gm_sigma.ci95_low = g.sigma_low;
+    r.gm_sigma.ci95_high = g.sigma_high;
+    r.gm_tc = {r.model.gm_tc, g.tc_low, g.tc_high, kNaN, TermStatus::resolved};
   }
 
   // Terms left out: status and one-sided bound.

@@ -45,6 +45,11 @@
 // one and by `correlation_inflation` for the correlation between
 // neighbouring tau estimates (which the independent-points likelihood
 // ignores), then mapped back (so the interval is positive and asymmetric).
+// The Gauss-Markov pair is the exception: its likelihood is far from
+// quadratic when the hump is only partly in the record, so Tc's interval is
+// the profile-likelihood one (deviance within 3.84 x the same scale of its
+// minimum) and sigma's the projection of the joint region; an end the data
+// do not close (a process indistinguishable from a random walk) is infinite.
 // A term left out gets a one-sided 95 % upper bound from the profile
 // deviance (the value at which adding it costs 2.71 in D, times the same
 // scale), reported as the interval [0, bound], and the status

@@ -1,0 +1,61 @@
+#include "block_covariance.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace foglab::model::detail {
+namespace {
+
+// Phase structure functions D_x(s) = E[(x(t+s) - x(t))^2] of the noise
+// terms, x the integrated rate [(deg/h) s], s >= 0. Stationary terms (finite
+// variance): white N^2 s, Gauss-Markov 2 sigma^2 Tc^2 (s/Tc - 1 + e^(-s/Tc)),
+// quantisation 2 Q^2 (s > 0). Flicker: -2 h s^2 ln s with h = B^2/(2 pi)
+// (two-sided PSD h/|f|, up to an s^2 term that every second difference
+// cancels). The Wiener term K^2 s^3/3 is written out in block_covariance().
+double stationary_structure(const NoiseModel& m, double s) {
+  if (s <= 0) return 0.0;
+  double d = m.N * m.N * s + 2.0 * m.Q * m.Q;
+  if (m.gm_sigma > 0 && m.gm_tc > 0) {
+    const double x = s / m.gm_tc;
+    const double e = x < 1e-4 ? x * x * (0.5 - x / 6.0) : x - 1.0 + std::exp(-x);
+    d += 2.0 * m.gm_sigma * m.gm_sigma * m.gm_tc * m.gm_tc * e;
+  }
+  return d;
+}
+
+double flicker_structure(const NoiseModel& m, double s) {
+  if (s <= 0) return 0.0;
+  return -2.0 * (m.B * m.B / (2.0 * std::numbers::pi)) * s * s * std::log(s);
+}
+
+}  // namespace
+
+// Covariance of block means (blocks of tau seconds) at lags 0..lags-1, from
+// Cov = Var - E[(ybar_a - ybar_b)^2]/2 and
+// E[(ybar_a - ybar_{a+k})^2] = (2 D(tau) + 2 D(k tau) - D((k+1) tau) - D(|k-1| tau)) / tau^2.
+// The non-stationary terms (flicker, Wiener) have no variance; they are given
+// up to a matrix f(a) + f(b), which changes only the intercept's variance.
+// The Wiener rate W has stationary increments itself: block means k >= 1
+// apart differ by the average of lag-k tau increments that overlap by
+// k tau - |s - u|, so E[(ybar_a - ybar_{a+k})^2] = K^2 (k tau - tau/3).
+std::vector<double> block_covariance(const NoiseModel& m, double tau, std::size_t lags,
+                                     bool stationary) {
+  auto second = [&](auto&& d, double k) {
+    return (2.0 * d(tau) + 2.0 * d(k * tau) - d((k + 1.0) * tau) - d(std::fabs(k - 1.0) * tau)) /
+           (tau * tau);
+  };
+  auto s_fn = [&](double s) { return stationary_structure(m, s); };
+  auto f_fn = [&](double s) { return flicker_structure(m, s); };
+  std::vector<double> c(lags);
+  for (std::size_t k = 0; k < lags; ++k) {
+    const double kk = static_cast<double>(k);
+    if (stationary) {
+      c[k] = stationary_structure(m, tau) / (tau * tau) - 0.5 * second(s_fn, kk);
+    } else {
+      c[k] = -0.5 * second(f_fn, kk) - (k > 0 ? 0.5 * m.K * m.K * tau * (kk - 1.0 / 3.0) : 0.0);
+    }
+  }
+  return c;
+}
+
+}  // namespace foglab::model::detail
