@@ -27,7 +27,6 @@
 #include <vector>
 
 #include "foglab/model/analysis.h"
-#include "foglab/model/random_bias.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/sim/presets.h"
@@ -196,11 +195,6 @@ struct Outcome {
   int degree = -1;
   double c1 = NAN, c1_se = NAN, c1_truth = NAN;
   std::string candidates;  // "terms:-2lnL:parameters;..." for decision studies
-  // The block-likelihood decision (random_bias.h): -2 ln L of none, Wiener,
-  // Gauss-Markov, and its Gauss-Markov pair with intervals.
-  double reml[3]{NAN, NAN, NAN};
-  double reml_sigma = NAN, reml_sigma_lo = NAN, reml_sigma_hi = NAN;
-  double reml_tc = NAN, reml_tc_lo = NAN, reml_tc_hi = NAN, reml_k = NAN;
 };
 
 foglab::model::AnalysisOptions g_options;
@@ -212,18 +206,8 @@ Outcome run(const Scenario& s, std::uint64_t seed) {
   g.seed = seed;
   g.stream = s.stream;
   foglab::sim::Recording rec = foglab::sim::generate(s.model, s.profile, g);
-  std::vector<double> rate = rec.rate_deg_h;
   foglab::model::AnalysisResult a =
       foglab::model::analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz, g_options);
-  int degree = 0;
-  double t_ref = 0.0;
-  if (a.systematic) {
-    foglab::model::subtract_temperature_fit(*a.systematic, rate, rec.temperature_c);
-    degree = a.systematic->degree;
-    t_ref = a.systematic->t_ref_c;
-  }
-  const foglab::model::RandomBiasLikelihood rb = foglab::model::decide_random_bias(
-      rate, rec.temperature_c, degree, t_ref, rec.sample_rate_hz, a.noise.model);
   Outcome o;
   o.scenario = s.name;
   o.set = s.set;
@@ -231,18 +215,6 @@ Outcome run(const Scenario& s, std::uint64_t seed) {
   o.temperature = s.temperature;
   o.seed = seed;
   o.found_process = std::string(foglab::model::to_string(a.noise.random_bias_process));
-  if (rb.available) {
-    o.reml[0] = rb.none.neg2_loglik;
-    o.reml[1] = rb.wiener.neg2_loglik;
-    o.reml[2] = rb.gauss_markov.neg2_loglik;
-    o.reml_sigma = rb.gm_sigma.value;
-    o.reml_sigma_lo = rb.gm_sigma.ci95_low;
-    o.reml_sigma_hi = rb.gm_sigma.ci95_high;
-    o.reml_tc = rb.gm_tc.value;
-    o.reml_tc_lo = rb.gm_tc.ci95_low;
-    o.reml_tc_hi = rb.gm_tc.ci95_high;
-    o.reml_k = rb.wiener.model.K;
-  }
   for (const auto& c : a.noise.candidates) {
     o.candidates +=
         fmt::format("{}{}:{:.4f}:{}", o.candidates.empty() ? "" : ";", c.terms,
@@ -418,8 +390,7 @@ int main(int argc, char** argv) {
     csv << "scenario,seed,process,found_process,degree,c1,c1_se,c1_truth";
     for (const auto& p : foglab::model::reported_parameters())
       csv << fmt::format(",{0}_truth,{0},{0}_lo,{0}_hi,{0}_status,{0}_octaves", p.name);
-    csv << ",candidates,reml_none,reml_wiener,reml_gm,reml_sigma,reml_sigma_lo,reml_sigma_hi,"
-           "reml_tc,reml_tc_lo,reml_tc_hi,reml_k\n";
+    csv << ",candidates\n";
     for (const auto* list : {&class_outcomes, &lab_outcomes}) {
       for (const Outcome& o : *list) {
         csv << fmt::format("{},{},{},{},{},{},{},{}", o.scenario, o.seed, o.process,
@@ -428,10 +399,7 @@ int main(int argc, char** argv) {
           csv << fmt::format(",{},{},{},{},{},{:.2f}", o.truth[p], o.value[p], o.low[p], o.high[p],
                              foglab::model::to_string(o.status[p]), o.octaves[p]);
         }
-        csv << "," << o.candidates;
-        csv << fmt::format(",{},{},{},{},{},{},{},{},{},{}\n", o.reml[0], o.reml[1], o.reml[2],
-                           o.reml_sigma, o.reml_sigma_lo, o.reml_sigma_hi, o.reml_tc, o.reml_tc_lo,
-                           o.reml_tc_hi, o.reml_k);
+        csv << "," << o.candidates << "\n";
       }
     }
   }

@@ -21,6 +21,7 @@
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/model/analysis.h"
+#include "foglab/report/report.h"
 #include "foglab/stats/tau_grid.h"
 
 namespace foglab::cli {
@@ -33,6 +34,8 @@ struct AnalyzeCommand {
   std::string taus = "octave";
   std::string json_path;
   std::string csv_path;
+  std::string report_path;
+  std::string kalibr_path;
 };
 
 /// How many candidate models the JSON lists (best first).
@@ -187,10 +190,11 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
 
 nlohmann::json parameter_json(const model::ParameterEstimate& p) {
   // Resolved: the two-sided interval; left out: the one-sided [0, bound].
-  const bool interval = std::isfinite(p.ci95_low) && std::isfinite(p.ci95_high);
+  // An end the data do not close (infinite) is null: [lo, null].
+  const bool interval = std::isfinite(p.ci95_low) && !std::isnan(p.ci95_high);
   return {{"value", number(p.value)},
-          {"ci95",
-           interval ? nlohmann::json::array({p.ci95_low, p.ci95_high}) : nlohmann::json(nullptr)},
+          {"ci95", interval ? nlohmann::json::array({p.ci95_low, number(p.ci95_high)})
+                            : nlohmann::json(nullptr)},
           {"status", std::string(model::to_string(p.status))},
           {"upper_95", number(p.upper_95)}};
 }
@@ -459,7 +463,10 @@ std::string to_csv(const model::AnalysisResult& r) {
 
 // ---- the human-readable summary -------------------------------------------
 
-std::string g(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; }
+std::string g(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-";
+}
 
 std::string summary(const model::AnalysisResult& r, const io::Series& series, std::size_t samples,
                     const Temperature& temperature, double record_mean_deg_h,
@@ -563,6 +570,21 @@ void run(const AnalyzeCommand& c) {
   const double record_mean_deg_h =
       temperature.channel.empty() ? compensated_mean(series.values) : NAN;
 
+  // The report's time plots need the record, which the analysis consumes.
+  const bool reporting = !c.report_path.empty() || !c.kalibr_path.empty();
+  report::ReportInput report_input;
+  if (reporting) {
+    report_input.file_name = series.path;
+    report_input.channel = series.channel;
+    report_input.temperature_channel = temperature.channel;
+    report_input.input_unit = c.input.units;
+    report_input.notes = notes;
+    if (!c.report_path.empty()) {
+      report_input.preview =
+          report::preview_record(series.values, temperature.values_c, series.sample_rate_hz);
+    }
+  }
+
   progress(fmt::format("analysing {} samples", samples));
   model::AnalysisResult result;
   try {
@@ -582,8 +604,19 @@ void run(const AnalyzeCommand& c) {
                                                          .dump(2) +
                                                      "\n";
   const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
+  std::string html, yaml;
+  if (!c.report_path.empty()) {
+    progress("drawing the report's plots");
+    const report::ReportOptions report_options;
+    const report::Report rep = report::make_report(result, report_input, report_options);
+    if (rep.plots_skipped) note(rep.plots_note);
+    html = report::html_document(rep);
+  }
+  if (!c.kalibr_path.empty()) yaml = report::kalibr_imu_yaml(result, report_input);
   if (!c.json_path.empty()) write_text_file(c.json_path, json);
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
+  if (!c.report_path.empty()) write_text_file(c.report_path, html);
+  if (!c.kalibr_path.empty()) write_text_file(c.kalibr_path, yaml);
   if (c.json_path != "-" && c.csv_path != "-") {
     std::cout << summary(result, series, samples, temperature, record_mean_deg_h, notes);
   }
@@ -613,6 +646,12 @@ std::function<void()> register_analyze(CLI::App& app) {
   cmd->add_option("--csv", c->csv_path,
                   "write the Allan table of the residual with the fitted model as CSV ('-' for "
                   "stdout)");
+  cmd->add_option("--report", c->report_path,
+                  "write a self-contained HTML report (gnuplot SVG plots: record, bias against "
+                  "temperature, PSD, Allan deviation with the fitted model)");
+  cmd->add_option("--kalibr", c->kalibr_path,
+                  "write Kalibr's imu.yaml for the gyroscope (noise density rad/s/sqrt(Hz), "
+                  "random walk rad/s^2/sqrt(Hz))");
   return [c] { run(*c); };
 }
 

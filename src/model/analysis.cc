@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 
 #include "foglab/core/error.h"
@@ -29,11 +30,6 @@ double log_slope(std::span<const double> x, std::span<const double> y) {
   if (n < 2) return kNaN;
   const double den = n * sxx - sx * sx;
   return den > 0 ? (n * sxy - sx * sy) / den : kNaN;
-}
-
-SystematicFit negated(SystematicFit fit) {
-  for (double& c : fit.coefficients) c = -c;
-  return fit;
 }
 
 // The points of `all` the reported grid keeps: at least grid.min_clusters
@@ -82,19 +78,26 @@ struct Statistics {
   NoiseFitResult noise;
 };
 
-// PSD, OADEV and the noise fit of the residual (consumed: it becomes the
-// angle record).
-// `fit` (with its temperature) is the polynomial already removed: the noise
-// fit then allows for what removing it did to each term (detrend_factors).
-Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOptions& options,
-                      const SystematicFit* fit, std::span<const double> temperature) {
-  Statistics s;
+// Welch PSD of the residual and its log-smoothed form.
+void add_psd(Statistics& s, std::span<const double> residual, double fs,
+             const AnalysisOptions& options) {
   stats::WelchOptions welch;
   welch.segment_length = options.psd_segment;
   s.psd = stats::welch_psd(residual, fs, welch);
   s.smoothed = stats::log_smooth(s.psd, options.psd_bins_per_decade);
-  const stats::AllanResult all = stats::allan_deviation_in_place(residual, fs, InputKind::rate,
-                                                                 fit_allan_options(options, true));
+}
+
+// The OADEV with intervals at all the fit's taus of a residual (consumed: it
+// becomes the angle record).
+stats::AllanResult residual_allan(std::vector<double>& residual, double fs,
+                                  const AnalysisOptions& options) {
+  return stats::allan_deviation_in_place(residual, fs, InputKind::rate,
+                                         fit_allan_options(options, true));
+}
+
+// The reported part of the OADEV `all`, which the noise model needs 3 points of.
+void add_reported_allan(Statistics& s, const stats::AllanResult& all, double fs,
+                        const AnalysisOptions& options) {
   s.allan = reported_part(all, options.grid);
   if (s.allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -102,36 +105,87 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
         "{} clusters; the noise model needs 3 or more (a few hundred samples)",
         all.phase_points, fs, s.allan.tau_s.size(), options.grid.min_clusters));
   }
-  if (fit && fit->degree > 0) {
-    const DetrendFactors factors = detrend_factors(temperature, fs, fit->t_ref_c, fit->degree,
-                                                   all.tau_s, options.detrend_blocks);
-    s.noise = fit_noise_model(all, options.noise_fit, &factors);
-  } else {
-    s.noise = fit_noise_model(all, options.noise_fit);
-  }
-  return s;
 }
 
-// The noise model of a residual from its overlapping Allan deviations alone
-// (no intervals: the fit takes each point's edf from its candidate models),
-// on a copy; used to choose the polynomial's degree.
-NoiseFitResult quick_noise_model(std::span<const double> residual, double fs,
-                                 const AnalysisOptions& options, const SystematicFit& fit,
-                                 std::span<const double> temperature) {
-  const stats::AllanResult all =
-      stats::allan_deviation(residual, fs, InputKind::rate, fit_allan_options(options, false));
-  if (all.tau_s.size() < 3) {
-    throw DataError(fmt::format(
-        "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s); the noise "
-        "model needs 3 or more (a few hundred samples)",
-        residual.size(), fs, all.tau_s.size()));
-  }
-  if (fit.degree > 0) {
-    const DetrendFactors factors = detrend_factors(temperature, fs, fit.t_ref_c, fit.degree,
-                                                   all.tau_s, options.detrend_blocks);
+// The noise model of a residual from its OADEV `all`. `record` and `degree`
+// (> 0) give the polynomial in temperature removed from it: the fit then
+// allows for what removing it did to each term (detrend_factors).
+NoiseFitResult residual_noise_model(const stats::AllanResult& all, const AnalysisOptions& options,
+                                    const TemperatureRecord* record, int degree) {
+  if (record && degree > 0) {
+    const DetrendFactors factors = detrend_factors(*record, degree, all.tau_s);
     return fit_noise_model(all, options.noise_fit, &factors);
   }
   return fit_noise_model(all, options.noise_fit);
+}
+
+// PSD, OADEV and the noise fit of the residual (consumed: it becomes the
+// angle record), one after the other.
+Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOptions& options,
+                      const TemperatureRecord* record, int degree) {
+  Statistics s;
+  add_psd(s, residual, fs, options);
+  const stats::AllanResult all = residual_allan(residual, fs, options);
+  add_reported_allan(s, all, fs, options);
+  s.noise = residual_noise_model(all, options, record, degree);
+  return s;
+}
+
+// The OADEV `all` as the quick look sees it: deviations only (the fit then
+// takes each point's edf from its candidate models).
+stats::AllanResult without_intervals(stats::AllanResult all) {
+  all.edf.assign(all.edf.size(), kNaN);
+  return all;
+}
+
+// The systematic part with the degree chosen by the criterion, and the
+// statistics of its residual; `rate` is consumed (it ends as the residual).
+// The degree needs the noise model, the noise model a residual: the residual
+// of the highest degree (the cubic), in a second array (the record stays),
+// gives its OADEV with intervals, and from its deviations alone a quick first
+// noise model for the degree criterion. Whenever the criterion keeps the
+// cubic, that OADEV is the final one and its full noise fit the final model,
+// so that fit runs on a second thread alongside the quick one. Otherwise the
+// second array takes the final residual for its OADEV, and the noise fit runs
+// alongside the Welch PSD. The results do not depend on the threads.
+Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& record,
+                                  std::vector<double>& rate, std::span<const double> temperature,
+                                  double fs, const AnalysisOptions& options) {
+  const int cubic_degree = fit.degree;
+  std::vector<double> residual = temperature_fit_residual(fit, rate, temperature);
+  const stats::AllanResult cubic_allan = residual_allan(residual, fs, options);
+  if (cubic_allan.tau_s.size() < 3) {
+    throw DataError(fmt::format(
+        "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s); the noise "
+        "model needs 3 or more (a few hundred samples)",
+        rate.size(), fs, cubic_allan.tau_s.size()));
+  }
+  const DetrendFactors cubic_factors = detrend_factors(record, cubic_degree, cubic_allan.tau_s);
+  std::future<NoiseFitResult> cubic_noise = std::async(std::launch::async, [&] {
+    return fit_noise_model(cubic_allan, options.noise_fit, &cubic_factors);
+  });
+  const NoiseFitResult look =
+      fit_noise_model(without_intervals(cubic_allan), options.noise_fit, &cubic_factors);
+  fit = choose_temperature_degree(fit, record, look.model, options.systematic);
+  subtract_temperature_fit(fit, rate, temperature);
+
+  Statistics s;
+  if (fit.degree == cubic_degree) {
+    residual = {};  // the second array is not needed any more (peak memory)
+    add_psd(s, rate, fs, options);
+    add_reported_allan(s, cubic_allan, fs, options);
+    s.noise = cubic_noise.get();
+    return s;
+  }
+  residual.assign(rate.begin(), rate.end());  // the capacity (n + 1) stays
+  const stats::AllanResult all = residual_allan(residual, fs, options);
+  residual = {};
+  std::future<NoiseFitResult> noise = std::async(
+      std::launch::async, [&] { return residual_noise_model(all, options, &record, fit.degree); });
+  add_psd(s, rate, fs, options);
+  add_reported_allan(s, all, fs, options);
+  s.noise = noise.get();
+  return s;
 }
 
 RandomBiasEvidence evidence_of(const Statistics& s) {
@@ -207,28 +261,24 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());
   r.duration_s = static_cast<double>(rate_deg_h.size()) / sample_rate_hz;
 
-  const bool with_temperature = !temperature_c.empty();
+  std::optional<TemperatureRecord> record;
   std::optional<SystematicFit> fit;
-  if (with_temperature) {
-    fit = fit_temperature(rate_deg_h, temperature_c, sample_rate_hz, options.systematic);
+  Statistics s;
+  if (!temperature_c.empty()) {
+    record.emplace(rate_deg_h, temperature_c, sample_rate_hz, options.systematic.blocks,
+                   options.detrend_blocks);
+    fit = fit_temperature(*record, options.systematic);
     if (fit->degree_chosen) {
-      // The degree needs the noise model, the noise model a residual: a
-      // quick first look (deviations only, on a copy, the cubic removed)
-      // gives the model for the degree criterion.
+      s = auto_degree_statistics(*fit, *record, rate_deg_h, temperature_c, sample_rate_hz, options);
+    } else {
       subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
-      const NoiseFitResult look =
-          quick_noise_model(rate_deg_h, sample_rate_hz, options, *fit, temperature_c);
-      subtract_temperature_fit(negated(*fit), rate_deg_h, temperature_c);  // the record again
-      fit = finish_temperature_fit(*fit, rate_deg_h, temperature_c, sample_rate_hz, look.model,
-                                   options.systematic);
+      s = statistics(rate_deg_h, sample_rate_hz, options, &*record, fit->degree);
     }
-    subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
   } else {
     r.notes.push_back(
         "no temperature: the systematic part is the mean rate only (removed by the statistics)");
+    s = statistics(rate_deg_h, sample_rate_hz, options, nullptr, 0);
   }
-  Statistics s =
-      statistics(rate_deg_h, sample_rate_hz, options, fit ? &*fit : nullptr, temperature_c);
   if (fit) {
     // Standard errors with the noise model of the final residual. A random
     // walk the record cannot resolve is confounded with a temperature ramp
@@ -239,7 +289,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         s.noise.random_bias_process != RandomBiasProcess::gauss_markov) {
       for_errors.K = s.noise.K.upper_95;
     }
-    set_standard_errors(*fit, temperature_c, sample_rate_hz, for_errors, options.systematic.blocks);
+    set_standard_errors(*fit, *record, for_errors);
     r.notes.push_back(fit->note);
     r.systematic = std::move(fit);
   }

@@ -10,11 +10,14 @@
 #include <map>
 #include <numbers>
 
+#include "block_covariance.h"
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
 
 namespace foglab::model {
 namespace {
+
+using detail::block_covariance;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxDegree = 3;
@@ -49,6 +52,7 @@ std::vector<double> block_means(std::span<const double> values, int blocks) {
   const std::size_t m = std::min<std::size_t>(static_cast<std::size_t>(blocks), values.size());
   const std::size_t length = values.size() / m;
   std::vector<double> means(m);
+#pragma omp parallel for schedule(static)
   for (std::size_t a = 0; a < m; ++a) {
     means[a] = compensated_mean(values.subspan(a * length, length));
   }
@@ -56,7 +60,8 @@ std::vector<double> block_means(std::span<const double> values, int blocks) {
 }
 
 // Sums over the record of u^p (p = 0..6) and (y - y0) u^j (j = 0..3) with
-// u = (T - t_ref) / scale, accumulated per chunk for accuracy.
+// u = (T - t_ref) / scale, accumulated per chunk for accuracy (the chunks in
+// parallel, added in order).
 struct Moments {
   std::array<double, 2 * kMaxDegree + 1> u{};
   std::array<double, kMaxDegree + 1> yu{};
@@ -73,25 +78,29 @@ Moments moments(std::span<const double> rate, std::span<const double> temperatur
   m.t_ref = t_ref;
   m.scale = scale;
   m.y0 = rate.empty() ? 0.0 : compensated_mean(rate);  // empty: the Gram matrix only
-  for (std::size_t begin = 0; begin < m.n; begin += kChunkSamples) {
+  const std::size_t chunks = (m.n + kChunkSamples - 1) / kChunkSamples;
+  std::vector<Moments> partial(chunks);
+#pragma omp parallel for schedule(static) if (chunks > 1)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t begin = c * kChunkSamples;
     const std::size_t end = std::min(m.n, begin + kChunkSamples);
-    std::array<double, 2 * kMaxDegree + 1> u{};
-    std::array<double, kMaxDegree + 1> yu{};
-    double yy = 0.0;
+    Moments& part = partial[c];
     for (std::size_t k = begin; k < end; ++k) {
       const double x = (temperature[k] - t_ref) / scale;
       const double y = rate.empty() ? 0.0 : rate[k] - m.y0;
-      yy += y * y;
+      part.yy += y * y;
       double power = 1.0;
       for (int p = 0; p <= 2 * kMaxDegree; ++p) {
-        u[p] += power;
-        if (p <= kMaxDegree) yu[p] += y * power;
+        part.u[p] += power;
+        if (p <= kMaxDegree) part.yu[p] += y * power;
         power *= x;
       }
     }
-    for (int p = 0; p <= 2 * kMaxDegree; ++p) m.u[p] += u[p];
-    for (int p = 0; p <= kMaxDegree; ++p) m.yu[p] += yu[p];
-    m.yy += yy;
+  }
+  for (const Moments& part : partial) {
+    for (int p = 0; p <= 2 * kMaxDegree; ++p) m.u[p] += part.u[p];
+    for (int p = 0; p <= kMaxDegree; ++p) m.yu[p] += part.yu[p];
+    m.yy += part.yy;
   }
   return m;
 }
@@ -126,85 +135,51 @@ std::vector<double> raw_quadratic(const std::vector<double>& c, double t_ref) {
   return {c2, c1 - 2.0 * c2 * t_ref, c0 - c1 * t_ref + c2 * t_ref * t_ref};
 }
 
-// Phase structure functions D_x(s) = E[(x(t+s) - x(t))^2] of the noise
-// terms, x the integrated rate [(deg/h) s], s >= 0. Stationary terms (finite
-// variance): white N^2 s, Gauss-Markov 2 sigma^2 Tc^2 (s/Tc - 1 + e^(-s/Tc)),
-// quantisation 2 Q^2 (s > 0). Flicker: -2 h s^2 ln s with h = B^2/(2 pi)
-// (two-sided PSD h/|f|, up to an s^2 term that every second difference
-// cancels). The Wiener term K^2 s^3/3 is written out in block_covariance().
-double stationary_structure(const NoiseModel& m, double s) {
-  if (s <= 0) return 0.0;
-  double d = m.N * m.N * s + 2.0 * m.Q * m.Q;
-  if (m.gm_sigma > 0 && m.gm_tc > 0) {
-    const double x = s / m.gm_tc;
-    const double e = x < 1e-4 ? x * x * (0.5 - x / 6.0) : x - 1.0 + std::exp(-x);
-    d += 2.0 * m.gm_sigma * m.gm_sigma * m.gm_tc * m.gm_tc * e;
-  }
-  return d;
-}
+// Block means of u^j = (T - t_ref)^j / scale^j, j = 0..3, over `count`
+// blocks of floor(n / count) samples (the blocks in parallel). The columns
+// of a fit of degree d are the first d + 1.
+struct BlockPowers {
+  std::size_t count = 0, length = 0;
+  Eigen::MatrixXd means;  // count x 4
+};
 
-double flicker_structure(const NoiseModel& m, double s) {
-  if (s <= 0) return 0.0;
-  return -2.0 * (m.B * m.B / (2.0 * std::numbers::pi)) * s * s * std::log(s);
-}
-
-// Covariance of block means (blocks of tau seconds) at lags 0..lags-1, from
-// Cov = Var - E[(ybar_a - ybar_b)^2]/2 and
-// E[(ybar_a - ybar_{a+k})^2] = (2 D(tau) + 2 D(k tau) - D((k+1) tau) - D(|k-1| tau)) / tau^2.
-// The non-stationary terms (flicker, Wiener) have no variance; they are given
-// up to a matrix f(a) + f(b), which changes only the intercept's variance.
-// The Wiener rate W has stationary increments itself: block means k >= 1
-// apart differ by the average of lag-k tau increments that overlap by
-// k tau - |s - u|, so E[(ybar_a - ybar_{a+k})^2] = K^2 (k tau - tau/3).
-std::vector<double> block_covariance(const NoiseModel& m, double tau, std::size_t lags,
-                                     bool stationary) {
-  auto second = [&](auto&& d, double k) {
-    return (2.0 * d(tau) + 2.0 * d(k * tau) - d((k + 1.0) * tau) - d(std::fabs(k - 1.0) * tau)) /
-           (tau * tau);
-  };
-  auto s_fn = [&](double s) { return stationary_structure(m, s); };
-  auto f_fn = [&](double s) { return flicker_structure(m, s); };
-  std::vector<double> c(lags);
-  for (std::size_t k = 0; k < lags; ++k) {
-    const double kk = static_cast<double>(k);
-    if (stationary) {
-      c[k] = stationary_structure(m, tau) / (tau * tau) - 0.5 * second(s_fn, kk);
-    } else {
-      c[k] = -0.5 * second(f_fn, kk) - (k > 0 ? 0.5 * m.K * m.K * tau * (kk - 1.0 / 3.0) : 0.0);
-    }
-  }
-  return c;
-}
-
-// Block means of (T - t_ref)^j / scale^j, j = 0..degree, over m blocks of
-// `length` samples.
-Eigen::MatrixXd block_regressors(std::span<const double> temperature, double t_ref, double scale,
-                                 int degree, std::size_t m, std::size_t length) {
-  Eigen::MatrixXd x(static_cast<Eigen::Index>(m), degree + 1);
-  for (std::size_t a = 0; a < m; ++a) {
+BlockPowers block_powers(std::span<const double> temperature, double t_ref, double scale,
+                         std::size_t count) {
+  BlockPowers b;
+  b.count = count;
+  b.length = count > 0 ? temperature.size() / count : 0;
+  b.means = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(count), kMaxDegree + 1);
+  if (b.length == 0) return b;
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < count; ++a) {
     std::array<double, kMaxDegree + 1> sums{};
-    for (std::size_t k = a * length; k < (a + 1) * length; ++k) {
+    for (std::size_t k = a * b.length; k < (a + 1) * b.length; ++k) {
       const double u = (temperature[k] - t_ref) / scale;
       double power = 1.0;
-      for (int j = 0; j <= degree; ++j) {
+      for (int j = 0; j <= kMaxDegree; ++j) {
         sums[j] += power;
         power *= u;
       }
     }
-    for (int j = 0; j <= degree; ++j) {
-      x(static_cast<Eigen::Index>(a), j) = sums[j] / static_cast<double>(length);
+    for (int j = 0; j <= kMaxDegree; ++j) {
+      b.means(static_cast<Eigen::Index>(a), j) = sums[j] / static_cast<double>(b.length);
     }
   }
-  return x;
+  return b;
 }
 
-// Sigma * x for the symmetric Toeplitz matrix of lag covariances c.
+// Sigma * x for the symmetric Toeplitz matrix of lag covariances c (each
+// sum in the order of b).
 Eigen::MatrixXd toeplitz_times(const std::vector<double>& c, const Eigen::MatrixXd& x) {
   const Eigen::Index m = x.rows();
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(m, x.cols());
-  for (Eigen::Index a = 0; a < m; ++a) {
-    for (Eigen::Index b = 0; b < m; ++b) {
-      out.row(a) += c[static_cast<std::size_t>(a > b ? a - b : b - a)] * x.row(b);
+  Eigen::MatrixXd out(m, x.cols());
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    const double* column = x.col(j).data();
+    for (Eigen::Index a = 0; a < m; ++a) {
+      double sum = 0.0;
+      for (Eigen::Index b = 0; b < a; ++b) sum += c[static_cast<std::size_t>(a - b)] * column[b];
+      for (Eigen::Index b = a; b < m; ++b) sum += c[static_cast<std::size_t>(b - a)] * column[b];
+      out(a, j) = sum;
     }
   }
   return out;
@@ -258,16 +233,15 @@ std::vector<double> filter_autocorrelation(std::size_t m) {
 
 // X' Sigma X for the scaled columns u^j, j = 0..degree, from block means:
 // sum_k x_k y_k ~ L sum_a xbar_a ybar_a; the stationary terms' (first) and the others'.
-std::pair<Eigen::MatrixXd, Eigen::MatrixXd> middle(std::span<const double> temperature,
-                                                   double sample_rate_hz, double t_ref,
-                                                   double scale, int degree,
-                                                   const NoiseModel& noise, int blocks) {
-  const std::size_t m = std::min<std::size_t>(static_cast<std::size_t>(blocks), temperature.size());
-  const std::size_t length = temperature.size() / m;
+std::pair<Eigen::MatrixXd, Eigen::MatrixXd> middle(const BlockPowers& blocks, std::size_t samples,
+                                                   double sample_rate_hz, int degree,
+                                                   const NoiseModel& noise) {
+  const std::size_t m = blocks.count;
+  const std::size_t length = blocks.length;
   const double tau = static_cast<double>(length) / sample_rate_hz;
-  const Eigen::MatrixXd x = block_regressors(temperature, t_ref, scale, degree, m, length);
+  const Eigen::MatrixXd x = blocks.means.leftCols(degree + 1);
   const double l = static_cast<double>(length) *
-                   (static_cast<double>(temperature.size()) / static_cast<double>(m * length));
+                   (static_cast<double>(samples) / static_cast<double>(m * length));
   auto form = [&](bool stationary) -> Eigen::MatrixXd {
     return l * l * (x.transpose() * toeplitz_times(block_covariance(noise, tau, m, stationary), x));
   };
@@ -299,88 +273,100 @@ double temperature_scale(std::span<const double> temperature, double t_ref) {
   return sd > 0 ? sd : 1.0;
 }
 
+}  // namespace
+
+struct TemperatureRecord::Sums {
+  std::size_t samples = 0;
+  double sample_rate_hz = 0.0;  // [Hz]
+  double t_ref = 0.0, scale = 1.0;
+  double block_min = 0.0, block_max = 0.0;  // [degC] of the block-mean temperature
+  Moments moments;                          // with the rate (if one was given)
+  BlockPowers covariance, detrend;
+};
+
+namespace {
+
+using Sums = TemperatureRecord::Sums;
+
+// The sums of a record about `t_ref`; `blocks` and `detrend_blocks` 0 leave
+// out the corresponding block means.
+Sums summarize(std::span<const double> rate, std::span<const double> temperature,
+               double sample_rate_hz, double t_ref, int blocks, int detrend_blocks) {
+  Sums s;
+  s.samples = temperature.size();
+  s.sample_rate_hz = sample_rate_hz;
+  s.t_ref = t_ref;
+  s.scale = temperature_scale(temperature, t_ref);
+  s.moments = moments(rate, temperature, t_ref, s.scale);
+  if (blocks > 0) {
+    const std::vector<double> means = block_means(temperature, blocks);
+    const auto [lo, hi] = std::minmax_element(means.begin(), means.end());
+    s.block_min = *lo;
+    s.block_max = *hi;
+    s.covariance = block_powers(temperature, t_ref, s.scale,
+                                std::min<std::size_t>(static_cast<std::size_t>(blocks), s.samples));
+  }
+  if (detrend_blocks > 0) {
+    const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(detrend_blocks),
+                                                    std::max<std::size_t>(16, s.samples / 4));
+    s.detrend = block_powers(temperature, t_ref, s.scale, count);
+  }
+  return s;
+}
+
 // Covariance of the scaled coefficients: the slopes from every term, the
 // intercept from the stationary ones.
-Eigen::MatrixXd scaled_covariance(std::span<const double> temperature, double sample_rate_hz,
-                                  const Moments& mo, int degree, const NoiseModel& noise,
-                                  int blocks) {
-  const Eigen::MatrixXd inv = gram(mo, degree).inverse();
-  const auto [stationary, walk] =
-      middle(temperature, sample_rate_hz, mo.t_ref, mo.scale, degree, noise, blocks);
+Eigen::MatrixXd scaled_covariance(const Sums& s, int degree, const NoiseModel& noise) {
+  const Eigen::MatrixXd inv = gram(s.moments, degree).inverse();
+  const auto [stationary, walk] = middle(s.covariance, s.samples, s.sample_rate_hz, degree, noise);
   Eigen::MatrixXd cov = inv * (stationary + walk) * inv;
   const Eigen::MatrixXd intercept_only = inv * stationary * inv;
   cov(0, 0) = intercept_only(0, 0);
   return cov;
 }
 
-}  // namespace
-
-SystematicFit fit_temperature(std::span<const double> rate_deg_h,
-                              std::span<const double> temperature_c, double sample_rate_hz,
-                              const SystematicOptions& options) {
-  check_inputs(rate_deg_h, temperature_c, sample_rate_hz);
-  if (options.degree < -1 || options.degree > kMaxDegree || options.max_degree < 0 ||
-      options.max_degree > kMaxDegree) {
-    throw UsageError(fmt::format("temperature fit: degree {} (max {}) must be 0..3 (or auto)",
-                                 options.degree, options.max_degree));
-  }
-  SystematicFit fit;
-  fit.t_ref_c = compensated_mean(temperature_c);
-  const std::vector<double> means = block_means(temperature_c, options.blocks);
-  const auto [lo, hi] = std::minmax_element(means.begin(), means.end());
-  fit.temperature_min_c = *lo;
-  fit.temperature_max_c = *hi;
-  fit.temperature_span_c = *hi - *lo;
-  const double scale = temperature_scale(temperature_c, fit.t_ref_c);
-  const Moments mo = moments(rate_deg_h, temperature_c, fit.t_ref_c, scale);
-
-  const Eigen::VectorXd quadratic = solve_scaled(mo, 2);
-  fit.lab_polyfit = raw_quadratic(unscale(quadratic, scale), fit.t_ref_c);
-  fit.lab_constant_term_deg_h = fit.lab_polyfit[2];
-
-  const bool too_flat = fit.temperature_span_c < options.min_span_c;
-  if (too_flat) {
-    fit.degree = 0;
-    fit.constant_fallback = true;
-    fit.lab_constant_meaningful = false;
-    fit.note = fmt::format(
-        "the temperature moves by only {:.3g} degC (block means; below {:.3g} degC), too little "
-        "to see a temperature dependence: the systematic part is a constant, the mean rate{}",
-        fit.temperature_span_c, options.min_span_c,
-        options.degree > 0 ? fmt::format(" (degree {} was asked for)", options.degree) : "");
-  } else if (options.degree >= 0) {
-    fit.degree = options.degree;
-    fit.note = fmt::format("polynomial of degree {} in temperature, as asked", fit.degree);
-  } else {
-    fit.degree = options.max_degree;
-    fit.degree_chosen = true;
-  }
-  fit.coefficients = unscale(solve_scaled(mo, fit.degree), scale);
-  fit.standard_errors.assign(fit.coefficients.size(), kNaN);
-  fit.bias_deg_h = fit.coefficients[0];
-  fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
-  return fit;
-}
-
-DetrendFactors detrend_factors(std::span<const double> temperature_c, double sample_rate_hz,
-                               double t_ref_c, int degree, std::span<const double> tau_s,
-                               int blocks) {
+void check_degree(int degree) {
   if (degree < 0 || degree > kMaxDegree) {
     throw UsageError(fmt::format("temperature fit: degree {} must be 0..3", degree));
   }
+}
+
+// coefficient_covariance() from the sums.
+std::vector<double> covariance_of(const Sums& s, int degree, const NoiseModel& noise) {
+  check_degree(degree);
+  const Eigen::MatrixXd cov = scaled_covariance(s, degree, noise);
+  std::vector<double> out(static_cast<std::size_t>((degree + 1) * (degree + 1)));
+  for (int i = 0; i <= degree; ++i) {
+    for (int j = 0; j <= degree; ++j) {
+      out[static_cast<std::size_t>(i * (degree + 1) + j)] =
+          cov(i, j) / (std::pow(s.scale, double(i)) * std::pow(s.scale, double(j)));
+    }
+  }
+  return out;
+}
+
+void set_errors(SystematicFit& fit, const Sums& s, const NoiseModel& noise) {
+  const std::vector<double> cov = covariance_of(s, fit.degree, noise);
+  fit.standard_errors.assign(static_cast<std::size_t>(fit.degree + 1), 0.0);
+  for (int j = 0; j <= fit.degree; ++j) {
+    fit.standard_errors[static_cast<std::size_t>(j)] =
+        std::sqrt(std::max(0.0, cov[static_cast<std::size_t>(j * (fit.degree + 1) + j)]));
+  }
+}
+
+// detrend_factors() from the sums.
+DetrendFactors detrend_of(const Sums& s, int degree, std::span<const double> tau_s) {
+  check_degree(degree);
   DetrendFactors f;
   f.tau_s.assign(tau_s.begin(), tau_s.end());
   const std::size_t count = tau_s.size();
   for (auto& v : f.linear) v.assign(count, 1.0);
   if (count == 0) return f;
-  const std::size_t m_blocks = std::min<std::size_t>(
-      static_cast<std::size_t>(blocks), std::max<std::size_t>(16, temperature_c.size() / 4));
-  const std::size_t length = temperature_c.size() / m_blocks;
+  const std::size_t m_blocks = s.detrend.count;
+  const std::size_t length = s.detrend.length;
   if (length == 0) return f;
-  const double tau_b = static_cast<double>(length) / sample_rate_hz;
-  const double scale = temperature_scale(temperature_c, t_ref_c);
-  const Eigen::MatrixXd x =
-      block_regressors(temperature_c, t_ref_c, scale, degree, m_blocks, length);
+  const double tau_b = static_cast<double>(length) / s.sample_rate_hz;
+  const Eigen::MatrixXd x = s.detrend.means.leftCols(degree + 1);
   const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(x).householderQ() *
                             Eigen::MatrixXd::Identity(x.rows(), x.cols());
 
@@ -439,49 +425,76 @@ DetrendFactors detrend_factors(std::span<const double> temperature_c, double sam
       f.linear[static_cast<int>(NoiseTerm::R)][i] = factor;
     }
   }
+  // The Gauss-Markov grid: each Tc on its own (in parallel).
   const double lo = std::log(tau_s.front() * 0.5), hi = std::log(tau_s.back() * 30.0);
   const int steps = std::max(2, static_cast<int>(std::ceil((hi - lo) / std::log(10.0) * 8.0)));
-  for (int s = 0; s <= steps; ++s) {
-    const double tc = std::exp(lo + (hi - lo) * s / steps);
-    f.gm_tc_s.push_back(tc);
-    f.gm.push_back(
-        factors_of(block_covariance({.gm_sigma = 1.0, .gm_tc = tc}, tau_b, m_blocks, true)));
+  f.gm_tc_s.resize(static_cast<std::size_t>(steps) + 1);
+  f.gm.resize(static_cast<std::size_t>(steps) + 1);
+#pragma omp parallel for schedule(dynamic)
+  for (int step = 0; step <= steps; ++step) {
+    const double tc = std::exp(lo + (hi - lo) * step / steps);
+    f.gm_tc_s[static_cast<std::size_t>(step)] = tc;
+    f.gm[static_cast<std::size_t>(step)] =
+        factors_of(block_covariance({.gm_sigma = 1.0, .gm_tc = tc}, tau_b, m_blocks, true));
   }
   return f;
 }
 
-std::vector<double> coefficient_covariance(std::span<const double> temperature_c,
-                                           double sample_rate_hz, double t_ref_c, int degree,
-                                           const NoiseModel& noise, int blocks) {
-  if (degree < 0 || degree > kMaxDegree) {
-    throw UsageError(fmt::format("temperature fit: degree {} must be 0..3", degree));
+void check_options(const SystematicOptions& options) {
+  if (options.degree < -1 || options.degree > kMaxDegree || options.max_degree < 0 ||
+      options.max_degree > kMaxDegree) {
+    throw UsageError(fmt::format("temperature fit: degree {} (max {}) must be 0..3 (or auto)",
+                                 options.degree, options.max_degree));
   }
-  const double scale = temperature_scale(temperature_c, t_ref_c);
-  const Moments mo = moments({}, temperature_c, t_ref_c, scale);
-  const Eigen::MatrixXd cov =
-      scaled_covariance(temperature_c, sample_rate_hz, mo, degree, noise, blocks);
-  std::vector<double> out(static_cast<std::size_t>((degree + 1) * (degree + 1)));
-  for (int i = 0; i <= degree; ++i) {
-    for (int j = 0; j <= degree; ++j) {
-      out[static_cast<std::size_t>(i * (degree + 1) + j)] =
-          cov(i, j) / (std::pow(scale, double(i)) * std::pow(scale, double(j)));
-    }
-  }
-  return out;
 }
 
-SystematicFit finish_temperature_fit(const SystematicFit& first, std::span<const double> rate_deg_h,
-                                     std::span<const double> temperature_c, double sample_rate_hz,
-                                     const NoiseModel& noise, const SystematicOptions& options) {
-  check_inputs(rate_deg_h, temperature_c, sample_rate_hz);
+// fit_temperature() from the sums.
+SystematicFit fit_of(const Sums& s, const SystematicOptions& options) {
+  check_options(options);
+  const Moments& mo = s.moments;
+  SystematicFit fit;
+  fit.t_ref_c = s.t_ref;
+  fit.temperature_min_c = s.block_min;
+  fit.temperature_max_c = s.block_max;
+  fit.temperature_span_c = s.block_max - s.block_min;
+
+  const Eigen::VectorXd quadratic = solve_scaled(mo, 2);
+  fit.lab_polyfit = raw_quadratic(unscale(quadratic, s.scale), fit.t_ref_c);
+  fit.lab_constant_term_deg_h = fit.lab_polyfit[2];
+
+  const bool too_flat = fit.temperature_span_c < options.min_span_c;
+  if (too_flat) {
+    fit.degree = 0;
+    fit.constant_fallback = true;
+    fit.lab_constant_meaningful = false;
+    fit.note = fmt::format(
+        "the temperature moves by only {:.3g} degC (block means; below {:.3g} degC), too little "
+        "to see a temperature dependence: the systematic part is a constant, the mean rate{}",
+        fit.temperature_span_c, options.min_span_c,
+        options.degree > 0 ? fmt::format(" (degree {} was asked for)", options.degree) : "");
+  } else if (options.degree >= 0) {
+    fit.degree = options.degree;
+    fit.note = fmt::format("polynomial of degree {} in temperature, as asked", fit.degree);
+  } else {
+    fit.degree = options.max_degree;
+    fit.degree_chosen = true;
+  }
+  fit.coefficients = unscale(solve_scaled(mo, fit.degree), s.scale);
+  fit.standard_errors.assign(fit.coefficients.size(), kNaN);
+  fit.bias_deg_h = fit.coefficients[0];
+  fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
+  return fit;
+}
+
+// choose_temperature_degree() from the sums.
+SystematicFit choose_of(const SystematicFit& first, const Sums& s, const NoiseModel& noise,
+                        const SystematicOptions& options) {
   SystematicFit fit = first;
-  const double scale = temperature_scale(temperature_c, fit.t_ref_c);
-  const Moments mo = moments(rate_deg_h, temperature_c, fit.t_ref_c, scale);
+  const Moments& mo = s.moments;
   if (fit.degree_chosen && !fit.constant_fallback) {
     const int top = options.max_degree;
     const Eigen::VectorXd beta = solve_scaled(mo, top);
-    const Eigen::MatrixXd cov =
-        scaled_covariance(temperature_c, sample_rate_hz, mo, top, noise, options.blocks);
+    const Eigen::MatrixXd cov = scaled_covariance(s, top, noise);
     const double penalty = options.degree_penalty;
     fit.criterion.assign(static_cast<std::size_t>(top + 1), 0.0);
     for (int d = 0; d < top; ++d) {
@@ -499,22 +512,89 @@ SystematicFit finish_temperature_fit(const SystematicFit& first, std::span<const
         "coefficients with the noise model's covariance) = {:.4g} for d = 0..{}",
         best, penalty, fmt::join(fit.criterion, ", "), top);
   }
-  fit.coefficients = unscale(solve_scaled(mo, fit.degree), scale);
+  fit.coefficients = unscale(solve_scaled(mo, fit.degree), s.scale);
   fit.bias_deg_h = fit.coefficients[0];
-  set_standard_errors(fit, temperature_c, sample_rate_hz, noise, options.blocks);
+  fit.standard_errors.assign(fit.coefficients.size(), kNaN);
   fit.residual_rms_deg_h = residual_rms(mo, fit.degree);
   return fit;
 }
 
+}  // namespace
+
+TemperatureRecord::TemperatureRecord(std::span<const double> rate_deg_h,
+                                     std::span<const double> temperature_c, double sample_rate_hz,
+                                     int blocks, int detrend_blocks) {
+  check_inputs(rate_deg_h, temperature_c, sample_rate_hz);
+  if (blocks < 1 || detrend_blocks < 1) {
+    throw UsageError(fmt::format("temperature fit: {} and {} blocks; at least 1 is needed", blocks,
+                                 detrend_blocks));
+  }
+  sums_ = std::make_shared<const Sums>(summarize(rate_deg_h, temperature_c, sample_rate_hz,
+                                                 compensated_mean(temperature_c), blocks,
+                                                 detrend_blocks));
+}
+
+double TemperatureRecord::t_ref_c() const { return sums_->t_ref; }
+
+SystematicFit fit_temperature(std::span<const double> rate_deg_h,
+                              std::span<const double> temperature_c, double sample_rate_hz,
+                              const SystematicOptions& options) {
+  check_inputs(rate_deg_h, temperature_c, sample_rate_hz);
+  check_options(options);
+  return fit_of(summarize(rate_deg_h, temperature_c, sample_rate_hz,
+                          compensated_mean(temperature_c), options.blocks, 0),
+                options);
+}
+
+SystematicFit fit_temperature(const TemperatureRecord& record, const SystematicOptions& options) {
+  return fit_of(record.sums(), options);
+}
+
+DetrendFactors detrend_factors(std::span<const double> temperature_c, double sample_rate_hz,
+                               double t_ref_c, int degree, std::span<const double> tau_s,
+                               int blocks) {
+  check_degree(degree);
+  return detrend_of(summarize({}, temperature_c, sample_rate_hz, t_ref_c, 0, blocks), degree,
+                    tau_s);
+}
+
+DetrendFactors detrend_factors(const TemperatureRecord& record, int degree,
+                               std::span<const double> tau_s) {
+  return detrend_of(record.sums(), degree, tau_s);
+}
+
+std::vector<double> coefficient_covariance(std::span<const double> temperature_c,
+                                           double sample_rate_hz, double t_ref_c, int degree,
+                                           const NoiseModel& noise, int blocks) {
+  check_degree(degree);
+  return covariance_of(summarize({}, temperature_c, sample_rate_hz, t_ref_c, blocks, 0), degree,
+                       noise);
+}
+
+SystematicFit finish_temperature_fit(const SystematicFit& first, std::span<const double> rate_deg_h,
+                                     std::span<const double> temperature_c, double sample_rate_hz,
+                                     const NoiseModel& noise, const SystematicOptions& options) {
+  check_inputs(rate_deg_h, temperature_c, sample_rate_hz);
+  const Sums s =
+      summarize(rate_deg_h, temperature_c, sample_rate_hz, first.t_ref_c, options.blocks, 0);
+  SystematicFit fit = choose_of(first, s, noise, options);
+  set_errors(fit, s, noise);
+  return fit;
+}
+
+SystematicFit choose_temperature_degree(const SystematicFit& first, const TemperatureRecord& record,
+                                        const NoiseModel& noise, const SystematicOptions& options) {
+  return choose_of(first, record.sums(), noise, options);
+}
+
 void set_standard_errors(SystematicFit& fit, std::span<const double> temperature_c,
                          double sample_rate_hz, const NoiseModel& noise, int blocks) {
-  const std::vector<double> cov =
-      coefficient_covariance(temperature_c, sample_rate_hz, fit.t_ref_c, fit.degree, noise, blocks);
-  fit.standard_errors.assign(static_cast<std::size_t>(fit.degree + 1), 0.0);
-  for (int j = 0; j <= fit.degree; ++j) {
-    fit.standard_errors[static_cast<std::size_t>(j)] =
-        std::sqrt(std::max(0.0, cov[static_cast<std::size_t>(j * (fit.degree + 1) + j)]));
-  }
+  set_errors(fit, summarize({}, temperature_c, sample_rate_hz, fit.t_ref_c, blocks, 0), noise);
+}
+
+void set_standard_errors(SystematicFit& fit, const TemperatureRecord& record,
+                         const NoiseModel& noise) {
+  set_errors(fit, record.sums(), noise);
 }
 
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,
@@ -523,9 +603,27 @@ void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_d
     throw UsageError(fmt::format("temperature fit: {} rate and {} temperature samples",
                                  rate_deg_h.size(), temperature_c.size()));
   }
-  for (std::size_t k = 0; k < rate_deg_h.size(); ++k) {
+  const std::size_t n = rate_deg_h.size();
+#pragma omp parallel for schedule(static) if (n > kChunkSamples)
+  for (std::size_t k = 0; k < n; ++k) {
     rate_deg_h[k] -= polynomial(fit.coefficients, temperature_c[k] - fit.t_ref_c);
   }
+}
+
+std::vector<double> temperature_fit_residual(const SystematicFit& fit,
+                                             std::span<const double> rate_deg_h,
+                                             std::span<const double> temperature_c) {
+  if (rate_deg_h.size() != temperature_c.size()) {
+    throw UsageError(fmt::format("temperature fit: {} rate and {} temperature samples",
+                                 rate_deg_h.size(), temperature_c.size()));
+  }
+  const std::size_t n = rate_deg_h.size();
+  std::vector<double> residual = large_vector(n, 0.0, n + 1);
+#pragma omp parallel for schedule(static) if (n > kChunkSamples)
+  for (std::size_t k = 0; k < n; ++k) {
+    residual[k] = rate_deg_h[k] - polynomial(fit.coefficients, temperature_c[k] - fit.t_ref_c);
+  }
+  return residual;
 }
 
 }  // namespace foglab::model

@@ -1,5 +1,7 @@
 // The joint noise-model fit: exact curves, the statistics' own noise, and
 // the model selection.
+#include "foglab/model/noise_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <vector>
 
 #include "foglab/core/error.h"
-#include "foglab/model/noise_fit.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/stats/allan.h"
@@ -44,8 +45,8 @@ Curve exact_curve(const NoiseModel& m, double tau_max, double edf) {
 }
 
 TEST(NoiseFit, AllanVarianceIsTheSpecFormulaOfTheGenerator) {
-  const NoiseModel m{.N = 0.3, .B = 0.05, .K = 0.01, .R = 2e-5, .Q = 0.02, .gm_sigma = 0.1,
-                     .gm_tc = 300.0};
+  const NoiseModel m{
+      .N = 0.3, .B = 0.05, .K = 0.01, .R = 2e-5, .Q = 0.02, .gm_sigma = 0.1, .gm_tc = 300.0};
   for (double tau : {1e-3, 0.1, 1.0, 3.0, 100.0, 299.0, 1e4, 1e6}) {
     EXPECT_NEAR(allan_variance(m, tau), sim::model_allan_variance(to_sim(m), tau),
                 1e-9 * sim::model_allan_variance(to_sim(m), tau))
@@ -95,9 +96,34 @@ TEST(NoiseFit, GaussMarkovHumpIsRecognisedWithItsCorrelationTime) {
   EXPECT_EQ(r.gm_tc.status, TermStatus::resolved);
   EXPECT_LT(r.gm_tc.ci95_low, truth.gm_tc);
   EXPECT_GT(r.gm_tc.ci95_high, truth.gm_tc);
+  // The whole hump is inside the tau range: the profile closes both ends.
+  EXPECT_GT(r.gm_tc.ci95_low, 0.0);
+  EXPECT_TRUE(std::isfinite(r.gm_tc.ci95_high));
+  EXPECT_LT(r.gm_sigma.ci95_low, truth.gm_sigma);
+  EXPECT_GT(r.gm_sigma.ci95_high, truth.gm_sigma);
+  EXPECT_TRUE(std::isfinite(r.gm_sigma.ci95_high));
   EXPECT_EQ(r.K.status, TermStatus::absent);  // an alternative, not combined
   ASSERT_TRUE(r.has_wiener_candidate);
   EXPECT_GT(r.best_wiener.deviance, r.best_gauss_markov.deviance);
+}
+
+// The tau range ends at the top of the hump (1.89 Tc = 756 s, last tau
+// 819 s): nothing shows the fall, so the profile interval of Tc must hold
+// the truth and reach much further above the estimate than below it (a
+// longer Tc fits almost as well), where a Fisher interval in ln Tc is
+// symmetric.
+TEST(NoiseFit, GaussMarkovIntervalsWidenWhenTheHumpLeavesTheRecord) {
+  const NoiseModel truth{.N = 0.2, .gm_sigma = 0.3, .gm_tc = 400.0};
+  const Curve c = exact_curve(truth, 900.0, 40.0);
+  const NoiseFitResult r = fit_noise_model(c.tau, c.adev, c.edf);
+  ASSERT_EQ(r.random_bias_process, RandomBiasProcess::gauss_markov);
+  EXPECT_LT(r.gm_tc.ci95_low, truth.gm_tc);
+  EXPECT_GT(r.gm_tc.ci95_high, truth.gm_tc);
+  EXPECT_LT(r.gm_sigma.ci95_low, truth.gm_sigma);
+  EXPECT_GT(r.gm_sigma.ci95_high, truth.gm_sigma);
+  const double up = r.gm_tc.ci95_high / r.model.gm_tc, down = r.model.gm_tc / r.gm_tc.ci95_low;
+  EXPECT_GT(up, 1.5 * down) << "Tc " << r.model.gm_tc << " s in [" << r.gm_tc.ci95_low << ", "
+                            << r.gm_tc.ci95_high << "] s";
 }
 
 TEST(NoiseFit, DetrendFactorsScaleTheTermsTheFitCompares) {
@@ -137,7 +163,8 @@ TEST(NoiseFit, GeneratedWhiteFlickerWienerRecordRoundTrips) {
     sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
     stats::AllanOptions a;
     a.grid.min_clusters = 3;
-    const stats::AllanResult allan = stats::allan_deviation(rec.rate_deg_h, 10.0, InputKind::rate, a);
+    const stats::AllanResult allan =
+        stats::allan_deviation(rec.rate_deg_h, 10.0, InputKind::rate, a);
     const NoiseFitResult r = fit_noise_model(allan);
     EXPECT_NEAR(r.model.N, m.N, 0.03 * m.N) << "seed " << seed;
     wiener += r.random_bias_process == RandomBiasProcess::wiener;
@@ -181,16 +208,16 @@ TEST(NoiseFit, WhiteNoiseAloneResolvesNothingElse) {
 
 TEST(NoiseFit, BadInputIsAUsageErrorThatSaysWhatIsWrong) {
   const std::vector<double> tau{1, 2, 4}, dev{1, 1, 1}, edf{10, 10};
-  EXPECT_NE(test::message_of<UsageError>([&] { fit_noise_model(tau, dev, edf); })
-                .find("equal counts"),
-            std::string::npos);
+  EXPECT_NE(
+      test::message_of<UsageError>([&] { fit_noise_model(tau, dev, edf); }).find("equal counts"),
+      std::string::npos);
   const std::vector<double> bad{1, -1, 1}, edf3{10, 10, 10};
-  EXPECT_NE(test::message_of<UsageError>([&] { fit_noise_model(tau, bad, edf3); })
-                .find("positive"),
+  EXPECT_NE(test::message_of<UsageError>([&] { fit_noise_model(tau, bad, edf3); }).find("positive"),
             std::string::npos);
   const std::vector<double> two{1, 2}, two_dev{1, 1}, two_edf{5, 5};
-  EXPECT_NE(test::message_of<UsageError>([&] { fit_noise_model(two, two_dev, two_edf); })
-                .find("at least 3"),
+  EXPECT_NE(test::message_of<UsageError>([&] {
+              fit_noise_model(two, two_dev, two_edf);
+            }).find("at least 3"),
             std::string::npos);
 }
 

@@ -77,7 +77,10 @@ struct AnalysisResult {
 
 /// Analyses a rate record [deg/h] sampled at `sample_rate_hz`, with the
 /// temperature [degC] at the same instants (empty span: no temperature).
-/// `rate_deg_h` is consumed (it becomes the residual's angle record).
+/// `rate_deg_h` is consumed (it holds the residual or its angle record
+/// afterwards); it needs no copy, and with room for one more sample none is
+/// made. The automatic degree runs a second array of the record's size and
+/// uses two threads.
 /// Throws UsageError / DataError as the steps do (e.g. too short a record).
 AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> temperature_c,
                        double sample_rate_hz, const AnalysisOptions& options = {});

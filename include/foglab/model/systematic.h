@@ -31,6 +31,7 @@
 // a thermostat run).
 #pragma once
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -69,12 +70,41 @@ struct SystematicFit {
   std::string note;                     ///< what was done, for the report
 };
 
+/// What every step of the temperature fit needs from one record, gathered
+/// once (a few passes over the record, in parallel with thread-count
+/// independent results): the mean temperature t_ref, the spread of the
+/// block-mean temperature, and with u = (T - t_ref)/scale (scale the RMS of
+/// T - t_ref) the sums of u^p (p = 0..6), of (y - mean y) u^j (j = 0..3) and
+/// of (y - mean y)^2, and the block means of u^j (j = 0..3) for the
+/// covariance (`blocks` blocks) and the detrending factors (`detrend_blocks`
+/// blocks, at most a quarter of the samples). A fit of any degree, its
+/// covariance and its detrending factors then cost no further pass over the
+/// record. Keeps no reference to the arrays. Throws as fit_temperature().
+class TemperatureRecord {
+ public:
+  TemperatureRecord(std::span<const double> rate_deg_h, std::span<const double> temperature_c,
+                    double sample_rate_hz, int blocks = 1024, int detrend_blocks = 1024);
+
+  double t_ref_c() const;  ///< [degC] mean temperature
+
+  struct Sums;  ///< the sums (defined in systematic.cc)
+  const Sums& sums() const { return *sums_; }
+
+ private:
+  std::shared_ptr<const Sums> sums_;
+};
+
 /// Least-squares fits of degree 0..max_degree; returns the fit of the
 /// requested (or, for auto, the highest admissible) degree, without
 /// standard errors. Throws UsageError for mismatched lengths, fewer than 8
 /// samples or a degree outside 0..3; DataError for a non-finite temperature.
 SystematicFit fit_temperature(std::span<const double> rate_deg_h,
                               std::span<const double> temperature_c, double sample_rate_hz,
+                              const SystematicOptions& options = {});
+
+/// The same from the record's sums (`options.blocks` must be the record's
+/// `blocks`, which sets the block means of the temperature span).
+SystematicFit fit_temperature(const TemperatureRecord& record,
                               const SystematicOptions& options = {});
 
 /// With the noise model fitted to the residual: standard errors, and (for
@@ -84,13 +114,33 @@ SystematicFit finish_temperature_fit(const SystematicFit& first, std::span<const
                                      const NoiseModel& noise,
                                      const SystematicOptions& options = {});
 
+/// For automatic degree, the degree chosen with the noise model of the
+/// residual and the coefficients refitted (a forced degree is kept); the
+/// standard errors are left to set_standard_errors(), with the noise model of
+/// the final residual. finish_temperature_fit() is this and
+/// set_standard_errors() under `noise`.
+SystematicFit choose_temperature_degree(const SystematicFit& first, const TemperatureRecord& record,
+                                        const NoiseModel& noise,
+                                        const SystematicOptions& options = {});
+
 /// Sets fit.standard_errors from coefficient_covariance() under `noise`.
 void set_standard_errors(SystematicFit& fit, std::span<const double> temperature_c,
                          double sample_rate_hz, const NoiseModel& noise, int blocks = 1024);
 
+/// The same from the record's sums (blocks: the record's `blocks`; fit.t_ref_c
+/// must be the record's).
+void set_standard_errors(SystematicFit& fit, const TemperatureRecord& record,
+                         const NoiseModel& noise);
+
 /// Subtracts the fitted polynomial from `rate_deg_h` in place.
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,
                               std::span<const double> temperature_c);
+
+/// The residual rate_deg_h minus the fitted polynomial as a new vector, with
+/// room for one more sample (the Allan deviation's angle record).
+std::vector<double> temperature_fit_residual(const SystematicFit& fit,
+                                             std::span<const double> rate_deg_h,
+                                             std::span<const double> temperature_c);
 
 /// The factors by which subtracting a least-squares polynomial of `degree`
 /// in temperature changes each noise term's expected overlapping Allan
@@ -105,6 +155,11 @@ void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_d
 DetrendFactors detrend_factors(std::span<const double> temperature_c, double sample_rate_hz,
                                double t_ref_c, int degree, std::span<const double> tau_s,
                                int blocks = 1024);
+
+/// The same from the record's sums (blocks: the record's `detrend_blocks`;
+/// t_ref_c: the record's).
+DetrendFactors detrend_factors(const TemperatureRecord& record, int degree,
+                               std::span<const double> tau_s);
 
 /// The covariance (row-major, (d+1)^2) of least-squares coefficients of the
 /// columns (T - t_ref)^j, j = 0..degree, under the noise model (exposed for

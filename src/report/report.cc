@@ -1,0 +1,860 @@
+// foglab — the report of one analysed recording (report.h).
+#include "foglab/report/report.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "foglab/core/error.h"
+#include "foglab/core/units.h"
+#include "foglab/core/version.h"
+
+namespace foglab::report {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Colours (colour-blind-safe Okabe-Ito palette).
+constexpr const char* kBlue = "#0072b2";
+constexpr const char* kLightBlue = "#56b4e9";
+constexpr const char* kOrange = "#e69f00";
+constexpr const char* kGreen = "#009e73";
+constexpr const char* kRed = "#d55e00";
+constexpr const char* kPurple = "#cc79a7";
+constexpr const char* kYellow = "#b8a000";
+constexpr const char* kBlack = "#000000";
+constexpr const char* kGrey = "#606060";
+
+std::string g(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; }
+std::string g(const std::optional<double>& v) { return v ? g(*v) : std::string("not visible"); }
+
+std::vector<double> log_space(double lo, double hi, int n) {
+  std::vector<double> out;
+  if (!(lo > 0.0) || !(hi > lo) || n < 2) return out;
+  const double a = std::log10(lo), b = std::log10(hi);
+  for (int k = 0; k < n; ++k) out.push_back(std::pow(10.0, a + (b - a) * k / (n - 1)));
+  return out;
+}
+
+std::string record_title(const ReportInput& input) {
+  if (!input.title.empty()) return input.title;
+  if (input.channel.empty()) return input.file_name;
+  return fmt::format("{} ({})", input.file_name, input.channel);
+}
+
+double polynomial(const model::SystematicFit& s, double t_c) {
+  double v = 0.0, p = 1.0;
+  for (double c : s.coefficients) {
+    v += c * p;
+    p *= t_c - s.t_ref_c;
+  }
+  return v;
+}
+
+// ---- the four plots ----------------------------------------------------------
+
+Plot time_plot(const ReportInput& in, const std::string& title) {
+  const RecordPreview& p = in.preview;
+  Plot plot;
+  plot.title = title + ": rate and temperature";
+  plot.x_label = "time [h]";
+  plot.y_label = "rate [deg/h]";
+  plot.y2_label = "temperature [degC]";
+  plot.key = "top left";
+  std::vector<double> hours(p.time_s.size());
+  for (std::size_t k = 0; k < hours.size(); ++k) hours[k] = p.time_s[k] / kSecondsPerHour;
+  if (p.block_samples > 1) {
+    Series env;
+    env.title = fmt::format("rate, min-max of {} samples", p.block_samples);
+    env.style = SeriesStyle::band;
+    env.x = hours;
+    env.y_low = p.rate_min_deg_h;
+    env.y_high = p.rate_max_deg_h;
+    env.color = kLightBlue;
+    env.fill_opacity = 0.35;
+    plot.series.push_back(std::move(env));
+  }
+  Series mean;
+  mean.title = p.block_samples > 1 ? "rate, block mean" : "rate";
+  mean.x = hours;
+  mean.y = p.rate_mean_deg_h;
+  mean.color = kBlue;
+  mean.line_width = 1.0;
+  plot.series.push_back(std::move(mean));
+  if (!p.temperature_c.empty()) {
+    Series t;
+    t.title = in.temperature_channel.empty()
+                  ? std::string("temperature (right axis)")
+                  : fmt::format("temperature {} (right axis)", in.temperature_channel);
+    t.x = hours;
+    t.y = p.temperature_c;
+    t.color = kRed;
+    t.line_width = 2.0;
+    t.y2 = true;
+    plot.series.push_back(std::move(t));
+  }
+  return plot;
+}
+
+Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::string& title,
+               std::size_t points) {
+  const RecordPreview& p = in.preview;
+  Plot plot;
+  plot.title = title + ": bias against temperature";
+  plot.x_label = "temperature [degC]";
+  plot.y_label = "bias (block mean of the rate) [deg/h]";
+  plot.key = "top left";
+  // Regroup the preview's blocks into about `points` means.
+  const std::size_t n = std::min(p.rate_mean_deg_h.size(), p.temperature_c.size());
+  const std::size_t group =
+      std::max<std::size_t>(1, (n + points - 1) / std::max<std::size_t>(points, 1));
+  Series dots;
+  dots.style = SeriesStyle::points;
+  dots.color = kBlue;
+  dots.point_size = 0.5;
+  double t_lo = std::numeric_limits<double>::infinity(), t_hi = -t_lo;
+  for (std::size_t k = 0; k < n; k += group) {
+    double sr = 0.0, st = 0.0;
+    std::size_t m = 0;
+    for (std::size_t j = k; j < std::min(n, k + group); ++j) {
+      if (!std::isfinite(p.rate_mean_deg_h[j]) || !std::isfinite(p.temperature_c[j])) continue;
+      sr += p.rate_mean_deg_h[j];
+      st += p.temperature_c[j];
+      ++m;
+    }
+    if (m == 0) continue;
+    dots.x.push_back(st / static_cast<double>(m));
+    dots.y.push_back(sr / static_cast<double>(m));
+    t_lo = std::min(t_lo, dots.x.back());
+    t_hi = std::max(t_hi, dots.x.back());
+  }
+  const double seconds =
+      static_cast<double>(group) * (p.time_s.size() > 1 ? (p.time_s[1] - p.time_s[0]) : 0.0);
+  dots.title = seconds > 0.0 ? fmt::format("block means ({:.3g} s)", seconds) : "block means";
+  plot.series.push_back(std::move(dots));
+  if (!(t_hi >= t_lo)) {
+    t_lo = s.temperature_min_c;
+    t_hi = s.temperature_max_c;
+  }
+  if (!(t_hi > t_lo)) {
+    t_lo -= 0.5;
+    t_hi += 0.5;
+  }
+  Series fit;
+  fit.title = fmt::format("fit: degree {} in (T - {:.4g} degC){}", s.degree, s.t_ref_c,
+                          s.constant_fallback ? ", constant fallback" : "");
+  fit.color = kRed;
+  fit.line_width = 2.5;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = t_lo + (t_hi - t_lo) * k / 100.0;
+    fit.x.push_back(t);
+    fit.y.push_back(polynomial(s, t));
+  }
+  plot.series.push_back(std::move(fit));
+  return plot;
+}
+
+Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
+  const stats::PsdResult& psd = r.psd_smoothed.frequency_hz.empty() ? r.psd : r.psd_smoothed;
+  Plot plot;
+  plot.title = title + ": square root of the PSD of the residual (two-sided)";
+  plot.x_label = "frequency [Hz]";
+  plot.y_label = "sqrt(PSD) [deg/h/sqrt(Hz)]";
+  plot.log_x = plot.log_y = true;
+  plot.equal_decades = true;
+  plot.key = "bottom left";
+  Series data;
+  data.title = &psd == &r.psd_smoothed ? "Welch estimate, log-smoothed" : "Welch estimate";
+  data.style = SeriesStyle::linespoints;
+  data.color = kBlue;
+  data.line_width = 1.0;
+  data.point_size = 0.4;
+  data.x = psd.frequency_hz;
+  data.y.resize(psd.psd.size());
+  for (std::size_t k = 0; k < psd.psd.size(); ++k) data.y[k] = std::sqrt(psd.psd[k]);
+  plot.series.push_back(std::move(data));
+  if (psd.frequency_hz.empty()) return plot;
+  const double f_lo = psd.frequency_hz.front(), f_hi = psd.frequency_hz.back();
+
+  std::optional<double> n = r.psd_readings.N;
+  std::string n_source = "PSD reading";
+  if (!n && r.noise.N.status == model::TermStatus::resolved) {
+    n = r.noise.N.value;
+    n_source = "fit";
+  }
+  if (n) {
+    Series white;
+    white.title = fmt::format("white noise level N = {} deg/h/sqrt(Hz) ({})", g(*n), n_source);
+    white.color = kGreen;
+    white.dash_type = 2;
+    white.line_width = 2.0;
+    white.sets_range = false;
+    white.x = {f_lo, f_hi};
+    white.y = {*n, *n};
+    plot.series.push_back(std::move(white));
+  }
+  std::optional<double> k = r.psd_readings.K;
+  std::string k_source = "PSD reading";
+  if (!k && r.noise.K.status == model::TermStatus::resolved) {
+    k = r.noise.K.value;
+    k_source = "fit";
+  }
+  if (k) {
+    Series walk;
+    walk.title = fmt::format("random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})", g(*k), k_source);
+    walk.color = kRed;
+    walk.dash_type = 2;
+    walk.line_width = 2.0;
+    walk.sets_range = false;
+    // From the lowest frequency to 1 Hz (where the lab reads it), or to the
+    // white level when that is crossed later.
+    double f_end = std::max(1.0, n ? *k / (2.0 * kPi * *n) : 1.0);
+    f_end = std::min(f_end, f_hi);
+    walk.x = log_space(f_lo, std::max(f_end, f_lo * 1.01), 50);
+    for (double f : walk.x) walk.y.push_back(*k / (2.0 * kPi * f));
+    plot.series.push_back(std::move(walk));
+  }
+  return plot;
+}
+
+struct TermLine {
+  model::NoiseTerm term;
+  const char* label;
+  const char* color;
+  int dash;
+};
+
+Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
+  const stats::AllanResult& a = r.allan;
+  Plot plot;
+  plot.title = title + ": overlapping Allan deviation of the residual";
+  plot.x_label = "tau [s]";
+  plot.y_label = "Allan deviation [deg/h]";
+  plot.log_x = plot.log_y = true;
+  plot.equal_decades = true;
+  plot.headroom_decades = 1;
+  plot.key = "top right";
+  if (a.ci95_low.size() == a.tau_s.size() && a.ci95_high.size() == a.tau_s.size()) {
+    Series band;
+    band.title = "95 % interval";
+    band.style = SeriesStyle::band;
+    band.color = kLightBlue;
+    band.fill_opacity = 0.35;
+    band.x = a.tau_s;
+    band.y_low = a.ci95_low;
+    band.y_high = a.ci95_high;
+    plot.series.push_back(std::move(band));
+  }
+  Series dev;
+  dev.title = "OADEV";
+  dev.style = SeriesStyle::linespoints;
+  dev.color = kBlue;
+  dev.line_width = 1.0;
+  dev.point_size = 0.6;
+  dev.x = a.tau_s;
+  dev.y = a.dev;
+  plot.series.push_back(std::move(dev));
+  if (a.tau_s.empty()) return plot;
+
+  const model::NoiseModel& m = r.noise.model;
+  const std::vector<double> taus = log_space(a.tau_s.front(), a.tau_s.back(), 80);
+  static const TermLine kTerms[] = {
+      {model::NoiseTerm::Q, "quantisation Q (-1)", kPurple, 4},
+      {model::NoiseTerm::N, "white noise N (-1/2)", kGreen, 2},
+      {model::NoiseTerm::B, "flicker B (0)", kOrange, 2},
+      {model::NoiseTerm::K, "random walk K (+1/2)", kRed, 2},
+      {model::NoiseTerm::R, "rate ramp R (+1)", kYellow, 4},
+      {model::NoiseTerm::gm, "Gauss-Markov sigma, Tc", kGrey, 5},
+  };
+  for (const TermLine& t : kTerms) {
+    const double value = t.term == model::NoiseTerm::N   ? m.N
+                         : t.term == model::NoiseTerm::B ? m.B
+                         : t.term == model::NoiseTerm::K ? m.K
+                         : t.term == model::NoiseTerm::R ? m.R
+                         : t.term == model::NoiseTerm::Q ? m.Q
+                                                         : m.gm_sigma;
+    if (!(value > 0.0)) continue;
+    Series line;
+    line.title = t.label;
+    line.color = t.color;
+    line.dash_type = t.dash;
+    line.line_width = 1.5;
+    line.sets_range = false;
+    line.x = taus;
+    for (double tau : taus) line.y.push_back(std::sqrt(model::allan_variance(m, t.term, tau)));
+    plot.series.push_back(std::move(line));
+  }
+  Series fit;
+  fit.title = fmt::format("fit {}", r.noise.terms.empty() ? "none" : r.noise.terms);
+  fit.color = kBlack;
+  fit.line_width = 2.0;
+  fit.sets_range = false;
+  fit.x = taus;
+  for (double tau : taus) fit.y.push_back(std::sqrt(model::allan_variance(m, tau)));
+  plot.series.push_back(std::move(fit));
+  if (r.bias_instability_tau_s > 0.0 && r.bias_instability_deg_h > 0.0) {
+    Series min;
+    min.title = fmt::format("minimum {} deg/h at {} s", g(r.bias_instability_deg_h),
+                            g(r.bias_instability_tau_s));
+    min.style = SeriesStyle::points;
+    min.point_type = 6;
+    min.point_size = 1.6;
+    min.color = kRed;
+    min.x = {r.bias_instability_tau_s};
+    min.y = {r.bias_instability_deg_h};
+    plot.series.push_back(std::move(min));
+  }
+  return plot;
+}
+
+// ---- text helpers --------------------------------------------------------------
+
+/// Value and interval of a parameter as the CLI shows them.
+struct ParameterText {
+  std::string value, interval;
+};
+
+ParameterText parameter_text(const model::ParameterEstimate& p) {
+  ParameterText t;
+  if (p.status == model::TermStatus::resolved) {
+    t.value = g(p.value);
+    t.interval = fmt::format("[{}, {}]", g(p.ci95_low), g(p.ci95_high));
+  } else if (p.status == model::TermStatus::upper_bound) {
+    const double bound = std::isfinite(p.upper_95) ? p.upper_95 : p.value;
+    t.value = std::isfinite(bound) ? "< " + g(bound) : "-";
+    t.interval = std::isfinite(p.ci95_high) ? fmt::format("[0, {}]", g(p.ci95_high))
+                                            : std::string("no bound");
+  } else {
+    t.value = "-";
+    if (std::isfinite(p.upper_95)) t.interval = fmt::format("(< {})", g(p.upper_95));
+  }
+  return t;
+}
+
+std::string_view parameter_meaning(std::string_view name) {
+  if (name == "N") return "white rate noise (angle random walk = N/60 deg/sqrt(h))";
+  if (name == "B") return "flicker, bias instability coefficient (plateau 0.664 B)";
+  if (name == "K") return "rate random walk (Wiener process intensity)";
+  if (name == "R") return "rate ramp";
+  if (name == "Q") return "angle quantisation";
+  if (name == "gm_sigma") return "Gauss-Markov random bias, standard deviation";
+  if (name == "gm_tc") return "Gauss-Markov random bias, correlation time";
+  return "";
+}
+
+std::string coefficient_unit(std::size_t j) {
+  return j == 0 ? "deg/h" : j == 1 ? "deg/h/degC" : fmt::format("deg/h/degC^{}", j);
+}
+
+std::vector<std::string> all_notes(const model::AnalysisResult& r, const ReportInput& in) {
+  std::vector<std::string> notes = in.notes;
+  for (const std::string& n : r.notes) {
+    if (r.systematic && n == r.systematic->note) continue;  // shown with the systematic part
+    if (std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(n);
+  }
+  return notes;
+}
+
+std::string random_bias_answer(const model::AnalysisResult& r) {
+  switch (r.noise.random_bias_process) {
+    case model::RandomBiasProcess::wiener:
+      return fmt::format("a Wiener process (rate random walk), K = {} deg/h/sqrt(s)",
+                         parameter_text(r.noise.K).value);
+    case model::RandomBiasProcess::gauss_markov:
+      return fmt::format("a first-order Gauss-Markov process, sigma = {} deg/h, Tc = {} s",
+                         parameter_text(r.noise.gm_sigma).value,
+                         parameter_text(r.noise.gm_tc).value);
+    case model::RandomBiasProcess::none:
+      break;
+  }
+  return "not visible in this record (neither a Wiener nor a Gauss-Markov process is supported "
+         "by the data)";
+}
+
+std::string class_sentence(const model::AnalysisResult& r) {
+  const ClassVerdict& v = r.verdict;
+  std::string decided = v.decided_by == "both" ? "both criteria agree"
+                        : v.decided_by == "arw"
+                            ? "decided by the angle random walk (the worse of the two)"
+                            : "decided by the bias instability (the worse of the two)";
+  return fmt::format("{} ({}; by bias instability {} deg/h: {}; by ARW {} deg/sqrt(h): {})",
+                     to_string(v.accuracy_class), decided, g(r.bias_instability_deg_h),
+                     to_string(v.by_bias_instability), g(r.arw_deg_sqrt_h), to_string(v.by_arw));
+}
+
+// ---- HTML ----------------------------------------------------------------------------
+
+std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }
+std::string th(std::string_view text) { return "<th>" + html_escape(text) + "</th>"; }
+
+std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
+  std::string h;
+  // The recording.
+  h += "<h3>Recording</h3>\n<table class=\"meta\">\n";
+  auto row = [&](std::string_view k, const std::string& v) {
+    h += "<tr>" + th(k) + td(v) + "</tr>\n";
+  };
+  row("file", in.file_name.empty() ? "-" : in.file_name);
+  row("rate channel", in.channel.empty() ? "-" : in.channel);
+  row("temperature channel", in.temperature_channel.empty() ? "none" : in.temperature_channel);
+  row("input unit", fmt::format("{} (analysed in deg/h)", in.input_unit));
+  row("samples", fmt::format("{}", r.samples));
+  row("sample rate", fmt::format("{} Hz", g(r.sample_rate_hz)));
+  row("duration", fmt::format("{:.1f} s ({:.3g} h)", r.duration_s, r.duration_s / kSecondsPerHour));
+  h += "</table>\n";
+
+  // Systematic part.
+  h += "<h3>Systematic part (bias and its temperature dependence)</h3>\n";
+  if (r.systematic) {
+    const model::SystematicFit& s = *r.systematic;
+    h += fmt::format(
+        "<p>Least-squares polynomial of degree {} in (T - t_ref), t_ref = {:.4g} degC{}{}. "
+        "Standard errors from the fitted noise model.</p>\n",
+        s.degree, s.t_ref_c, s.degree_chosen ? ", degree chosen by the criterion" : "",
+        s.constant_fallback ? ", constant fallback (the temperature barely moves)" : "");
+    h += "<table>\n<tr>" + th("coefficient") + th("value") + th("standard error") + th("unit") +
+         "</tr>\n";
+    for (std::size_t j = 0; j < s.coefficients.size(); ++j) {
+      const double se = j < s.standard_errors.size() ? s.standard_errors[j] : kNaN;
+      h += "<tr>" + td(fmt::format("c{}", j)) + td(fmt::format("{:.6g}", s.coefficients[j])) +
+           td(g(se)) + td(coefficient_unit(j)) + "</tr>\n";
+    }
+    h += "</table>\n<table class=\"meta\">\n";
+    row("systematic bias at t_ref", fmt::format("{:.6g} deg/h", s.bias_deg_h));
+    row("lab's polyfit(T, Y, 2) constant term",
+        fmt::format("{:.6g} deg/h{}", s.lab_constant_term_deg_h,
+                    s.lab_constant_meaningful ? "" : " (not meaningful: the span is too small)"));
+    row("temperature span", fmt::format("{:.4g} degC ({:.4g} to {:.4g} degC)", s.temperature_span_c,
+                                        s.temperature_min_c, s.temperature_max_c));
+    row("residual rms", fmt::format("{} deg/h", g(s.residual_rms_deg_h)));
+    h += "</table>\n";
+    if (!s.note.empty()) h += "<p class=\"note\">" + html_escape(s.note) + "</p>\n";
+  } else {
+    h += "<p>No temperature: only the record mean (the constant bias) was removed.</p>\n";
+  }
+
+  // Noise model.
+  h += fmt::format(
+      "<h3>Noise model (IEEE Std 952, fitted to the Allan variance)</h3>\n"
+      "<p>Terms chosen: {}; {} tau points, dispersion {:.3g}. Intervals are 95 %; a term the "
+      "record cannot resolve gets a one-sided 95 % upper bound.</p>\n",
+      html_escape(r.noise.terms.empty() ? "none" : r.noise.terms), r.noise.points,
+      r.noise.dispersion);
+  h += "<table>\n<tr>" + th("parameter") + th("meaning") + th("value") + th("95 % interval") +
+       th("status") + th("unit") + "</tr>\n";
+  for (const model::ReportedParameter& p : model::reported_parameters()) {
+    const model::ParameterEstimate& e = r.noise.*p.estimate;
+    const ParameterText t = parameter_text(e);
+    h += fmt::format("<tr class=\"{}\">", model::to_string(e.status)) + td(p.name) +
+         td(parameter_meaning(p.name)) + td(t.value) + td(t.interval) +
+         td(model::to_string(e.status)) + td(p.unit) + "</tr>\n";
+  }
+  h += "</table>\n<table class=\"meta\">\n";
+  row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
+  row("bias instability (ADEV minimum)",
+      fmt::format("{} deg/h at tau = {} s{}", g(r.bias_instability_deg_h),
+                  g(r.bias_instability_tau_s),
+                  r.bias_instability_at_edge ? " (at the end of the tau range: the true minimum "
+                                               "may lie beyond it)"
+                                             : ""));
+  h += "</table>\n";
+
+  // Readings beside the fit.
+  h += "<h3>The lab's graphical readings beside the fit</h3>\n";
+  h += "<table>\n<tr>" + th("quantity") + th("ADEV reading") + th("PSD reading") +
+       th("fit (95 % interval)") + th("unit") + "</tr>\n";
+  auto fit_text = [](const model::ParameterEstimate& e) {
+    const ParameterText t = parameter_text(e);
+    return t.interval.empty() ? t.value : t.value + " " + t.interval;
+  };
+  h += "<tr>" + td("white noise N (ADEV at tau = 1 s on the -1/2 line; PSD flat level)") +
+       td(g(r.adev_readings.N)) + td(g(r.psd_readings.N)) + td(fit_text(r.noise.N)) +
+       td("deg/h/sqrt(Hz)") + "</tr>\n";
+  h += "<tr>" +
+       td("Wiener intensity K (ADEV at tau = 3 s on the +1/2 line; PSD -2 slope at 1 Hz)") +
+       td(g(r.adev_readings.K)) + td(g(r.psd_readings.K)) + td(fit_text(r.noise.K)) +
+       td("deg/h/sqrt(s)") + "</tr>\n";
+  h += "<tr>" + td("bias instability (ADEV minimum; fit: flicker B)") +
+       td(fmt::format("{} at {} s", g(r.adev_readings.bias_instability_deg_h),
+                      g(r.adev_readings.bias_instability_tau_s))) +
+       td("-") + td(fit_text(r.noise.B)) + td("deg/h") + "</tr>\n";
+  h += "</table>\n";
+
+  // Random bias.
+  const model::RandomBiasEvidence& ev = r.evidence;
+  h += "<h3>Random bias</h3>\n<p><strong>The random part of the bias is " +
+       html_escape(random_bias_answer(r)) + ".</strong></p>\n";
+  if (!ev.summary.empty()) h += "<p>" + html_escape(ev.summary) + "</p>\n";
+  h += "<table>\n<tr>" + th("hypothesis") + th("deviance") + th("criterion") + "</tr>\n";
+  h += "<tr>" + td("no random bias") + td(g(ev.deviance_none)) + td(g(ev.criterion_none)) +
+       "</tr>\n";
+  h += "<tr>" + td("Wiener process") + td(g(ev.deviance_wiener)) + td(g(ev.criterion_wiener)) +
+       "</tr>\n";
+  h += "<tr>" + td("Gauss-Markov process") + td(g(ev.deviance_gauss_markov)) +
+       td(g(ev.criterion_gauss_markov)) + "</tr>\n</table>\n";
+  h += fmt::format(
+      "<p>Log-log slope of the ADEV over its last three points: {} (+0.5 for a Wiener process, "
+      "negative after a Gauss-Markov hump); of the PSD over its lowest decade: {} (-2 for a "
+      "Wiener process, about 0 on a Gauss-Markov plateau).</p>\n",
+      g(ev.adev_end_slope), g(ev.psd_low_frequency_slope));
+
+  // Class.
+  h += "<h3>Accuracy class (lab manual, Table 1)</h3>\n<p class=\"verdict\">" +
+       html_escape(class_sentence(r)) + "</p>\n";
+
+  const std::vector<std::string> notes = all_notes(r, in);
+  if (!notes.empty()) {
+    h += "<h3>Notes</h3>\n<ul>\n";
+    for (const std::string& n : notes) h += "<li>" + html_escape(n) + "</li>\n";
+    h += "</ul>\n";
+  }
+  return h;
+}
+
+constexpr const char* kCss =
+    R"(body{font-family:system-ui,-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
+h1{font-size:1.6em;border-bottom:2px solid #0072b2;padding-bottom:.2em}
+h2{font-size:1.35em;margin-top:2em;border-bottom:1px solid #ccc}
+h3{font-size:1.1em;margin-top:1.5em}
+table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
+th,td{border:1px solid #ccc;padding:.25em .6em;text-align:left;vertical-align:top}
+tr:first-child th{background:#eef4fa}
+table.meta th{background:#f6f6f6;font-weight:normal;color:#444}
+tr.absent td{color:#888}
+tr.upper_bound td{color:#555;font-style:italic}
+figure{margin:1em 0}
+figure svg{max-width:100%;height:auto;border:1px solid #e4e4e4}
+figcaption{font-size:.9em;color:#444}
+.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.4em .8em}
+.note{color:#444;font-size:.92em}
+.verdict{font-weight:bold}
+footer{margin-top:3em;font-size:.85em;color:#777})";
+
+}  // namespace
+
+std::string html_escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+RecordPreview preview_record(std::span<const double> rate_deg_h,
+                             std::span<const double> temperature_c, double sample_rate_hz,
+                             std::size_t points) {
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw UsageError(
+        fmt::format("preview_record: sample rate {} Hz: expected > 0", sample_rate_hz));
+  }
+  if (!temperature_c.empty() && temperature_c.size() != rate_deg_h.size()) {
+    throw UsageError(
+        fmt::format("preview_record: {} temperature samples for {} rate samples: expected as many",
+                    temperature_c.size(), rate_deg_h.size()));
+  }
+  if (points < 1) throw UsageError("preview_record: points 0: expected at least 1");
+  RecordPreview p;
+  const std::size_t n = rate_deg_h.size();
+  if (n == 0) return p;
+  const std::size_t block = (n + points - 1) / points;
+  p.block_samples = static_cast<std::int64_t>(block);
+  for (std::size_t start = 0; start < n; start += block) {
+    const std::size_t end = std::min(n, start + block);
+    double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo, tsum = 0.0;
+    std::size_t m = 0, tm = 0;
+    for (std::size_t k = start; k < end; ++k) {
+      const double v = rate_deg_h[k];
+      if (std::isfinite(v)) {
+        sum += v;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        ++m;
+      }
+      if (!temperature_c.empty() && std::isfinite(temperature_c[k])) {
+        tsum += temperature_c[k];
+        ++tm;
+      }
+    }
+    p.time_s.push_back(0.5 * static_cast<double>(start + end - 1) / sample_rate_hz);
+    p.rate_mean_deg_h.push_back(m > 0 ? sum / static_cast<double>(m) : kNaN);
+    p.rate_min_deg_h.push_back(m > 0 ? lo : kNaN);
+    p.rate_max_deg_h.push_back(m > 0 ? hi : kNaN);
+    if (!temperature_c.empty()) {
+      p.temperature_c.push_back(tm > 0 ? tsum / static_cast<double>(tm) : kNaN);
+    }
+  }
+  return p;
+}
+
+std::vector<Plot> report_plots(const model::AnalysisResult& result, const ReportInput& input,
+                               const ReportOptions& options) {
+  const std::string title = record_title(input);
+  std::vector<Plot> plots;
+  plots.push_back(time_plot(input, title));
+  if (result.systematic && !input.preview.temperature_c.empty()) {
+    plots.push_back(bias_plot(*result.systematic, input, title, options.bias_points));
+  }
+  plots.push_back(psd_plot(result, title));
+  plots.push_back(adev_plot(result, title));
+  return plots;
+}
+
+std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& in) {
+  std::string md = fmt::format("## {}\n\n", record_title(in));
+  md +=
+      fmt::format("Recording `{}`, channel {}, temperature {}: {} samples at {} Hz ({:.3g} h).\n\n",
+                  in.file_name.empty() ? "-" : in.file_name, in.channel.empty() ? "-" : in.channel,
+                  in.temperature_channel.empty() ? "none" : in.temperature_channel, r.samples,
+                  g(r.sample_rate_hz), r.duration_s / kSecondsPerHour);
+
+  md += "### Systematic part\n\n";
+  if (r.systematic) {
+    const model::SystematicFit& s = *r.systematic;
+    md += fmt::format("Polynomial of degree {} in (T - {:.4g} degC){}{}.\n\n", s.degree, s.t_ref_c,
+                      s.degree_chosen ? ", degree chosen by the criterion" : "",
+                      s.constant_fallback ? ", constant fallback" : "");
+    md += "| coefficient | value | standard error | unit |\n|---|---:|---:|---|\n";
+    for (std::size_t j = 0; j < s.coefficients.size(); ++j) {
+      const double se = j < s.standard_errors.size() ? s.standard_errors[j] : kNaN;
+      md += fmt::format("| c{} | {:.6g} | {} | {} |\n", j, s.coefficients[j], g(se),
+                        coefficient_unit(j));
+    }
+    md += fmt::format(
+        "\n- systematic bias at {:.4g} degC: **{:.6g} deg/h**; temperature span {:.4g} degC\n"
+        "- lab's polyfit(T, Y, 2) constant term: {:.6g} deg/h{}\n",
+        s.t_ref_c, s.bias_deg_h, s.temperature_span_c, s.lab_constant_term_deg_h,
+        s.lab_constant_meaningful ? "" : " (not meaningful: the span is too small)");
+    if (!s.note.empty()) md += "- " + s.note + "\n";
+    md += "\n";
+  } else {
+    md += "No temperature: only the record mean was removed.\n\n";
+  }
+
+  md += fmt::format("### Noise model (terms {}, 95 % intervals)\n\n",
+                    r.noise.terms.empty() ? "none" : r.noise.terms);
+  md += "| parameter | value | 95 % interval | status | unit |\n|---|---:|---|---|---|\n";
+  for (const model::ReportedParameter& p : model::reported_parameters()) {
+    const model::ParameterEstimate& e = r.noise.*p.estimate;
+    const ParameterText t = parameter_text(e);
+    md += fmt::format("| {} | {} | {} | {} | {} |\n", p.name, t.value, t.interval,
+                      model::to_string(e.status), p.unit);
+  }
+  md += fmt::format(
+      "\n- ARW {} deg/sqrt(h); bias instability (ADEV minimum) **{} deg/h** at {} s{}\n",
+      g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h), g(r.bias_instability_tau_s),
+      r.bias_instability_at_edge ? " (at the end of the tau range)" : "");
+  md += fmt::format("- graphical readings: ADEV N {}, K {}, minimum {} deg/h; PSD N {}, K {}\n",
+                    g(r.adev_readings.N), g(r.adev_readings.K),
+                    g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N),
+                    g(r.psd_readings.K));
+  md += "- random bias: " + random_bias_answer(r) + "\n";
+  if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary + ")\n";
+  md += "- accuracy class: **" + class_sentence(r) + "**\n";
+  const std::vector<std::string> notes = all_notes(r, in);
+  if (!notes.empty()) {
+    md += "\nNotes:\n\n";
+    for (const std::string& n : notes) md += "- " + n + "\n";
+  }
+  return md;
+}
+
+std::string kalibr_imu_yaml(const model::AnalysisResult& r, const ReportInput& in,
+                            std::string_view rostopic) {
+  std::string y = fmt::format(
+      "# Kalibr IMU noise model (imu.yaml) of the gyroscope in '{}'{}, written by foglab {}.\n"
+      "# Continuous-time densities, from the noise model fitted to the Allan variance\n"
+      "# (N [deg/h/sqrt(Hz)] and K [deg/h/sqrt(s)] times (pi/180)/3600).\n"
+      "# Kalibr advises inflating these for real-world use (vibration, temperature).\n\n",
+      in.file_name, in.channel.empty() ? "" : " channel " + in.channel, version());
+
+  // Noise density.
+  double n = kNaN;
+  std::string n_comment;
+  const model::ParameterEstimate& pn = r.noise.N;
+  if (pn.status == model::TermStatus::resolved) {
+    n = pn.value;
+    n_comment = fmt::format("N = {:.6g} deg/h/sqrt(Hz), 95 % interval [{}, {}]", n, g(pn.ci95_low),
+                            g(pn.ci95_high));
+  } else if (r.psd_readings.N) {
+    n = *r.psd_readings.N;
+    n_comment =
+        fmt::format("N = {:.6g} deg/h/sqrt(Hz) read off the PSD (the fit did not resolve N)", n);
+  } else if (r.adev_readings.N) {
+    n = *r.adev_readings.N;
+    n_comment =
+        fmt::format("N = {:.6g} deg/h/sqrt(Hz) read off the ADEV (the fit did not resolve N)", n);
+  } else if (std::isfinite(pn.upper_95)) {
+    n = pn.upper_95;
+    n_comment = fmt::format("N < {:.6g} deg/h/sqrt(Hz): 95 % upper bound, N not resolved", n);
+  } else {
+    n = 0.0;
+    n_comment = "N could not be estimated from this record";
+  }
+
+  // Random walk.
+  double k = 0.0;
+  std::string k_comment;
+  const model::ParameterEstimate& pk = r.noise.K;
+  if (pk.status == model::TermStatus::resolved) {
+    k = pk.value;
+    k_comment = fmt::format("K = {:.6g} deg/h/sqrt(s), 95 % interval [{}, {}]", k, g(pk.ci95_low),
+                            g(pk.ci95_high));
+  } else if (std::isfinite(pk.upper_95) && pk.upper_95 > 0.0) {
+    k = pk.upper_95;
+    k_comment = fmt::format(
+        "K < {:.6g} deg/h/sqrt(s): the 95 % upper bound, K is not resolved by this record", k);
+  } else if (std::isfinite(pk.ci95_high) && pk.ci95_high > 0.0) {
+    k = pk.ci95_high;
+    k_comment = fmt::format(
+        "K < {:.6g} deg/h/sqrt(s): the 95 % upper bound, K is not resolved by this record", k);
+  } else if (r.noise.model.gm_sigma > 0.0 && r.noise.model.gm_tc > 0.0) {
+    k = r.noise.model.gm_sigma * std::sqrt(2.0 / r.noise.model.gm_tc);
+    k_comment = fmt::format(
+        "no Wiener term and no bound on it: the driving noise sigma*sqrt(2/Tc) = {:.6g} "
+        "deg/h/sqrt(s) of the Gauss-Markov bias (sigma {} deg/h, Tc {} s)",
+        k, g(r.noise.model.gm_sigma), g(r.noise.model.gm_tc));
+  } else {
+    k_comment = "K could not be bounded by this record: 0 written, set it by hand";
+  }
+  if (r.noise.random_bias_process == model::RandomBiasProcess::gauss_markov) {
+    k_comment += fmt::format(
+        "; the random bias is Gauss-Markov (sigma {} deg/h, Tc {} s), "
+        "which Kalibr cannot represent",
+        g(r.noise.model.gm_sigma), g(r.noise.model.gm_tc));
+  }
+
+  y += "# No accelerometer in this recording: Kalibr's accelerometer fields are not measured.\n";
+  y += "#accelerometer_noise_density: 0.0  # [m/s^2/sqrt(Hz)]\n";
+  y += "#accelerometer_random_walk: 0.0    # [m/s^3/sqrt(Hz)]\n\n";
+  y += "# Gyroscope\n";
+  y += fmt::format("gyroscope_noise_density: {:.9g}  # [rad/s/sqrt(Hz)] {}\n",
+                   noise_density_rad_s_sqrt_hz(n), n_comment);
+  y += fmt::format("gyroscope_random_walk: {:.9g}  # [rad/s^2/sqrt(Hz)] {}\n\n",
+                   random_walk_rad_s2_sqrt_hz(k), k_comment);
+  y += fmt::format("rostopic: {}  # the IMU's ROS topic: set it to yours\n", rostopic);
+  y += fmt::format("update_rate: {:.9g}  # [Hz] the sample rate of the recording\n",
+                   r.sample_rate_hz);
+  return y;
+}
+
+Report make_report(const model::AnalysisResult& result, const ReportInput& input,
+                   const ReportOptions& options) {
+  Report rep;
+  rep.title = record_title(input);
+  const std::vector<Plot> plots = report_plots(result, input, options);
+  static const char* kCaptions[][2] = {
+      {"time",
+       "Rate (block means, with the minimum and maximum of each block) and temperature "
+       "against time."},
+      {"bias_temperature",
+       "Bias (block means of the rate) against temperature, with the fitted "
+       "polynomial."},
+      {"psd",
+       "Square root of the two-sided PSD of the residual, log-log with equal decades, with "
+       "the white-noise level and the random-walk line of the graphical readings."},
+      {"adev",
+       "Overlapping Allan deviation of the residual with its 95 % confidence band, the "
+       "fitted model and the line of each term, log-log with equal decades."},
+  };
+  const bool has_bias_plot = plots.size() == 4;
+  std::string skip_reason;
+  if (!options.plots) {
+    skip_reason = "plotting was turned off";
+  }
+  for (std::size_t i = 0; i < plots.size(); ++i) {
+    const std::size_t kind = has_bias_plot || i == 0 ? i : i + 1;
+    Figure fig;
+    fig.name = kCaptions[kind][0];
+    fig.caption = kCaptions[kind][1];
+    if (skip_reason.empty()) {
+      PlotOptions po = options.plot;
+      po.id_prefix = fmt::format("{}{}_", options.id_prefix, fig.name);
+      PlotOutcome out = render_svg(plots[i], po);
+      if (out.gnuplot_missing) {
+        skip_reason = "gnuplot could not be run (" + out.error +
+                      "); install gnuplot (Debian: gnuplot-nox) to draw them";
+      } else {
+        fig.svg = std::move(out.svg);
+        fig.error = out.error;
+      }
+    }
+    if (!skip_reason.empty()) fig.error = skip_reason;
+    rep.figures.push_back(std::move(fig));
+  }
+  if (!skip_reason.empty()) {
+    rep.plots_skipped = true;
+    rep.plots_note = "The plots were skipped: " + skip_reason + ".";
+  }
+
+  // HTML section.
+  std::string& h = rep.html_section;
+  h += "<section>\n<h2>" + html_escape(rep.title) + "</h2>\n";
+  if (rep.plots_skipped) {
+    h += "<p class=\"warn\">" + html_escape(rep.plots_note) + "</p>\n";
+  } else {
+    for (const Figure& f : rep.figures) {
+      h += "<figure>\n";
+      if (f.svg) {
+        h += *f.svg + "\n";
+      } else {
+        h += "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) + "</p>\n";
+      }
+      h += "<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
+    }
+  }
+  h += html_tables(result, input);
+  h += "</section>\n";
+
+  rep.markdown = markdown_summary(result, input);
+  if (rep.plots_skipped) rep.markdown += "\n" + rep.plots_note + "\n";
+  rep.kalibr_yaml = kalibr_imu_yaml(result, input, options.rostopic);
+  return rep;
+}
+
+std::string html_document(std::span<const Report> reports, std::string_view title) {
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  h += "<title>" + html_escape(title) + "</title>\n<style>\n" + kCss + "\n</style>\n</head>\n";
+  h += "<body>\n<h1>" + html_escape(title) + "</h1>\n";
+  if (reports.size() > 1) {
+    h += "<ul>\n";
+    for (const Report& r : reports) h += "<li>" + html_escape(r.title) + "</li>\n";
+    h += "</ul>\n";
+  }
+  for (const Report& r : reports) h += r.html_section;
+  h += fmt::format(
+      "<footer>Written by foglab {}. Units: rate deg/h, time s, temperature degC; noise "
+      "parameters as in IEEE Std 952 (N deg/h/sqrt(Hz), B deg/h, K deg/h/sqrt(s), R deg/h/s, "
+      "Q deg/h*s).</footer>\n",
+      html_escape(version()));
+  h += "</body>\n</html>\n";
+  return h;
+}
+
+std::string html_document(const Report& report) {
+  return html_document(std::span<const Report>(&report, 1), "foglab report: " + report.title);
+}
+
+}  // namespace foglab::report

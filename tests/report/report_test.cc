@@ -1,0 +1,310 @@
+// The report of one analysis: plots, self-contained HTML, Markdown, Kalibr.
+#include "foglab/report/report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "foglab/core/error.h"
+#include "foglab/core/output.h"
+#include "foglab/core/units.h"
+#include "foglab/model/analysis.h"
+#include "foglab/report/plot.h"
+#include "foglab/sim/generator.h"
+#include "support/files.h"
+
+namespace foglab::report {
+namespace {
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
+/// A two-hour 10 Hz recording under a 10 degC ramp: white noise, flicker,
+/// a small random walk and a linear temperature sensitivity, analysed once.
+struct Analysed {
+  model::AnalysisResult result;
+  ReportInput input;
+};
+
+const Analysed& analysed() {
+  static const Analysed a = [] {
+    sim::ErrorModel m;
+    m.N = 0.5;
+    m.B = 0.05;
+    m.K = 0.005;
+    m.bias = 3.0;
+    m.temp_coefs = {0.8};
+    sim::TemperatureProfile t;
+    t.kind = sim::TemperatureKind::ramp;
+    t.start_c = 20.0;
+    t.span_c = 10.0;
+    t.jitter_c = 0.01;
+    sim::GeneratorOptions g;
+    g.sample_rate_hz = 10.0;
+    g.duration_s = 7200.0;
+    g.seed = 5;
+    sim::Recording rec = sim::generate(m, t, g);
+    Analysed out;
+    out.input.file_name = "sim <ramp> & co.mat";
+    out.input.channel = "Y2";
+    out.input.temperature_channel = "T2";
+    out.input.preview = preview_record(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
+    out.input.notes = {"a caller's note"};
+    out.result = model::analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
+    return out;
+  }();
+  return a;
+}
+
+/// The number after "key:" on the YAML line that starts with it.
+double yaml_number(const std::string& yaml, const std::string& key) {
+  const std::regex re("(^|\n)" + key + ":\\s*([-+0-9.eE]+)");
+  std::smatch m;
+  if (!std::regex_search(yaml, m, re)) return std::nan("");
+  return std::stod(m[2].str());
+}
+
+TEST(Kalibr, ConversionsMatchHandComputedNumbers) {
+  // 0.5 deg/h/sqrt(Hz) = 0.5 * (pi/180) rad / 3600 s / sqrt(Hz).
+  EXPECT_NEAR(noise_density_rad_s_sqrt_hz(0.5), 2.42406840554768e-06, 1e-18);
+  // 0.02 deg/h/sqrt(s) = 0.02 * (pi/180) / 3600 rad/s/sqrt(s), and
+  // 1/sqrt(s) = sqrt(Hz) / s: rad/s^2/sqrt(Hz).
+  EXPECT_NEAR(random_walk_rad_s2_sqrt_hz(0.02), 9.69627362219072e-08, 1e-20);
+  EXPECT_NEAR(noise_density_rad_s_sqrt_hz(1.0), 4.84813681109536e-06, 1e-18);
+}
+
+TEST(Kalibr, ImuYamlCarriesTheConvertedFit) {
+  const Analysed& a = analysed();
+  const model::NoiseFitResult& n = a.result.noise;
+  const std::string yaml = kalibr_imu_yaml(a.result, a.input, "/fog");
+  ASSERT_EQ(n.N.status, model::TermStatus::resolved);
+  EXPECT_NEAR(yaml_number(yaml, "gyroscope_noise_density"), n.N.value * kPi / 180.0 / 3600.0,
+              1e-8 * n.N.value * kPi / 180.0 / 3600.0);
+  const double k = n.K.status == model::TermStatus::resolved ? n.K.value : n.K.upper_95;
+  ASSERT_TRUE(std::isfinite(k) && k > 0.0) << yaml;
+  EXPECT_NEAR(yaml_number(yaml, "gyroscope_random_walk"), k * kPi / 180.0 / 3600.0,
+              1e-8 * k * kPi / 180.0 / 3600.0);
+  if (n.K.status != model::TermStatus::resolved) {
+    EXPECT_NE(yaml.find("upper bound"), std::string::npos) << yaml;
+  }
+  EXPECT_DOUBLE_EQ(yaml_number(yaml, "update_rate"), 10.0);
+  EXPECT_NE(yaml.find("\nrostopic: /fog"), std::string::npos) << yaml;
+  // No accelerometer: its fields only in comments.
+  EXPECT_TRUE(std::isnan(yaml_number(yaml, "accelerometer_noise_density"))) << yaml;
+  EXPECT_TRUE(std::isnan(yaml_number(yaml, "accelerometer_random_walk"))) << yaml;
+  EXPECT_NE(yaml.find("#accelerometer_noise_density"), std::string::npos);
+}
+
+TEST(Report, HtmlHasFourInlinePlotsAndNoNetworkReferences) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const Analysed& a = analysed();
+  const Report rep = make_report(a.result, a.input);
+  ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
+  ASSERT_EQ(rep.figures.size(), 4u);
+  for (const Figure& f : rep.figures) EXPECT_TRUE(f.svg.has_value()) << f.name << ": " << f.error;
+  const std::string html = html_document(rep);
+  EXPECT_EQ(count(html, "<svg"), 4u);
+  EXPECT_EQ(count(html, "</svg>"), 4u);
+  EXPECT_EQ(html.find("<?xml"), std::string::npos);
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  // The only URLs are the XML namespace names of SVG (never fetched).
+  std::string stripped = html;
+  for (const std::string ns :
+       {"xmlns=\"http://www.w3.org/2000/svg\"", "xmlns:xlink=\"http://www.w3.org/1999/xlink\""}) {
+    for (std::size_t p = stripped.find(ns); p != std::string::npos; p = stripped.find(ns)) {
+      stripped.erase(p, ns.size());
+    }
+  }
+  EXPECT_EQ(stripped.find("http://"), std::string::npos);
+  EXPECT_EQ(stripped.find("https://"), std::string::npos);
+  EXPECT_EQ(stripped.find("src="), std::string::npos);
+  EXPECT_EQ(stripped.find("<link"), std::string::npos);
+  // gnuplot names its elements alike in every plot: inlined, they are made distinct.
+  const std::regex id_re("\\sid=['\"]([^'\"]+)['\"]");
+  std::multiset<std::string> ids;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), id_re);
+       it != std::sregex_iterator(); ++it) {
+    ids.insert((*it)[1].str());
+  }
+  ASSERT_FALSE(ids.empty());
+  for (const std::string& id : ids) EXPECT_EQ(ids.count(id), 1u) << id;
+  // Axis labels with units, the plots' legends.
+  for (const std::string label :
+       {"time [h]", "rate [deg/h]", "temperature [degC]", "tau [s]", "Allan deviation [deg/h]",
+        "frequency [Hz]", "sqrt(PSD) [deg/h/sqrt(Hz)]", "95 % interval", "fit N+",
+        "white noise N (-1/2)", "OADEV"}) {
+    EXPECT_NE(html.find(label), std::string::npos) << label;
+  }
+  // Written atomically through the shared writer.
+  test::TempDir dir;
+  write_text_file(dir.file("report.html"), html);
+  EXPECT_EQ(test::read_file(dir / "report.html"), html);
+}
+
+TEST(Report, HtmlNamesEveryParameterWithItsUnit) {
+  const Analysed& a = analysed();
+  ReportOptions o;
+  o.plots = false;
+  const Report rep = make_report(a.result, a.input, o);
+  const std::string html = html_document(rep);
+  for (const model::ReportedParameter& p : model::reported_parameters()) {
+    EXPECT_NE(html.find("<td>" + std::string(p.name) + "</td>"), std::string::npos) << p.name;
+    EXPECT_NE(html.find("<td>" + std::string(p.unit) + "</td>"), std::string::npos) << p.unit;
+    EXPECT_NE(rep.markdown.find("| " + std::string(p.name) + " |"), std::string::npos) << p.name;
+  }
+  for (const std::string text :
+       {"resolved", "95 % interval", "deg/sqrt(h)", "Accuracy class", "Random bias",
+        "graphical readings", "lab&#39;s polyfit(T, Y, 2) constant term", "a caller&#39;s note",
+        "sim &lt;ramp&gt; &amp; co.mat", "deg/h/degC"}) {
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  }
+  EXPECT_EQ(html.find("sim <ramp>"), std::string::npos);
+  EXPECT_NE(html.find(std::string(to_string(a.result.verdict.accuracy_class))), std::string::npos);
+  EXPECT_NE(rep.markdown.find("plots were skipped"), std::string::npos);
+  EXPECT_NE(html.find("plotting was turned off"), std::string::npos);
+}
+
+TEST(Report, MissingGnuplotStillGivesTheReport) {
+  const Analysed& a = analysed();
+  ReportOptions o;
+  o.plot.gnuplot = "/nonexistent/gnuplot";
+  const Report rep = make_report(a.result, a.input, o);
+  EXPECT_TRUE(rep.plots_skipped);
+  const std::string html = html_document(rep);
+  EXPECT_NE(html.find("The plots were skipped: gnuplot could not be run"), std::string::npos)
+      << rep.plots_note;
+  EXPECT_NE(html.find("/nonexistent/gnuplot"), std::string::npos);
+  EXPECT_EQ(html.find("<svg"), std::string::npos);
+  EXPECT_NE(html.find("<td>gm_tc</td>"), std::string::npos);
+  EXPECT_NE(rep.markdown.find("plots were skipped"), std::string::npos);
+  EXPECT_FALSE(rep.kalibr_yaml.empty());
+  EXPECT_FALSE(render_svg(Plot{}, o.plot).svg.has_value());
+  EXPECT_TRUE(render_svg(Plot{}, o.plot).gnuplot_missing);
+  EXPECT_FALSE(gnuplot_available("/nonexistent/gnuplot"));
+}
+
+TEST(Report, WithoutTemperatureThereIsNoBiasPlot) {
+  const Analysed& a = analysed();
+  ReportInput in = a.input;
+  in.preview.temperature_c.clear();
+  in.temperature_channel.clear();
+  model::AnalysisResult r = a.result;
+  r.systematic.reset();
+  const std::vector<Plot> plots = report_plots(r, in);
+  ASSERT_EQ(plots.size(), 3u);
+  EXPECT_EQ(plots[0].x_label, "time [h]");
+  EXPECT_EQ(plots[1].x_label, "frequency [Hz]");
+  EXPECT_EQ(plots[2].x_label, "tau [s]");
+  ReportOptions o;
+  o.plots = false;
+  const Report rep = make_report(r, in, o);
+  ASSERT_EQ(rep.figures.size(), 3u);
+  EXPECT_EQ(rep.figures[1].name, "psd");
+  EXPECT_EQ(rep.figures[2].name, "adev");
+}
+
+TEST(Report, BiasPlotFollowsTheFittedPolynomial) {
+  const Analysed& a = analysed();
+  const std::vector<Plot> plots = report_plots(a.result, a.input);
+  ASSERT_EQ(plots.size(), 4u);
+  const Plot& bias = plots[1];
+  ASSERT_EQ(bias.series.size(), 2u);
+  const model::SystematicFit& s = *a.result.systematic;
+  const Series& fit = bias.series[1];
+  for (std::size_t k = 0; k < fit.x.size(); k += 25) {
+    double v = 0.0;
+    for (std::size_t j = 0; j < s.coefficients.size(); ++j) {
+      v += s.coefficients[j] * std::pow(fit.x[k] - s.t_ref_c, static_cast<double>(j));
+    }
+    EXPECT_NEAR(fit.y[k], v, 1e-9 * (1.0 + std::abs(v)));
+  }
+  // The truth: 3 deg/h + 0.8 deg/h/degC about the ramp's mean (25 degC).
+  ASSERT_GE(s.coefficients.size(), 2u);
+  EXPECT_NEAR(s.coefficients[1], 0.8, 0.1);
+  EXPECT_LE(bias.series[0].x.size(), 200u);
+  EXPECT_GE(bias.series[0].x.size(), 100u);
+}
+
+TEST(Preview, BlockMeansAndEnvelope) {
+  std::vector<double> rate(10001), temp(10001);
+  for (std::size_t k = 0; k < rate.size(); ++k) {
+    rate[k] = static_cast<double>(k % 2 == 0 ? k : -static_cast<double>(k));
+    temp[k] = 20.0 + 0.001 * static_cast<double>(k);
+  }
+  const RecordPreview p = preview_record(rate, temp, 10.0, 2000);
+  EXPECT_EQ(p.block_samples, 6);  // ceil(10001 / 2000)
+  ASSERT_EQ(p.time_s.size(), 1667u);
+  // Block 0: samples 0..5 = 0, -1, 2, -3, 4, -5.
+  EXPECT_DOUBLE_EQ(p.rate_mean_deg_h[0], -0.5);
+  EXPECT_DOUBLE_EQ(p.rate_min_deg_h[0], -5.0);
+  EXPECT_DOUBLE_EQ(p.rate_max_deg_h[0], 4.0);
+  EXPECT_DOUBLE_EQ(p.time_s[0], 0.25);  // centre of samples 0..5 at 10 Hz
+  EXPECT_NEAR(p.temperature_c[0], 20.0025, 1e-12);
+  // The last block holds sample 9996..10000.
+  EXPECT_DOUBLE_EQ(p.rate_max_deg_h.back(), 10000.0);
+  EXPECT_DOUBLE_EQ(p.time_s.back(), 999.8);
+  EXPECT_THROW(preview_record(rate, std::vector<double>(3), 10.0), UsageError);
+  EXPECT_THROW(preview_record(rate, temp, 0.0), UsageError);
+}
+
+TEST(Plot, EqualDecadesSetTheAspectRatio) {
+  Plot p;
+  p.log_x = p.log_y = true;
+  p.equal_decades = true;
+  Series s;
+  s.x = {1.5, 900.0};  // decades 10^0 .. 10^3
+  s.y = {0.2, 8.0};    // decades 10^-1 .. 10^1
+  p.series.push_back(s);
+  std::string script = gnuplot_script(p);
+  EXPECT_NE(script.find("set xrange [1:1000]"), std::string::npos) << script;
+  EXPECT_NE(script.find("set yrange [0.1:10]"), std::string::npos) << script;
+  EXPECT_NE(script.find("set size ratio 0.666666667"), std::string::npos) << script;
+  // One decade of y over six of x would be too flat: y is widened to three.
+  p.series[0].x = {1.0, 1e6};
+  p.series[0].y = {1.0, 10.0};
+  script = gnuplot_script(p);
+  EXPECT_NE(script.find("set size ratio 0.5\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("set yrange [0.1:100]"), std::string::npos) << script;
+  // A guide line does not stretch the ranges; non-positive values break the line.
+  Series guide;
+  guide.sets_range = false;
+  guide.x = {1.0, 1e6};
+  guide.y = {1e-9, -1.0};
+  p.series.push_back(guide);
+  EXPECT_NE(gnuplot_script(p).find("set yrange [0.1:100]"), std::string::npos);
+}
+
+TEST(Plot, TitlesAreQuotedForGnuplot) {
+  EXPECT_EQ(gnuplot_quote("it's"), "'it''s'");
+  EXPECT_EQ(gnuplot_quote("a\nb\\c \"d\""), "'a b\\c \"d\"'");
+  Plot p;
+  p.title = "K's line; set output '/tmp/x'";
+  p.x_label = "tau [s]";
+  p.y_label = "T_ref^2";
+  Series s;
+  s.title = "x<y & z";
+  s.x = {1, 2};
+  s.y = {3, 4};
+  p.series.push_back(s);
+  const std::string script = gnuplot_script(p);
+  EXPECT_NE(script.find("set title 'K''s line; set output ''/tmp/x'''\n"), std::string::npos)
+      << script;
+  EXPECT_NE(script.find("noenhanced"), std::string::npos);
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const PlotOutcome out = render_svg(p);
+  ASSERT_TRUE(out.svg.has_value()) << out.error;
+  EXPECT_NE(out.svg->find("x&lt;y &amp; z"), std::string::npos);
+  EXPECT_NE(out.svg->find("T_ref^2"), std::string::npos);
+  EXPECT_EQ(out.svg->rfind("<svg", 0), 0u);
+}
+
+}  // namespace
+}  // namespace foglab::report
