@@ -157,6 +157,26 @@ Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::
   return plot;
 }
 
+// The lab's graphical reading of a line from the PSD, or the fit's value
+// (resolved terms only) when the PSD shows none, with where it came from.
+std::pair<std::optional<double>, std::string> reading_or_fit(const std::optional<double>& reading,
+                                                             const model::ParameterEstimate& fit) {
+  if (reading) return {reading, "PSD reading"};
+  if (fit.status == model::TermStatus::resolved) return {fit.value, "fit"};
+  return {std::nullopt, ""};
+}
+
+// A dashed reference line that does not set the plot's range.
+Series reference_line(std::string title, const char* color) {
+  Series line;
+  line.title = std::move(title);
+  line.color = color;
+  line.dash_type = 2;
+  line.line_width = 2.0;
+  line.sets_range = false;
+  return line;
+}
+
 Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
   const stats::PsdResult& psd = r.psd_smoothed.frequency_hz.empty() ? r.psd : r.psd_smoothed;
   Plot plot;
@@ -179,36 +199,18 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
   if (psd.frequency_hz.empty()) return plot;
   const double f_lo = psd.frequency_hz.front(), f_hi = psd.frequency_hz.back();
 
-  std::optional<double> n = r.psd_readings.N;
-  std::string n_source = "PSD reading";
-  if (!n && r.noise.N.status == model::TermStatus::resolved) {
-    n = r.noise.N.value;
-    n_source = "fit";
-  }
+  const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N);
   if (n) {
-    Series white;
-    white.title = fmt::format("white noise level N = {} deg/h/sqrt(Hz) ({})", g(*n), n_source);
-    white.color = kGreen;
-    white.dash_type = 2;
-    white.line_width = 2.0;
-    white.sets_range = false;
+    Series white = reference_line(
+        fmt::format("white noise level N = {} deg/h/sqrt(Hz) ({})", g(*n), n_source), kGreen);
     white.x = {f_lo, f_hi};
     white.y = {*n, *n};
     plot.series.push_back(std::move(white));
   }
-  std::optional<double> k = r.psd_readings.K;
-  std::string k_source = "PSD reading";
-  if (!k && r.noise.K.status == model::TermStatus::resolved) {
-    k = r.noise.K.value;
-    k_source = "fit";
-  }
+  const auto [k, k_source] = reading_or_fit(r.psd_readings.K, r.noise.K);
   if (k) {
-    Series walk;
-    walk.title = fmt::format("random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})", g(*k), k_source);
-    walk.color = kRed;
-    walk.dash_type = 2;
-    walk.line_width = 2.0;
-    walk.sets_range = false;
+    Series walk = reference_line(
+        fmt::format("random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})", g(*k), k_source), kRed);
     // From the lowest frequency to 1 Hz (where the lab reads it), or to the
     // white level when that is crossed later.
     double f_end = std::max(1.0, n ? *k / (2.0 * kPi * *n) : 1.0);

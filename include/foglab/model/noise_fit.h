@@ -96,7 +96,8 @@ struct ParameterEstimate {
   double value =
       0.0;  ///< the estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent
   /// The 95 % interval; for a term left out, the one-sided [0, upper_95]
-  /// (NaN when no bound could be set).
+  /// (NaN when no bound could be set). A Gauss-Markov end the data do not
+  /// close is infinite (ci95_high) or 0 (ci95_low).
   double ci95_low = 0.0;
   double ci95_high = 0.0;
   /// One-sided 95 % upper bound for a term left out (NaN when resolved or
