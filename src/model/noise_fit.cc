@@ -720,6 +720,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     return r.*(reported_parameters()[static_cast<std::size_t>(t)].estimate);
   };
   for (std::size_t j = 0; j < order.size(); ++j) {
+    if (order[j] == NoiseTerm::gm) continue;  // its pair by profile, below
     ParameterEstimate& e = estimate_for(order[j]);
     const double value = coefficient(r.model, order[j]);
     // ln(coefficient) = ln(c)/2
@@ -731,8 +732,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   }
   if (chosen.mask & gm_bit) {
     const GaussMarkovIntervals g = gauss_markov_intervals(pc, chosen, scale);
-    r.gm_sigma.ci95_low = g.sigma_low;
-    r.gm_sigma.ci95_high = g.sigma_high;
+    r.gm_sigma = {r.model.gm_sigma, g.sigma_low, g.sigma_high, kNaN, TermStatus::resolved};
     r.gm_tc = {r.model.gm_tc, g.tc_low, g.tc_high, kNaN, TermStatus::resolved};
   }
 

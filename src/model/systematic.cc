@@ -587,11 +587,6 @@ SystematicFit choose_temperature_degree(const SystematicFit& first, const Temper
   return choose_of(first, record.sums(), noise, options);
 }
 
-void set_standard_errors(SystematicFit& fit, std::span<const double> temperature_c,
-                         double sample_rate_hz, const NoiseModel& noise, int blocks) {
-  set_errors(fit, summarize({}, temperature_c, sample_rate_hz, fit.t_ref_c, blocks, 0), noise);
-}
-
 void set_standard_errors(SystematicFit& fit, const TemperatureRecord& record,
                          const NoiseModel& noise) {
   set_errors(fit, record.sums(), noise);

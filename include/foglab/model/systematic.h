@@ -123,12 +123,9 @@ SystematicFit choose_temperature_degree(const SystematicFit& first, const Temper
                                         const NoiseModel& noise,
                                         const SystematicOptions& options = {});
 
-/// Sets fit.standard_errors from coefficient_covariance() under `noise`.
-void set_standard_errors(SystematicFit& fit, std::span<const double> temperature_c,
-                         double sample_rate_hz, const NoiseModel& noise, int blocks = 1024);
-
-/// The same from the record's sums (blocks: the record's `blocks`; fit.t_ref_c
-/// must be the record's).
+/// Sets fit.standard_errors from the coefficients' covariance under `noise`
+/// (coefficient_covariance(), from the record's sums; fit.t_ref_c must be
+/// the record's).
 void set_standard_errors(SystematicFit& fit, const TemperatureRecord& record,
                          const NoiseModel& noise);
 
