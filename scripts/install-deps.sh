@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages foglab needs to build and run, skipping
 # those already present; with --tests also what the test suite needs
-# (GNU Octave). Run as root (or with sudo).
+# (GNU Octave; headless Chromium for the report's browser test). Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -15,7 +15,8 @@ if [ "${1:-}" = "--tests" ]; then
   # octave-cli runs the lab's MATLAB steps on lab2-data files in the tests
   # (octave 7 from Debian 12); its plots need a font, a Recommends of
   # octave-common that --no-install-recommends would skip.
-  packages+=(octave fonts-freefont-otf)
+  # chromium opens the lab-2 report in the browser test (headless).
+  packages+=(octave fonts-freefont-otf chromium)
 fi
 
 missing=()

@@ -13,5 +13,6 @@ std::function<void()> register_allan(CLI::App& app);
 std::function<void()> register_psd(CLI::App& app);
 std::function<void()> register_generate(CLI::App& app);
 std::function<void()> register_lab2_data(CLI::App& app);
+std::function<void()> register_lab2(CLI::App& app);
 
 }  // namespace foglab::cli

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   add(cli::register_psd);
   add(cli::register_generate);
   add(cli::register_lab2_data);
+  add(cli::register_lab2);
 
   try {
     app.parse(argc, argv);

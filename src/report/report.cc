@@ -11,8 +11,90 @@
 #include "foglab/core/error.h"
 #include "foglab/core/units.h"
 #include "foglab/core/version.h"
+#include "report_internal.h"
 
 namespace foglab::report {
+
+namespace detail {
+
+// ---- shared with lab2.cc (report_internal.h) ----------------------------------
+
+std::string g(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; }
+std::string g(const std::optional<double>& v) { return v ? g(*v) : std::string("not visible"); }
+
+ParameterText parameter_text(const model::ParameterEstimate& p) {
+  ParameterText t;
+  if (p.status == model::TermStatus::resolved) {
+    t.value = g(p.value);
+    t.interval = fmt::format("[{}, {}]", g(p.ci95_low), g(p.ci95_high));
+  } else if (p.status == model::TermStatus::upper_bound) {
+    const double bound = std::isfinite(p.upper_95) ? p.upper_95 : p.value;
+    t.value = std::isfinite(bound) ? "< " + g(bound) : "-";
+    t.interval = std::isfinite(p.ci95_high) ? fmt::format("[0, {}]", g(p.ci95_high))
+                                            : std::string("no bound");
+  } else {
+    t.value = "-";
+    if (std::isfinite(p.upper_95)) t.interval = fmt::format("(< {})", g(p.upper_95));
+  }
+  return t;
+}
+
+std::string random_bias_answer(const model::AnalysisResult& r) {
+  switch (r.noise.random_bias_process) {
+    case model::RandomBiasProcess::wiener:
+      return fmt::format("a Wiener process (rate random walk), K = {} deg/h/sqrt(s)",
+                         parameter_text(r.noise.K).value);
+    case model::RandomBiasProcess::gauss_markov:
+      return fmt::format("a first-order Gauss-Markov process, sigma = {} deg/h, Tc = {} s",
+                         parameter_text(r.noise.gm_sigma).value,
+                         parameter_text(r.noise.gm_tc).value);
+    case model::RandomBiasProcess::none:
+      break;
+  }
+  return "not visible in this record (neither a Wiener nor a Gauss-Markov process is supported "
+         "by the data)";
+}
+
+std::string class_sentence(const model::AnalysisResult& r) {
+  const ClassVerdict& v = r.verdict;
+  std::string decided = v.decided_by == "both" ? "both criteria agree"
+                        : v.decided_by == "arw"
+                            ? "decided by the angle random walk (the worse of the two)"
+                            : "decided by the bias instability (the worse of the two)";
+  return fmt::format("{} ({}; by bias instability {} deg/h: {}; by ARW {} deg/sqrt(h): {})",
+                     to_string(v.accuracy_class), decided, g(r.bias_instability_deg_h),
+                     to_string(v.by_bias_instability), g(r.arw_deg_sqrt_h), to_string(v.by_arw));
+}
+
+std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }
+std::string th(std::string_view text) { return "<th>" + html_escape(text) + "</th>"; }
+
+const char* const kCss =
+    R"(body{font-family:system-ui,-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
+h1{font-size:1.6em;border-bottom:2px solid #0072b2;padding-bottom:.2em}
+h2{font-size:1.35em;margin-top:2em;border-bottom:1px solid #ccc}
+h3{font-size:1.1em;margin-top:1.5em}
+table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
+th,td{border:1px solid #ccc;padding:.25em .6em;text-align:left;vertical-align:top}
+tr:first-child th{background:#eef4fa}
+table.meta th{background:#f6f6f6;font-weight:normal;color:#444}
+tr.absent td{color:#888}
+tr.upper_bound td{color:#555;font-style:italic}
+figure{margin:1em 0}
+figure svg{max-width:100%;height:auto;border:1px solid #e4e4e4}
+figcaption{font-size:.9em;color:#444}
+.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.4em .8em}
+.note{color:#444;font-size:.92em}
+.verdict{font-weight:bold}
+td.truth{background:#f3f8f3;color:#333}
+table.lab2 td:first-child{font-weight:600}
+nav ul{columns:2;font-size:.95em}
+footer{margin-top:3em;font-size:.85em;color:#777})";
+
+}  // namespace detail
+
+using namespace detail;
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -27,9 +109,6 @@ constexpr const char* kPurple = "#cc79a7";
 constexpr const char* kYellow = "#b8a000";
 constexpr const char* kBlack = "#000000";
 constexpr const char* kGrey = "#606060";
-
-std::string g(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; }
-std::string g(const std::optional<double>& v) { return v ? g(*v) : std::string("not visible"); }
 
 std::vector<double> log_space(double lo, double hi, int n) {
   std::vector<double> out;
@@ -314,28 +393,6 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
 
 // ---- text helpers --------------------------------------------------------------
 
-/// Value and interval of a parameter as the CLI shows them.
-struct ParameterText {
-  std::string value, interval;
-};
-
-ParameterText parameter_text(const model::ParameterEstimate& p) {
-  ParameterText t;
-  if (p.status == model::TermStatus::resolved) {
-    t.value = g(p.value);
-    t.interval = fmt::format("[{}, {}]", g(p.ci95_low), g(p.ci95_high));
-  } else if (p.status == model::TermStatus::upper_bound) {
-    const double bound = std::isfinite(p.upper_95) ? p.upper_95 : p.value;
-    t.value = std::isfinite(bound) ? "< " + g(bound) : "-";
-    t.interval = std::isfinite(p.ci95_high) ? fmt::format("[0, {}]", g(p.ci95_high))
-                                            : std::string("no bound");
-  } else {
-    t.value = "-";
-    if (std::isfinite(p.upper_95)) t.interval = fmt::format("(< {})", g(p.upper_95));
-  }
-  return t;
-}
-
 std::string_view parameter_meaning(std::string_view name) {
   if (name == "N") return "white rate noise (angle random walk = N/60 deg/sqrt(h))";
   if (name == "B") return "flicker, bias instability coefficient (plateau 0.664 B)";
@@ -360,37 +417,7 @@ std::vector<std::string> all_notes(const model::AnalysisResult& r, const ReportI
   return notes;
 }
 
-std::string random_bias_answer(const model::AnalysisResult& r) {
-  switch (r.noise.random_bias_process) {
-    case model::RandomBiasProcess::wiener:
-      return fmt::format("a Wiener process (rate random walk), K = {} deg/h/sqrt(s)",
-                         parameter_text(r.noise.K).value);
-    case model::RandomBiasProcess::gauss_markov:
-      return fmt::format("a first-order Gauss-Markov process, sigma = {} deg/h, Tc = {} s",
-                         parameter_text(r.noise.gm_sigma).value,
-                         parameter_text(r.noise.gm_tc).value);
-    case model::RandomBiasProcess::none:
-      break;
-  }
-  return "not visible in this record (neither a Wiener nor a Gauss-Markov process is supported "
-         "by the data)";
-}
-
-std::string class_sentence(const model::AnalysisResult& r) {
-  const ClassVerdict& v = r.verdict;
-  std::string decided = v.decided_by == "both" ? "both criteria agree"
-                        : v.decided_by == "arw"
-                            ? "decided by the angle random walk (the worse of the two)"
-                            : "decided by the bias instability (the worse of the two)";
-  return fmt::format("{} ({}; by bias instability {} deg/h: {}; by ARW {} deg/sqrt(h): {})",
-                     to_string(v.accuracy_class), decided, g(r.bias_instability_deg_h),
-                     to_string(v.by_bias_instability), g(r.arw_deg_sqrt_h), to_string(v.by_arw));
-}
-
 // ---- HTML ----------------------------------------------------------------------------
-
-std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }
-std::string th(std::string_view text) { return "<th>" + html_escape(text) + "</th>"; }
 
 std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   std::string h;
@@ -435,7 +462,14 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
     h += "</table>\n";
     if (!s.note.empty()) h += "<p class=\"note\">" + html_escape(s.note) + "</p>\n";
   } else {
-    h += "<p>No temperature: only the record mean (the constant bias) was removed.</p>\n";
+    h += in.record_mean_deg_h
+             ? fmt::format(
+                   "<p>No temperature: only the record mean (the constant bias), {:.6g} "
+                   "deg/h, was removed.</p>\n",
+                   *in.record_mean_deg_h)
+             : std::string(
+                   "<p>No temperature: only the record mean (the constant bias) was "
+                   "removed.</p>\n");
   }
 
   // Noise model.
@@ -515,25 +549,6 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   }
   return h;
 }
-
-constexpr const char* kCss =
-    R"(body{font-family:system-ui,-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
-h1{font-size:1.6em;border-bottom:2px solid #0072b2;padding-bottom:.2em}
-h2{font-size:1.35em;margin-top:2em;border-bottom:1px solid #ccc}
-h3{font-size:1.1em;margin-top:1.5em}
-table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
-th,td{border:1px solid #ccc;padding:.25em .6em;text-align:left;vertical-align:top}
-tr:first-child th{background:#eef4fa}
-table.meta th{background:#f6f6f6;font-weight:normal;color:#444}
-tr.absent td{color:#888}
-tr.upper_bound td{color:#555;font-style:italic}
-figure{margin:1em 0}
-figure svg{max-width:100%;height:auto;border:1px solid #e4e4e4}
-figcaption{font-size:.9em;color:#444}
-.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.4em .8em}
-.note{color:#444;font-size:.92em}
-.verdict{font-weight:bold}
-footer{margin-top:3em;font-size:.85em;color:#777})";
 
 }  // namespace
 
@@ -651,7 +666,10 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
     if (!s.note.empty()) md += "- " + s.note + "\n";
     md += "\n";
   } else {
-    md += "No temperature: only the record mean was removed.\n\n";
+    md += in.record_mean_deg_h
+              ? fmt::format("No temperature: only the record mean, {:.6g} deg/h, was removed.\n\n",
+                            *in.record_mean_deg_h)
+              : std::string("No temperature: only the record mean was removed.\n\n");
   }
 
   md += fmt::format("### Noise model (terms {}, 95 % intervals)\n\n",
@@ -835,17 +853,28 @@ Report make_report(const model::AnalysisResult& result, const ReportInput& input
   return rep;
 }
 
-std::string html_document(std::span<const Report> reports, std::string_view title) {
+namespace {
+std::string section_id(std::size_t k) { return fmt::format("recording-{}", k + 1); }
+}  // namespace
+
+std::string html_document(std::span<const Report> reports, std::string_view title,
+                          std::string_view preface_html) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   h += "<title>" + html_escape(title) + "</title>\n<style>\n" + kCss + "\n</style>\n</head>\n";
   h += "<body>\n<h1>" + html_escape(title) + "</h1>\n";
   if (reports.size() > 1) {
-    h += "<ul>\n";
-    for (const Report& r : reports) h += "<li>" + html_escape(r.title) + "</li>\n";
-    h += "</ul>\n";
+    h += "<nav><ul>\n";
+    for (std::size_t k = 0; k < reports.size(); ++k) {
+      h += fmt::format("<li><a href=\"#{}\">{}</a></li>\n", section_id(k),
+                       html_escape(reports[k].title));
+    }
+    h += "</ul></nav>\n";
   }
-  for (const Report& r : reports) h += r.html_section;
+  h += preface_html;
+  for (std::size_t k = 0; k < reports.size(); ++k) {
+    h += fmt::format("<div id=\"{}\">\n", section_id(k)) + reports[k].html_section + "</div>\n";
+  }
   h += fmt::format(
       "<footer>Written by foglab {}. Units: rate deg/h, time s, temperature degC; noise "
       "parameters as in IEEE Std 952 (N deg/h/sqrt(Hz), B deg/h, K deg/h/sqrt(s), R deg/h/s, "

@@ -318,11 +318,12 @@ TEST_F(CliAnalyze, CsvHoldsTheAllanTableWithTheFittedModel) {
             0u)
       << text.substr(0, 200);
   EXPECT_GE(std::count(text.begin(), text.end(), '\n'), 10);
-  // The human-readable summary goes to stdout: parameters, units, class.
+  // The Markdown summary goes to stdout: parameters, units, class.
+  EXPECT_THAT(r.out, HasSubstr("| parameter | value | 95 % interval | status | unit |"));
   EXPECT_THAT(r.out, HasSubstr("deg/h/sqrt(Hz)"));
   EXPECT_THAT(r.out, HasSubstr("resolved"));
-  EXPECT_THAT(r.out, HasSubstr("Random bias"));
-  EXPECT_THAT(r.out, HasSubstr("Accuracy class"));
+  EXPECT_THAT(r.out, HasSubstr("random bias:"));
+  EXPECT_THAT(r.out, HasSubstr("accuracy class:"));
 }
 
 TEST_F(CliAnalyze, ReportAndKalibrFilesAreWrittenWithTheFit) {
@@ -390,7 +391,8 @@ TEST(CliAnalyzeInputs, BuiltInSampleHasNoTemperatureAndSaysSo) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("built-in sample"));
   EXPECT_THAT(r.err, HasSubstr("no temperature"));
-  EXPECT_THAT(r.out, HasSubstr("Accuracy class"));
+  EXPECT_THAT(r.out, HasSubstr("accuracy class:"));
+  EXPECT_THAT(r.out, HasSubstr("only the record mean, "));  // with its value
 }
 
 TEST(CliAnalyzeInputs, TemperaturePairsByNameY2WithT2AndRateWithTemperature) {

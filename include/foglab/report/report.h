@@ -76,7 +76,10 @@ struct ReportInput {
   std::string temperature_channel;   ///< e.g. "T1"; empty: no temperature
   std::string input_unit = "deg/h";  ///< the unit the rate was read in (converted to deg/h)
   RecordPreview preview;             ///< from preview_record() of the raw record
-  std::vector<std::string> notes;    ///< the caller's notes (shown with the analysis's)
+  /// [deg/h] the constant bias removed when there is no temperature (the
+  /// analysis does not keep it).
+  std::optional<double> record_mean_deg_h;
+  std::vector<std::string> notes;  ///< the caller's notes (shown with the analysis's)
 };
 
 struct ReportOptions {
@@ -114,8 +117,12 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
                                const ReportOptions& options = {});
 
 /// A complete, self-contained HTML page (inline CSS and SVG, no external
-/// resources) holding the sections of `reports` (lab 2: four of them).
-std::string html_document(std::span<const Report> reports, std::string_view title);
+/// resources) holding the sections of `reports` (lab 2: four of them), each
+/// in a <div id="recording-k"> (k = 1, 2, ...) that a list of links at the
+/// top points to when there are several; `preface_html` goes between that
+/// list and the sections (lab 2: its summary tables).
+std::string html_document(std::span<const Report> reports, std::string_view title,
+                          std::string_view preface_html = {});
 std::string html_document(const Report& report);
 
 /// The Markdown summary alone.

@@ -1,0 +1,355 @@
+// foglab lab2 — the whole of lab 2 in one command: for each gyro the
+// constant-temperature run (Y1, T1) and the ramp run (Y2, T2), analysed,
+// drawn and tabulated as the lab manual asks (report/lab2.h). With no FILE it
+// generates a variant (sim/lab2_variants.h) and shows its answer key.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis_output.h"
+#include "cli_common.h"
+#include "commands.h"
+#include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
+#include "foglab/core/output.h"
+#include "foglab/io/writer.h"
+#include "foglab/model/analysis.h"
+#include "foglab/report/lab2.h"
+#include "foglab/sim/generator.h"
+#include "foglab/sim/lab2_variants.h"
+
+namespace foglab::cli {
+namespace {
+
+struct Lab2Command {
+  std::vector<std::string> files;
+  int variant = 1;
+  std::uint64_t seed = sim::kLab2DefaultSeed;
+  std::string out = "lab2-report";
+  std::string temp_degree = "auto";
+  bool no_answers = false;
+  bool no_plots = false;
+  std::optional<double> hours;  // hidden: shorter generated runs (tests)
+};
+
+/// One run to analyse: the record and what the report needs besides.
+struct PendingRun {
+  report::Lab2Run run;
+  std::vector<double> rate_deg_h;
+  std::vector<double> temperature_c;
+  double sample_rate_hz = 0.0;
+  AnalysisJsonInput json;
+  std::string stem;  ///< output file names: "<stem>.json", "<stem>_allan.csv"
+};
+
+/// A file written at the end (every output is rendered before any is written).
+struct Output {
+  std::string name;
+  std::string text;
+};
+
+constexpr std::array<const char*, 2> kRateNames = {"Y1", "Y2"};
+constexpr std::array<const char*, 2> kTemperatureNames = {"T1", "T2"};
+constexpr std::array<report::Lab2Condition, 2> kConditions = {report::Lab2Condition::constant,
+                                                              report::Lab2Condition::ramp};
+
+int parse_degree(const std::string& text) {
+  if (text == "auto") return -1;
+  if (text.size() == 1 && text[0] >= '0' && text[0] <= '3') return text[0] - '0';
+  throw UsageError(
+      fmt::format("--temp-degree '{}': expected auto, 0, 1, 2 or 3 (the degree of the temperature "
+                  "polynomial)",
+                  text));
+}
+
+/// "FOG1" from "…/FOG1_3.mat"; the stem when it has no '_'.
+std::string gyro_name(const std::string& path) {
+  const std::string stem = std::filesystem::path(path).stem().string();
+  const std::size_t underscore = stem.find('_');
+  return underscore == std::string::npos || underscore == 0 ? stem : stem.substr(0, underscore);
+}
+
+std::string run_title(const std::string& gyro, report::Lab2Condition condition,
+                      const std::string& file, const std::string& channel) {
+  return fmt::format("{}, {} ({}, {})", gyro, report::to_string(condition), file, channel);
+}
+
+report::Lab2Truth truth_of(const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
+  report::Lab2Truth t;
+  t.random_bias_process = std::string(sim::to_string(g.random_bias));
+  t.N = g.model.N;
+  t.K = wiener ? g.model.K : kNaN;
+  t.gm_sigma = wiener ? kNaN : g.model.gm_sigma;
+  t.gm_tc = wiener ? kNaN : g.model.gm_tc;
+  t.bias_instability_deg_h = r.bias_instability.adev_deg_h;
+  t.bias_at_t_ref_deg_h = r.bias_at_t_ref_deg_h;
+  t.lab_constant_term_deg_h = r.lab_constant_term_deg_h;
+  t.c1_deg_h_per_c = g.model.temp_coefs.empty() ? 0.0 : g.model.temp_coefs[0];
+  t.accuracy_class = g.verdict.accuracy_class;
+  return t;
+}
+
+/// A generated gyro's two recordings, for its MAT file in the lab's layout.
+struct GeneratedFile {
+  std::string name;  ///< "FOG1_1.mat"
+  std::array<sim::Recording, 2> runs;
+};
+
+/// Generates the variant's four runs (and keeps the data for the MAT files).
+std::vector<PendingRun> generated_runs(const Lab2Command& c, std::vector<GeneratedFile>& files) {
+  sim::Lab2Options options;
+  options.seed = c.seed;
+  if (c.hours) {
+    if (!(*c.hours > 0.0) || !std::isfinite(*c.hours)) {
+      throw UsageError(fmt::format("--hours must be > 0, got {}", *c.hours));
+    }
+    options.duration_s = *c.hours * 3600.0;
+  }
+  const sim::Lab2Variant v = sim::lab2_variant(c.variant, options);
+  std::vector<PendingRun> runs;
+  for (const sim::Lab2Gyro& g : v.gyros) {
+    files.push_back({g.file_name, {}});
+    for (std::size_t k = 0; k < 2; ++k) {
+      const sim::Lab2Run& r = g.runs[k];
+      progress(fmt::format("generating {} {} ({:.3g} h at {} Hz)", g.file_name, r.rate_name,
+                           r.generator.duration_s / 3600.0, r.generator.sample_rate_hz));
+      files.back().runs[k] = sim::generate(g.model, r.temperature, r.generator);
+      const sim::Recording& rec = files.back().runs[k];
+      PendingRun p;
+      p.run.gyro = g.name;
+      p.run.condition = kConditions[k];
+      p.run.input.title = run_title(g.name, kConditions[k], g.file_name, r.rate_name);
+      p.run.input.file_name = g.file_name;
+      p.run.input.channel = r.rate_name;
+      p.run.input.temperature_channel = r.temperature_name;
+      if (!c.no_answers) p.run.truth = truth_of(g, r);
+      p.rate_deg_h = rec.rate_deg_h;
+      p.temperature_c = rec.temperature_c;
+      p.sample_rate_hz = rec.sample_rate_hz;
+      p.json.input = {{"path", g.file_name},
+                      {"channel", r.rate_name},
+                      {"sample_rate_hz", rec.sample_rate_hz},
+                      {"sample_rate_source", "generated (foglab lab2 --variant)"},
+                      {"variant", c.variant},
+                      {"seed", c.seed}};
+      p.json.temperature_channel = r.temperature_name;
+      p.stem =
+          fmt::format("{}_{}", std::filesystem::path(g.file_name).stem().string(), r.rate_name);
+      runs.push_back(std::move(p));
+    }
+  }
+  return runs;
+}
+
+/// Reads the lab's files: Y1/T1 (constant temperature) and Y2/T2 (ramp) of
+/// each, whichever are present (at least one).
+std::vector<PendingRun> file_runs(const Lab2Command& c) {
+  std::vector<PendingRun> runs;
+  for (const std::string& path : c.files) {
+    const std::vector<std::string> channels = io::list_channels(path);
+    auto has = [&](const char* name) {
+      return std::find(channels.begin(), channels.end(), name) != channels.end();
+    };
+    if (!has(kRateNames[0]) && !has(kRateNames[1])) {
+      throw DataError(fmt::format(
+          "'{}': no Y1 or Y2 variable (the lab's layout is f, t, Y1, Y2, T1, T2); it has {}", path,
+          channels.empty() ? std::string("none") : fmt::format("{}", fmt::join(channels, ", "))));
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (!has(kRateNames[k])) {
+        note(fmt::format("'{}' has no {}: its {} run is left out", path, kRateNames[k],
+                         report::to_string(kConditions[k])));
+        continue;
+      }
+      progress(fmt::format("reading '{}' {}", path, kRateNames[k]));
+      io::ReadOptions read;
+      read.channel = kRateNames[k];
+      io::Series rate = io::read_series(path, read);
+      PendingRun p;
+      p.run.gyro = gyro_name(path);
+      p.run.condition = kConditions[k];
+      p.run.input.title = run_title(p.run.gyro, kConditions[k],
+                                    std::filesystem::path(path).filename().string(), rate.channel);
+      p.run.input.file_name = path;
+      p.run.input.channel = rate.channel;
+      p.json.input = input_json(rate);
+      if (has(kTemperatureNames[k])) {
+        read.channel = kTemperatureNames[k];
+        read.sample_rate_hz = rate.sample_rate_hz;
+        io::Series t = io::read_series(path, read);
+        if (t.values.size() != rate.values.size()) {
+          throw DataError(
+              fmt::format("'{}': {} has {} samples but {} has {}; they must be sampled together",
+                          path, rate.channel, rate.values.size(), t.channel, t.values.size()));
+        }
+        p.temperature_c = std::move(t.values);
+        p.run.input.temperature_channel = kTemperatureNames[k];
+        p.json.temperature_channel = kTemperatureNames[k];
+      } else {
+        const std::string text =
+            fmt::format("'{}' has no {}: the systematic part of {} is a constant (the record mean)",
+                        path, kTemperatureNames[k], rate.channel);
+        note(text);
+        p.run.input.notes.push_back(text);
+        p.json.notes.push_back(text);
+      }
+      p.sample_rate_hz = rate.sample_rate_hz;
+      p.rate_deg_h = std::move(rate.values);
+      p.stem = fmt::format("{}_{}", std::filesystem::path(path).stem().string(), rate.channel);
+      runs.push_back(std::move(p));
+    }
+  }
+  return runs;
+}
+
+std::string intro_text(const Lab2Command& c, const std::vector<report::Lab2Run>& runs) {
+  std::string files;
+  for (const report::Lab2Run& r : runs) {
+    if (files.find(r.input.file_name) == std::string::npos) {
+      files += (files.empty() ? "" : ", ") + r.input.file_name;
+    }
+  }
+  std::string text =
+      c.files.empty()
+          ? fmt::format(
+                "Variant {} of the lab-2 data (seed {}), generated by foglab with a known truth: "
+                "{}.{}",
+                c.variant, c.seed, files,
+                c.no_answers ? ""
+                             : " The answer key column holds the values the data were made "
+                               "with (computed from the model, not estimated).")
+          : fmt::format("The lab's recordings {}.", files);
+  text +=
+      " Each run is analysed as the lab asks: the temperature polynomial is removed, then the "
+      "PSD and the overlapping Allan deviation of the residual are read as the lab does (lines "
+      "and minimum) and fitted with the IEEE Std 952 model (95 % intervals), the random bias "
+      "is identified and the Table 1 class given.";
+  return text;
+}
+
+void run(const Lab2Command& c) {
+  if (c.variant < 1 || c.variant > sim::kLab2Variants) {
+    throw UsageError(
+        fmt::format("--variant {}: the lab has variants 1 to {}", c.variant, sim::kLab2Variants));
+  }
+  model::AnalysisOptions options;
+  options.systematic.degree = parse_degree(c.temp_degree);
+
+  std::vector<Output> outputs;
+  std::vector<GeneratedFile> generated;
+  std::vector<PendingRun> pending = c.files.empty() ? generated_runs(c, generated) : file_runs(c);
+
+  std::vector<report::Lab2Run> runs;
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    PendingRun& p = pending[k];
+    const double fs = p.sample_rate_hz;
+    progress(fmt::format("[{}/{}] analysing {}", k + 1, pending.size(), p.run.input.title));
+    p.run.input.preview = report::preview_record(p.rate_deg_h, p.temperature_c, fs);
+    if (p.temperature_c.empty()) p.run.input.record_mean_deg_h = compensated_mean(p.rate_deg_h);
+    p.json.record_mean_deg_h = p.run.input.record_mean_deg_h.value_or(0.0);
+    try {
+      p.run.result = model::analyze(p.rate_deg_h, p.temperature_c, fs, options);
+    } catch (const DataError& e) {
+      throw DataError(
+          fmt::format("'{}' {}: {}", p.run.input.file_name, p.run.input.channel, e.what()));
+    } catch (const UsageError& e) {
+      throw UsageError(
+          fmt::format("'{}' {}: {}", p.run.input.file_name, p.run.input.channel, e.what()));
+    }
+    p.rate_deg_h = {};
+    p.temperature_c = {};
+    p.json.temp_degree = c.temp_degree;
+    outputs.push_back(
+        {p.stem + ".json", analysis_json(p.run.result, p.json, options).dump(2) + "\n"});
+    outputs.push_back({p.stem + "_allan.csv", analysis_csv(p.run.result)});
+    runs.push_back(std::move(p.run));
+  }
+
+  progress(fmt::format("drawing the plots of {} runs", runs.size()));
+  report::ReportOptions report_options;
+  report_options.plots = !c.no_plots;
+  const std::string title =
+      c.files.empty() ? fmt::format("foglab lab 2: variant {}", c.variant) : "foglab lab 2";
+  const report::Lab2Report rep =
+      report::make_lab2_report(runs, title, intro_text(c, runs), report_options);
+  if (rep.plots_skipped) note(rep.plots_note);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    outputs.push_back({pending[k].stem + "_imu.yaml", rep.runs[k].kalibr_yaml});
+  }
+  outputs.push_back({"report.html", rep.html});
+  outputs.push_back({"report.md", rep.markdown});
+  outputs.push_back({"lab2_table.csv", rep.csv});
+
+  // Everything is rendered: now write (each file atomically).
+  std::error_code ec;
+  std::filesystem::create_directories(c.out, ec);
+  if (ec || !std::filesystem::is_directory(c.out)) {
+    throw UsageError(fmt::format("--out '{}': cannot create the directory: {}", c.out,
+                                 ec ? ec.message() : "a file of that name exists"));
+  }
+  const std::filesystem::path dir(c.out);
+  for (const GeneratedFile& f : generated) {
+    const sim::Recording& constant = f.runs[0];
+    const sim::Recording& ramp = f.runs[1];
+    const double fs = constant.sample_rate_hz;
+    const std::vector<io::NamedVector> vars = {
+        {"f", {&fs, 1}},         {"t", constant.time_s},         {"Y1", constant.rate_deg_h},
+        {"Y2", ramp.rate_deg_h}, {"T1", constant.temperature_c}, {"T2", ramp.temperature_c}};
+    io::write_mat((dir / f.name).string(), vars);
+  }
+  for (const Output& o : outputs) write_text_file((dir / o.name).string(), o.text);
+
+  std::cout << rep.markdown_summary;
+  std::cout << fmt::format(
+      "Report: {}\n(also in '{}': report.md, lab2_table.csv, and for each run its analysis "
+      "<file>_<channel>.json, Allan table _allan.csv and Kalibr _imu.yaml{})\n",
+      (dir / "report.html").string(), c.out,
+      generated.empty() ? "" : "; the generated data in the lab's layout");
+}
+
+}  // namespace
+
+std::function<void()> register_lab2(CLI::App& app) {
+  auto c = std::make_shared<Lab2Command>();
+  CLI::App* cmd = app.add_subcommand(
+      "lab2",
+      "the whole of lab 2: each gyro's constant-temperature (Y1, T1) and ramp (Y2, T2) runs "
+      "analysed, the lab's table, classes and an HTML report with plots; no FILE: variant 1 "
+      "generated on the fly");
+  auto* files = cmd->add_option("FILE", c->files,
+                                "the lab's MAT files (FOG1_k.mat, FOG2_k.mat: f, t, Y1, Y2, T1, "
+                                "T2); none: generate --variant");
+  auto* variant = cmd->add_option("--variant", c->variant,
+                                  "variant 1-6 of the generated lab data (foglab lab2-data)")
+                      ->capture_default_str();
+  variant->excludes(files);
+  cmd->add_option("--seed", c->seed, "seed of the generated data (as foglab lab2-data)")
+      ->capture_default_str()
+      ->excludes(files);
+  cmd->add_option("--out", c->out,
+                  "directory for report.html, report.md, lab2_table.csv and each run's JSON, "
+                  "CSV and imu.yaml (created if needed)")
+      ->capture_default_str();
+  cmd->add_option("--temp-degree", c->temp_degree,
+                  "degree of the temperature polynomial: auto (information criterion), 0, 1, 2 "
+                  "(the lab's polyfit) or 3")
+      ->capture_default_str();
+  cmd->add_flag("--no-answers", c->no_answers,
+                "generated data: leave the answer key out of the report");
+  cmd->add_flag("--no-plots", c->no_plots, "write the report without plots (no gnuplot)");
+  cmd->add_option("--hours", c->hours, "")->group("");  // hidden: shorter generated runs
+  return [c] { run(*c); };
+}
+
+}  // namespace foglab::cli
