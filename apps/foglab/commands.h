@@ -14,5 +14,9 @@ std::function<void()> register_psd(CLI::App& app);
 std::function<void()> register_generate(CLI::App& app);
 std::function<void()> register_lab2_data(CLI::App& app);
 std::function<void()> register_lab2(CLI::App& app);
+std::function<void()> register_coil(CLI::App& app);
+std::function<void()> register_simulate(CLI::App& app);
+std::function<void()> register_sweep(CLI::App& app);
+std::function<void()> register_lab1(CLI::App& app);
 
 }  // namespace foglab::cli

@@ -34,6 +34,10 @@ int main(int argc, char** argv) {
   add(cli::register_generate);
   add(cli::register_lab2_data);
   add(cli::register_lab2);
+  add(cli::register_coil);
+  add(cli::register_simulate);
+  add(cli::register_sweep);
+  add(cli::register_lab1);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,186 @@
+// Lab 1's commands end to end: `coil`, `sweep` (CLI.md's JSON fields),
+// `simulate` and `lab1`, with the theory they must reproduce and their
+// errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/cli.h"
+#include "support/files.h"
+
+namespace foglab {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::quote;
+using test::run_foglab;
+using ::testing::HasSubstr;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kC = 299792458.0;
+
+json run_json(const std::string& args) {
+  const test::CliRun r = run_foglab(args);
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  if (r.exit_code != 0) return json::object();
+  return json::parse(r.out);
+}
+
+TEST(CliCoil, Variant6HasTheManualsFormulasInCliJsonFields) {
+  // Table 4 variant 6: L = 5 km, R = 20 cm, lambda = 1550 nm.
+  const json j = run_json("coil --variant 6 --json -");
+  const double ks = 4.0 * kPi * 0.2 * 5000.0 / (1550e-9 * kC);
+  EXPECT_NEAR(j["scale_factor_s"].get<double>(), ks, 1e-12 * ks);
+  EXPECT_NEAR(j["omega_pi2_rad_s"].get<double>(), kPi / 2.0 / ks, 1e-12);
+  EXPECT_NEAR(j["omega_pi2_deg_s"].get<double>(), kPi / 2.0 / ks * 180.0 / kPi, 1e-10);
+  EXPECT_NEAR(j["transit_time_s"].get<double>(), 5000.0 / kC, 1e-18);
+  EXPECT_NEAR(j["modulation_frequency_hz"].get<double>(), kC / 10000.0, 1e-6);
+}
+
+TEST(CliCoil, AnyCoilAndTheGroupIndex) {
+  const json j = run_json(
+      "coil --length 1000 --radius 0.05 --wavelength 1550e-9 "
+      "--group-index 1.47 --json -");
+  EXPECT_NEAR(j["transit_time_s"].get<double>(), 1.47 * 1000.0 / kC, 1e-18);
+  EXPECT_NEAR(j["scale_factor_s"].get<double>(), 4.0 * kPi * 0.05 * 1000.0 / (1550e-9 * kC), 1e-12);
+  // The text form names the quantities with their units.
+  const test::CliRun r = run_foglab("coil --variant 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("deg/s"));
+  EXPECT_THAT(r.out, HasSubstr("kHz"));
+}
+
+TEST(CliCoil, BadCoilsAreUsageErrors) {
+  for (const char* args :
+       {"coil", "coil --variant 7", "coil --length 1000 --radius 0.05",
+        "coil --length -1 --radius 0.05 --wavelength 1e-6", "coil --variant 1 --length 100"}) {
+    const test::CliRun r = run_foglab(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_THAT(r.err, ::testing::Not(HasSubstr("internal")));
+  }
+}
+
+TEST(CliSweep, OpenLoopSweepIsTheSineLawWithThe30PercentRange) {
+  const json coil = run_json("coil --variant 3 --json -");
+  const double range = coil["omega_pi2_deg_s"].get<double>();
+  const json j = run_json("sweep open-loop --variant 3 --json -");
+  ASSERT_EQ(j["rates_deg_s"].size(), 10u);
+  EXPECT_NEAR(j["rates_deg_s"][0].get<double>(), -range, 1e-9 * range);
+  EXPECT_NEAR(j["rates_deg_s"][9].get<double>(), range, 1e-9 * range);
+  // S = 2 gamma sin(phi_s) with 2 gamma = 1: sin(pi/2 * rate / range).
+  for (std::size_t i = 0; i < 10; ++i) {
+    const double rate = j["rates_deg_s"][i].get<double>();
+    EXPECT_NEAR(j["outputs"][i].get<double>(), std::sin(kPi / 2.0 * rate / range), 1e-3);
+    EXPECT_NEAR(j["scale_factors"][i].get<double>(), j["outputs"][i].get<double>() / rate, 1e-12);
+  }
+  double mean = 0.0;
+  for (int k = 1; k <= 5; ++k) mean += std::sin(k * kPi / 10.0) / (k * kPi / 10.0) / 5.0;
+  const double nl = 100.0 * (std::sin(kPi / 10.0) / (kPi / 10.0) - 2.0 / kPi) / mean;
+  EXPECT_NEAR(j["nonlinearity_percent"].get<double>(), nl, 0.01);
+  ASSERT_TRUE(j["range_for_30_percent_deg_s"].is_number());
+  const double r30 = j["range_for_30_percent_deg_s"].get<double>();
+  EXPECT_GT(r30, 0.5 * range);
+  EXPECT_LT(r30, range);
+}
+
+TEST(CliSweep, ClosedLoopIsLinearWithin10Ppm) {
+  const json j = run_json("sweep closed-loop --variant 5 --range 20 --json -");
+  EXPECT_LT(j["nonlinearity_percent"].get<double>(), 10e-4);  // 10 ppm
+  EXPECT_TRUE(j["range_for_30_percent_deg_s"].is_null());
+  for (std::size_t i = 0; i < 10; ++i) {
+    EXPECT_NEAR(j["scale_factors"][i].get<double>(), 1.0, 1e-5);
+  }
+}
+
+TEST(CliSweep, WithoutModulationThereIsNothingToSweep) {
+  const test::CliRun r = run_foglab("sweep open-loop --variant 1 --modulation none");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("none"));
+  const test::CliRun m = run_foglab("sweep open-loop --variant 1 --method guess");
+  EXPECT_EQ(m.exit_code, 2);
+  EXPECT_THAT(m.err, HasSubstr("guess"));
+}
+
+TEST(CliSimulate, OpenLoopReachesTheAnalyticSteadyState) {
+  for (const char* modulation : {"square", "sine"}) {
+    const json j = run_json(std::string("simulate open-loop --variant 4 --rate 5 --modulation ") +
+                            modulation + " --json -");
+    EXPECT_NEAR(j["final_output"].get<double>(), j["steady_state_output"].get<double>(), 1e-6)
+        << modulation;
+    EXPECT_GT(j["samples"].get<long long>(), 16 * 1000);
+  }
+}
+
+TEST(CliSimulate, ClosedLoopFollowsARampAndARateFile) {
+  test::TempDir dir;
+  const fs::path csv = dir / "closed.csv";
+  // Variant 1: Omega_pi/2 = 148.5 deg/s; a ramp to 3 Omega_pi/2 over 10 ms.
+  const test::CliRun r =
+      run_foglab("simulate closed-loop --variant 1 --ramp 0:445:0.01 --duration 0.012 --csv " +
+                 quote(csv) + " --json " + quote(dir / "s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(test::read_file(dir / "s.json"));
+  EXPECT_NEAR(j["final_output_deg_s"].get<double>(), 445.0, 1e-6 * 445.0);
+  const std::string table = test::read_file(csv);
+  EXPECT_GE(std::count(table.begin(), table.end(), '\n'), 5000);
+
+  std::ofstream(dir / "profile.csv") << "t,rate\n0,0\n0.002,100\n0.004,100\n";
+  const json p = run_json("simulate closed-loop --variant 1 --rate-file " +
+                          quote(dir / "profile.csv") + " --duration 0.005 --json -");
+  EXPECT_NEAR(p["final_output_deg_s"].get<double>(), 100.0, 1e-6 * 100.0);
+  EXPECT_NEAR(p["final_rate_deg_s"].get<double>(), 100.0, 1e-9);
+
+  std::ofstream(dir / "bad.csv") << "t,rate\n0,0\n0.002,100\n0.001,100\n";
+  const test::CliRun bad = run_foglab("simulate closed-loop --variant 1 --rate-file " +
+                                      quote(dir / "bad.csv") + " --json -");
+  EXPECT_EQ(bad.exit_code, 3) << bad.err;
+  EXPECT_THAT(bad.err, HasSubstr("bad.csv"));
+  EXPECT_THAT(bad.err, HasSubstr("increase"));
+}
+
+TEST(CliLab1, WritesTheReportWithEveryPlotAndTheLabsNumbers) {
+  test::TempDir dir;
+  const fs::path out = dir / "lab1";
+  const test::CliRun r = run_foglab("lab1 --variant 2 --out " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"report.html", "report.md", "sweeps.csv", "lab1.json"}) {
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  }
+  EXPECT_THAT(r.out, HasSubstr("## The coil (item 1.1)"));
+  EXPECT_THAT(r.out, HasSubstr("Report: " + (out / "report.html").string()));
+  const json j = json::parse(test::read_file(out / "lab1.json"));
+  EXPECT_NEAR(j["sweeps"]["open_loop_square"]["nonlinearity_percent"].get<double>(), 41.60, 0.01);
+  EXPECT_LT(j["sweeps"]["closed_loop"]["nonlinearity_percent"].get<double>(), 10e-4);
+  EXPECT_LT(j["checks"]["square_worst_deviation_of_full_scale"].get<double>(), 1e-3);
+  EXPECT_LT(j["checks"]["sine_worst_deviation_of_full_scale"].get<double>(), 1e-3);
+  EXPECT_NEAR(j["checks"]["off_frequency_spike_fraction"].get<double>(), 0.5, 0.01);
+  const std::string html = test::read_file(out / "report.html");
+  std::size_t svgs = 0;
+  for (std::size_t p = html.find("<svg"); p != std::string::npos; p = html.find("<svg", p + 1)) {
+    ++svgs;
+  }
+  EXPECT_EQ(svgs, 8u);
+  EXPECT_EQ(html.find("src="), std::string::npos);  // self-contained
+}
+
+TEST(CliLab1, BadVariantAndOutAreUsageErrors) {
+  test::TempDir dir;
+  const test::CliRun v = run_foglab("lab1 --variant 0 --out " + quote(dir / "o"));
+  EXPECT_EQ(v.exit_code, 2);
+  EXPECT_THAT(v.err, HasSubstr("Table 4"));
+  EXPECT_FALSE(fs::exists(dir / "o"));
+  std::ofstream(dir / "taken") << "keep";
+  const test::CliRun o = run_foglab("lab1 --no-plots --out " + quote(dir / "taken"));
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(test::read_file(dir / "taken"), "keep");
+}
+
+}  // namespace
+}  // namespace foglab
