@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "foglab/core/error.h"
 #include "foglab/io/sample.h"
 
 namespace foglab::cli {
@@ -65,11 +66,16 @@ nlohmann::json numbers(const std::vector<double>& values) {
 }
 
 nlohmann::json model_json(const sim::ErrorModel& m) {
-  return {{"N", m.N},         {"B", m.B},
-          {"K", m.K},         {"R", m.R},
-          {"Q", m.Q},         {"gm_sigma", m.gm_sigma},
-          {"gm_tc", m.gm_tc}, {"bias", m.bias},
-          {"input_rate", m.input_rate}, {"temp_coefs", m.temp_coefs}};
+  return {{"N", m.N},
+          {"B", m.B},
+          {"K", m.K},
+          {"R", m.R},
+          {"Q", m.Q},
+          {"gm_sigma", m.gm_sigma},
+          {"gm_tc", m.gm_tc},
+          {"bias", m.bias},
+          {"input_rate", m.input_rate},
+          {"temp_coefs", m.temp_coefs}};
 }
 
 nlohmann::json model_units_json() {
@@ -91,6 +97,28 @@ nlohmann::json input_json(const io::Series& series) {
           {"sample_rate_hz", series.sample_rate_hz},
           {"sample_rate_source", series.sample_rate_source},
           {"samples", series.values.size()}};
+}
+
+std::filesystem::path output_directory(const std::string& out) {
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec || !std::filesystem::is_directory(out)) {
+    throw UsageError(fmt::format("--out '{}': cannot create the directory: {}", out,
+                                 ec ? ec.message() : "a file of that name exists"));
+  }
+  return out;
+}
+
+sim::Lab2Options lab2_options(std::uint64_t seed, const std::optional<double>& hours) {
+  sim::Lab2Options options;
+  options.seed = seed;
+  if (hours) {
+    if (!(*hours > 0.0) || !std::isfinite(*hours)) {
+      throw UsageError(fmt::format("--hours must be > 0, got {}", *hours));
+    }
+    options.duration_s = *hours * 3600.0;
+  }
+  return options;
 }
 
 void note(const std::string& text) { std::cerr << "foglab: note: " << text << "\n"; }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "foglab/core/units.h"
 #include "foglab/io/reader.h"
 #include "foglab/sim/error_model.h"
+#include "foglab/sim/lab2_variants.h"
 
 namespace foglab::cli {
 
@@ -41,6 +43,14 @@ nlohmann::json model_units_json();
 
 /// Describes where the data came from, for every JSON output.
 nlohmann::json input_json(const io::Series& series);
+
+/// Creates the output directory `out` (and its parents) when needed and
+/// returns it; UsageError naming --out when it cannot be a directory.
+std::filesystem::path output_directory(const std::string& out);
+
+/// The lab-2 variant options from the commands' --seed and hidden --hours
+/// (shorter runs; UsageError unless > 0).
+sim::Lab2Options lab2_options(std::uint64_t seed, const std::optional<double>& hours);
 
 /// Prints a note on stderr ("foglab: note: ...").
 void note(const std::string& text);

@@ -69,13 +69,12 @@ std::string to_table(const stats::AllanResult& r, const io::Series& series) {
   const std::string unit = dev_unit(r.kind);
   std::string out = fmt::format("{} of '{}' channel {} ({} samples at {} Hz, {})\n",
                                 stats::to_string(r.kind), series.path, series.channel,
-                                series.values.size(), series.sample_rate_hz,
-                                to_string(r.input));
+                                series.values.size(), series.sample_rate_hz, to_string(r.input));
   out += fmt::format("{:>12} {:>10} {:>14} {:>6} {:>14} {:>14}\n", "tau [s]", "n",
                      fmt::format("dev [{}]", unit), "alpha", "95% low", "95% high");
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
-    out += fmt::format("{:>12.6g} {:>10} {:>14.6g} {:>6} {:>14.6g} {:>14.6g}\n", r.tau_s[k],
-                       r.n[k], r.dev[k], r.alpha[k], r.ci95_low[k], r.ci95_high[k]);
+    out += fmt::format("{:>12.6g} {:>10} {:>14.6g} {:>6} {:>14.6g} {:>14.6g}\n", r.tau_s[k], r.n[k],
+                       r.dev[k], r.alpha[k], r.ci95_low[k], r.ci95_high[k]);
   }
   return out;
 }
@@ -108,8 +107,9 @@ void run(const AllanCommand& c) {
 std::function<void()> register_allan(CLI::App& app) {
   auto c = std::make_shared<AllanCommand>();
   CLI::App* cmd = app.add_subcommand(
-      "allan", "Allan-family deviation (ADEV, OADEV, MDEV, HDEV, OHDEV, TDEV, TOTDEV) with "
-               "68 % and 95 % confidence intervals");
+      "allan",
+      "Allan-family deviation (ADEV, OADEV, MDEV, HDEV, OHDEV, TDEV, TOTDEV) with "
+      "68 % and 95 % confidence intervals");
   add_input_options(*cmd, c->input, /*file_optional=*/true);
   cmd->add_option("--kind", c->kind, "oadev, adev, mdev, hdev, ohdev, tdev or totdev")
       ->capture_default_str();

@@ -42,8 +42,8 @@ OutFormat format_of(const std::string& path) {
   if (ext == ".csv") return OutFormat::csv;
   if (ext == ".f32") return OutFormat::f32;
   if (ext == ".f64") return OutFormat::f64;
-  throw UsageError(fmt::format(
-      "--out '{}': unknown output type '{}'; use .mat, .csv, .f32 or .f64", path, ext));
+  throw UsageError(
+      fmt::format("--out '{}': unknown output type '{}'; use .mat, .csv, .f32 or .f64", path, ext));
 }
 
 std::string_view to_string(OutFormat f) {
@@ -66,14 +66,14 @@ std::vector<double> parse_coefs(const std::string& text) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos
-                                                                           : comma - start);
+    const std::string item =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
-      throw UsageError(fmt::format(
-          "--temp-coef '{}': '{}' is not a number (expected c1,c2,... in deg/h/degC^k)", text,
-          item));
+      throw UsageError(
+          fmt::format("--temp-coef '{}': '{}' is not a number (expected c1,c2,... in deg/h/degC^k)",
+                      text, item));
     }
     out.push_back(v);
     if (comma == std::string::npos) break;
@@ -145,8 +145,8 @@ void run(const GenerateCommand& c) {
   const OutFormat format = format_of(c.out);
   const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
   const double t_ref = temperature.reference_c(options.duration_s);
-  const auto samples = static_cast<std::int64_t>(
-      std::llround(options.duration_s * options.sample_rate_hz));
+  const auto samples =
+      static_cast<std::int64_t>(std::llround(options.duration_s * options.sample_rate_hz));
   if (samples < 1) {
     throw UsageError(fmt::format("--fs {} Hz for --hours {} gives no samples",
                                  options.sample_rate_hz, *c.hours));
@@ -157,8 +157,7 @@ void run(const GenerateCommand& c) {
   std::vector<std::string> variables;
   if (format == OutFormat::f32 || format == OutFormat::f64) {
     // streamed block by block: constant memory whatever the length
-    io::RawFileWriter writer(c.out, format == OutFormat::f32 ? io::RawType::f32
-                                                             : io::RawType::f64);
+    io::RawFileWriter writer(c.out, format == OutFormat::f32 ? io::RawType::f32 : io::RawType::f64);
     sim::generate(model, temperature, options,
                   [&](const sim::Block& block) { writer.append(block.rate_deg_h); });
     writer.commit();
@@ -183,9 +182,9 @@ void run(const GenerateCommand& c) {
     }
   }
 
-  const sim::AdevMinimum bi = sim::model_adev_minimum(
-      model, 1.0 / options.sample_rate_hz,
-      std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
+  const sim::AdevMinimum bi =
+      sim::model_adev_minimum(model, 1.0 / options.sample_rate_hz,
+                              std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
   const sim::ClassVerdict verdict = sim::classify(bi.adev_deg_h, model.N / 60.0);
   if (!c.truth.empty()) {
     nlohmann::json temp = {{"spec", c.temperature},
@@ -207,8 +206,8 @@ void run(const GenerateCommand& c) {
         {"samples", samples},
         {"seed", options.seed},
         {"stream", options.stream},
-        {"output", {{"path", c.out}, {"format", std::string(to_string(format))},
-                    {"variables", variables}}},
+        {"output",
+         {{"path", c.out}, {"format", std::string(to_string(format))}, {"variables", variables}}},
         {"theory",
          {{"bias_instability_deg_h", bi.adev_deg_h},
           {"bias_instability_tau_s", bi.tau_s},
@@ -257,8 +256,7 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--temperature", c->temperature,
                   "const, const:25, ramp:10, ramp:10@20 or file:PATH")
       ->capture_default_str();
-  cmd->add_option("--out", c->out, "output: FILE.mat, FILE.csv, FILE.f32 or FILE.f64")
-      ->required();
+  cmd->add_option("--out", c->out, "output: FILE.mat, FILE.csv, FILE.f32 or FILE.f64")->required();
   cmd->add_option("--truth", c->truth, "write the truth as JSON ('-' for stdout)");
   return [c] { run(*c); };
 }

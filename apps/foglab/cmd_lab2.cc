@@ -108,15 +108,7 @@ struct GeneratedFile {
 
 /// Generates the variant's four runs (and keeps the data for the MAT files).
 std::vector<PendingRun> generated_runs(const Lab2Command& c, std::vector<GeneratedFile>& files) {
-  sim::Lab2Options options;
-  options.seed = c.seed;
-  if (c.hours) {
-    if (!(*c.hours > 0.0) || !std::isfinite(*c.hours)) {
-      throw UsageError(fmt::format("--hours must be > 0, got {}", *c.hours));
-    }
-    options.duration_s = *c.hours * 3600.0;
-  }
-  const sim::Lab2Variant v = sim::lab2_variant(c.variant, options);
+  const sim::Lab2Variant v = sim::lab2_variant(c.variant, lab2_options(c.seed, c.hours));
   std::vector<PendingRun> runs;
   for (const sim::Lab2Gyro& g : v.gyros) {
     files.push_back({g.file_name, {}});
@@ -292,13 +284,7 @@ void run(const Lab2Command& c) {
   outputs.push_back({"lab2_table.csv", rep.csv});
 
   // Everything is rendered: now write (each file atomically).
-  std::error_code ec;
-  std::filesystem::create_directories(c.out, ec);
-  if (ec || !std::filesystem::is_directory(c.out)) {
-    throw UsageError(fmt::format("--out '{}': cannot create the directory: {}", c.out,
-                                 ec ? ec.message() : "a file of that name exists"));
-  }
-  const std::filesystem::path dir(c.out);
+  const std::filesystem::path dir = output_directory(c.out);
   for (const GeneratedFile& f : generated) {
     const sim::Recording& constant = f.runs[0];
     const sim::Recording& ramp = f.runs[1];

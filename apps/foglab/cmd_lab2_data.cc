@@ -41,11 +41,10 @@ nlohmann::json lab2_units() {
 
 nlohmann::json gyro_truth(const sim::Lab2Gyro& g) { return model_json(g.model); }
 
-nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g,
-                        const sim::Lab2Run& r) {
+nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
   const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
-  const auto samples = static_cast<std::int64_t>(
-      std::llround(r.generator.duration_s * r.generator.sample_rate_hz));
+  const auto samples =
+      static_cast<std::int64_t>(std::llround(r.generator.duration_s * r.generator.sample_rate_hz));
   return {
       {"file", g.file_name},
       {"gyro", g.name},
@@ -81,8 +80,7 @@ nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g,
         {"bias_instability_at_range_edge", r.bias_instability.at_range_edge},
         {"usable_tau_s", {r.usable_tau_min_s, r.usable_tau_max_s}},
         {"accuracy_class", std::string(sim::to_string(g.verdict.accuracy_class))},
-        {"class_by_bias_instability",
-         std::string(sim::to_string(g.verdict.by_bias_instability))},
+        {"class_by_bias_instability", std::string(sim::to_string(g.verdict.by_bias_instability))},
         {"class_by_arw", std::string(sim::to_string(g.verdict.by_arw))},
         {"class_decided_by", g.verdict.decided_by}}}};
 }
@@ -96,17 +94,28 @@ std::string cell(const nlohmann::json& j) {
 }
 
 std::string answers_csv(const nlohmann::json& rows) {
-  const std::vector<std::string> top = {"file", "gyro", "variant", "run", "rate_variable",
-                                        "temperature_variable", "sample_rate_hz", "duration_s",
-                                        "samples", "seed", "stream"};
-  const std::vector<std::string> expected = {
-      "lab_constant_term_deg_h", "constant_term_well_conditioned", "bias_at_t_ref_deg_h", "N",
-      "arw_deg_per_sqrt_h", "random_bias_process", "K", "gm_sigma", "gm_tc",
-      "flicker_floor_deg_h", "bias_instability_deg_h", "bias_instability_tau_s",
-      "bias_instability_at_range_edge", "accuracy_class", "class_decided_by"};
-  std::string out = "# foglab lab2-data answer key: N deg/h/sqrt(Hz), ARW deg/sqrt(h), K "
-                    "deg/h/sqrt(s), gm_sigma deg/h, gm_tc s, biases deg/h, temperatures degC; "
-                    "p1..p3 = polyfit(T, Y, 2) in MATLAB order\n";
+  const std::vector<std::string> top = {
+      "file",           "gyro",       "variant", "run",  "rate_variable", "temperature_variable",
+      "sample_rate_hz", "duration_s", "samples", "seed", "stream"};
+  const std::vector<std::string> expected = {"lab_constant_term_deg_h",
+                                             "constant_term_well_conditioned",
+                                             "bias_at_t_ref_deg_h",
+                                             "N",
+                                             "arw_deg_per_sqrt_h",
+                                             "random_bias_process",
+                                             "K",
+                                             "gm_sigma",
+                                             "gm_tc",
+                                             "flicker_floor_deg_h",
+                                             "bias_instability_deg_h",
+                                             "bias_instability_tau_s",
+                                             "bias_instability_at_range_edge",
+                                             "accuracy_class",
+                                             "class_decided_by"};
+  std::string out =
+      "# foglab lab2-data answer key: N deg/h/sqrt(Hz), ARW deg/sqrt(h), K "
+      "deg/h/sqrt(s), gm_sigma deg/h, gm_tc s, biases deg/h, temperatures degC; "
+      "p1..p3 = polyfit(T, Y, 2) in MATLAB order\n";
   for (const std::string& k : top) {
     out += k;
     out += ',';
@@ -136,28 +145,14 @@ std::string answers_csv(const nlohmann::json& rows) {
 }
 
 void run(const Lab2DataCommand& c) {
-  sim::Lab2Options options;
-  options.seed = c.seed;
-  if (c.hours) {
-    if (!(*c.hours > 0.0) || !std::isfinite(*c.hours)) {
-      throw UsageError(fmt::format("--hours must be > 0, got {}", *c.hours));
-    }
-    options.duration_s = *c.hours * 3600.0;
-  }
-  const std::vector<sim::Lab2Variant> variants = sim::lab2_variants(options);
-  std::error_code ec;
-  std::filesystem::create_directories(c.out, ec);
-  if (ec || !std::filesystem::is_directory(c.out)) {
-    throw UsageError(fmt::format("cannot create the directory '{}': {}", c.out,
-                                 ec ? ec.message() : "a file of that name exists"));
-  }
-  const std::filesystem::path dir(c.out);
+  const std::vector<sim::Lab2Variant> variants = sim::lab2_variants(lab2_options(c.seed, c.hours));
+  const std::filesystem::path dir = output_directory(c.out);
 
   nlohmann::json rows = nlohmann::json::array();
   nlohmann::json gyros = nlohmann::json::array();
-  std::string table = fmt::format("{:<11} {:<12} {:<13} {:>9} {:>9} {:>10} {:>9} {:>9}\n",
-                                  "file", "class", "random bias", "N", "ARW", "BI [deg/h]",
-                                  "p3 (Y2)", "fs x h");
+  std::string table =
+      fmt::format("{:<11} {:<12} {:<13} {:>9} {:>9} {:>10} {:>9} {:>9}\n", "file", "class",
+                  "random bias", "N", "ARW", "BI [deg/h]", "p3 (Y2)", "fs x h");
   for (const sim::Lab2Variant& v : variants) {
     for (const sim::Lab2Gyro& g : v.gyros) {
       progress(fmt::format("generating {}", g.file_name));
@@ -166,13 +161,12 @@ void run(const Lab2DataCommand& c) {
         recs[r] = sim::generate(g.model, g.runs[r].temperature, g.runs[r].generator);
       }
       const double f = recs[0].sample_rate_hz;
-      const std::vector<io::NamedVector> vars = {
-          {"f", {&f, 1}},
-          {"t", recs[0].time_s},
-          {"Y1", recs[0].rate_deg_h},
-          {"Y2", recs[1].rate_deg_h},
-          {"T1", recs[0].temperature_c},
-          {"T2", recs[1].temperature_c}};
+      const std::vector<io::NamedVector> vars = {{"f", {&f, 1}},
+                                                 {"t", recs[0].time_s},
+                                                 {"Y1", recs[0].rate_deg_h},
+                                                 {"Y2", recs[1].rate_deg_h},
+                                                 {"T1", recs[0].temperature_c},
+                                                 {"T2", recs[1].temperature_c}};
       io::write_mat((dir / g.file_name).string(), vars);
       for (const sim::Lab2Run& r : g.runs) rows.push_back(run_json(v, g, r));
       gyros.push_back({{"file", g.file_name},
@@ -183,12 +177,12 @@ void run(const Lab2DataCommand& c) {
                        {"accuracy_class", std::string(sim::to_string(g.verdict.accuracy_class))},
                        {"model", gyro_truth(g)}});
       const sim::Lab2Run& ramp = g.runs[1];
-      table += fmt::format(
-          "{:<11} {:<12} {:<13} {:>9.4g} {:>9.4g} {:>10.4g} {:>9.4g} {:>9}\n", g.file_name,
-          sim::to_string(g.verdict.accuracy_class), sim::to_string(g.random_bias), g.model.N,
-          g.arw_deg_sqrt_h, ramp.bias_instability.adev_deg_h, ramp.lab_constant_term_deg_h,
-          fmt::format("{}x{:.3g}", ramp.generator.sample_rate_hz,
-                      ramp.generator.duration_s / 3600.0));
+      table += fmt::format("{:<11} {:<12} {:<13} {:>9.4g} {:>9.4g} {:>10.4g} {:>9.4g} {:>9}\n",
+                           g.file_name, sim::to_string(g.verdict.accuracy_class),
+                           sim::to_string(g.random_bias), g.model.N, g.arw_deg_sqrt_h,
+                           ramp.bias_instability.adev_deg_h, ramp.lab_constant_term_deg_h,
+                           fmt::format("{}x{:.3g}", ramp.generator.sample_rate_hz,
+                                       ramp.generator.duration_s / 3600.0));
     }
   }
   const nlohmann::json answers = {

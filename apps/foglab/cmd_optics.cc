@@ -420,13 +420,7 @@ void run_lab1(const Lab1Command& c) {
         {"checks.*", "1 (fractions)"}}},
       {"foglab_version", std::string(version())}};
 
-  std::error_code ec;
-  std::filesystem::create_directories(c.out, ec);
-  if (ec || !std::filesystem::is_directory(c.out)) {
-    throw UsageError(fmt::format("--out '{}': cannot create the directory: {}", c.out,
-                                 ec ? ec.message() : "a file of that name exists"));
-  }
-  const std::filesystem::path dir(c.out);
+  const std::filesystem::path dir = output_directory(c.out);
   write_text_file((dir / "report.html").string(), rep.html);
   write_text_file((dir / "report.md").string(), rep.markdown);
   write_text_file((dir / "sweeps.csv").string(), rep.sweep_csv);

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 
 #include "foglab/core/units.h"
 #include "report_internal.h"
@@ -15,12 +14,6 @@ namespace {
 
 using namespace detail;
 
-constexpr const char* kBlue = "#0072b2";
-constexpr const char* kOrange = "#e69f00";
-constexpr const char* kGreen = "#009e73";
-constexpr const char* kRed = "#d55e00";
-constexpr const char* kGrey = "#606060";
-constexpr const char* kPurple = "#cc79a7";
 constexpr const char* kColours[] = {kGrey, kBlue, kOrange};  // none, square, sine
 
 constexpr std::size_t kMaxPlotPoints = 1500;
@@ -524,7 +517,7 @@ Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
                             const sim::ClosedLoopOptions& loop, const ReportOptions& options) {
   Lab1Report rep;
   const std::vector<Plot> plots = lab1_plots(r);
-  static const char* kNames[][2] = {
+  static const char* const kNames[][2] = {
       {"intensity", "Intensity at the detector against the total phase (items 2.5, 2.7, 2.9)."},
       {"output", "Demodulated output against the input rate, each modulation (items 2.7, 2.9)."},
       {"trace_square", "Time traces, square modulation at 0.5 Omega_pi/2."},
@@ -536,38 +529,12 @@ Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
        "folds (item 4.2)."},
       {"off_frequency", "Square modulation away from the proper frequency."},
   };
-  // Draw in parallel (each plot its own gnuplot).
-  std::vector<std::future<PlotOutcome>> pending;
-  if (options.plots) {
-    for (std::size_t i = 0; i < plots.size(); ++i) {
-      PlotOptions po = options.plot;
-      po.id_prefix = fmt::format("{}{}_", options.id_prefix, kNames[i][0]);
-      pending.push_back(
-          std::async(std::launch::async, [&plots, i, po] { return render_svg(plots[i], po); }));
-    }
-  }
-  std::string skip_reason = options.plots ? "" : "plotting was turned off";
-  for (std::size_t i = 0; i < plots.size(); ++i) {
-    Figure fig;
-    fig.name = kNames[i][0];
-    fig.caption = kNames[i][1];
-    if (options.plots) {
-      PlotOutcome out = pending[i].get();
-      if (out.gnuplot_missing) {
-        skip_reason = "gnuplot could not be run (" + out.error +
-                      "); install gnuplot (Debian: gnuplot-nox) to draw them";
-      } else {
-        fig.svg = std::move(out.svg);
-        fig.error = out.error;
-      }
-    }
-    if (!skip_reason.empty()) fig.error = skip_reason;
-    rep.figures.push_back(std::move(fig));
-  }
-  if (!skip_reason.empty()) {
-    rep.plots_skipped = true;
-    rep.plots_note = "The plots were skipped: " + skip_reason + ".";
-  }
+  std::vector<FigureSpec> specs;
+  for (const auto& [name, caption] : kNames) specs.push_back({name, caption});
+  RenderedFigures drawn = render_figures(plots, specs, options);
+  rep.figures = std::move(drawn.figures);
+  rep.plots_skipped = drawn.skipped;
+  rep.plots_note = std::move(drawn.note);
 
   const std::vector<Block> text = blocks(r, loop);
   rep.markdown = to_markdown(text, title);

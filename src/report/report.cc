@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <utility>
 
@@ -91,6 +92,46 @@ table.lab2 td:first-child{font-weight:600}
 nav ul{columns:2;font-size:.95em}
 footer{margin-top:3em;font-size:.85em;color:#777})";
 
+RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector<FigureSpec>& specs,
+                               const ReportOptions& options) {
+  RenderedFigures out;
+  std::vector<std::future<PlotOutcome>> pending;
+  if (options.plots) {
+    for (std::size_t i = 0; i < plots.size(); ++i) {
+      PlotOptions po = options.plot;
+      po.id_prefix = fmt::format("{}{}_", options.id_prefix, specs.at(i).name);
+      pending.push_back(
+          std::async(std::launch::async, [&plots, i, po] { return render_svg(plots[i], po); }));
+    }
+  }
+  std::string skip_reason = options.plots ? "" : "plotting was turned off";
+  for (std::size_t i = 0; i < plots.size(); ++i) {
+    Figure fig;
+    fig.name = specs.at(i).name;
+    fig.caption = specs.at(i).caption;
+    if (options.plots) {
+      PlotOutcome drawn = pending[i].get();
+      if (drawn.gnuplot_missing) {
+        skip_reason = "gnuplot could not be run (" + drawn.error +
+                      "); install gnuplot (Debian: gnuplot-nox) to draw them";
+      } else {
+        fig.svg = std::move(drawn.svg);
+        fig.error = drawn.error;
+      }
+    }
+    out.figures.push_back(std::move(fig));
+  }
+  if (!skip_reason.empty()) {
+    for (Figure& f : out.figures) {
+      f.svg.reset();
+      f.error = skip_reason;
+    }
+    out.skipped = true;
+    out.note = "The plots were skipped: " + skip_reason + ".";
+  }
+  return out;
+}
+
 }  // namespace detail
 
 using namespace detail;
@@ -98,17 +139,6 @@ using namespace detail;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Colours (colour-blind-safe Okabe-Ito palette).
-constexpr const char* kBlue = "#0072b2";
-constexpr const char* kLightBlue = "#56b4e9";
-constexpr const char* kOrange = "#e69f00";
-constexpr const char* kGreen = "#009e73";
-constexpr const char* kRed = "#d55e00";
-constexpr const char* kPurple = "#cc79a7";
-constexpr const char* kYellow = "#b8a000";
-constexpr const char* kBlack = "#000000";
-constexpr const char* kGrey = "#606060";
 
 std::vector<double> log_space(double lo, double hi, int n) {
   std::vector<double> out;
@@ -798,35 +828,17 @@ Report make_report(const model::AnalysisResult& result, const ReportInput& input
        "Overlapping Allan deviation of the residual with its 95 % confidence band, the "
        "fitted model and the line of each term, log-log with equal decades."},
   };
+  // No bias plot without a temperature: the captions shift by one.
   const bool has_bias_plot = plots.size() == 4;
-  std::string skip_reason;
-  if (!options.plots) {
-    skip_reason = "plotting was turned off";
-  }
+  std::vector<FigureSpec> specs;
   for (std::size_t i = 0; i < plots.size(); ++i) {
     const std::size_t kind = has_bias_plot || i == 0 ? i : i + 1;
-    Figure fig;
-    fig.name = kCaptions[kind][0];
-    fig.caption = kCaptions[kind][1];
-    if (skip_reason.empty()) {
-      PlotOptions po = options.plot;
-      po.id_prefix = fmt::format("{}{}_", options.id_prefix, fig.name);
-      PlotOutcome out = render_svg(plots[i], po);
-      if (out.gnuplot_missing) {
-        skip_reason = "gnuplot could not be run (" + out.error +
-                      "); install gnuplot (Debian: gnuplot-nox) to draw them";
-      } else {
-        fig.svg = std::move(out.svg);
-        fig.error = out.error;
-      }
-    }
-    if (!skip_reason.empty()) fig.error = skip_reason;
-    rep.figures.push_back(std::move(fig));
+    specs.push_back({kCaptions[kind][0], kCaptions[kind][1]});
   }
-  if (!skip_reason.empty()) {
-    rep.plots_skipped = true;
-    rep.plots_note = "The plots were skipped: " + skip_reason + ".";
-  }
+  RenderedFigures drawn = render_figures(plots, specs, options);
+  rep.figures = std::move(drawn.figures);
+  rep.plots_skipped = drawn.skipped;
+  rep.plots_note = std::move(drawn.note);
 
   // HTML section.
   std::string& h = rep.html_section;

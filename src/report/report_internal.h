@@ -5,10 +5,23 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "foglab/model/analysis.h"
+#include "foglab/report/report.h"
 
 namespace foglab::report::detail {
+
+// Colours (colour-blind-safe Okabe-Ito palette).
+inline constexpr const char* kBlue = "#0072b2";
+inline constexpr const char* kLightBlue = "#56b4e9";
+inline constexpr const char* kOrange = "#e69f00";
+inline constexpr const char* kGreen = "#009e73";
+inline constexpr const char* kRed = "#d55e00";
+inline constexpr const char* kPurple = "#cc79a7";
+inline constexpr const char* kYellow = "#b8a000";
+inline constexpr const char* kBlack = "#000000";
+inline constexpr const char* kGrey = "#606060";
 
 /// 4 significant digits; "-" for NaN or infinity.
 std::string g(double v);
@@ -33,5 +46,23 @@ std::string th(std::string_view text);
 
 /// The report pages' style sheet.
 extern const char* const kCss;
+
+/// A figure's name (also its SVG id prefix) and caption.
+struct FigureSpec {
+  std::string name;
+  std::string caption;
+};
+
+struct RenderedFigures {
+  std::vector<Figure> figures;  ///< one per plot, in order
+  bool skipped = false;         ///< gnuplot missing or plots off
+  std::string note;             ///< "The plots were skipped: ...", when skipped
+};
+
+/// Draws `plots` (each its own gnuplot, in parallel) as the figures
+/// `specs` describe, ids prefixed with options.id_prefix + name + "_"; with
+/// plots off or gnuplot missing every figure carries the reason instead.
+RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector<FigureSpec>& specs,
+                               const ReportOptions& options);
 
 }  // namespace foglab::report::detail
