@@ -15,8 +15,10 @@ if [ "${1:-}" = "--tests" ]; then
   # octave-cli runs the lab's MATLAB steps on lab2-data files in the tests
   # (octave 7 from Debian 12); its plots need a font, a Recommends of
   # octave-common that --no-install-recommends would skip.
-  # chromium opens the lab-2 report in the browser test (headless).
-  packages+=(octave fonts-freefont-otf chromium)
+  # chromium opens the lab reports in the browser test (headless); clang-14
+  # with its runtime (libFuzzer, sanitizers) and OpenMP builds the fuzz
+  # targets (scripts/fuzz-smoke.sh).
+  packages+=(octave fonts-freefont-otf chromium clang-14 libclang-rt-14-dev libomp-14-dev)
 fi
 
 missing=()

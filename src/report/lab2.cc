@@ -18,7 +18,6 @@ namespace {
 using namespace detail;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::array<Lab2Condition, 2> kConditions = {Lab2Condition::constant, Lab2Condition::ramp};
 
 // ---- cells -------------------------------------------------------------------------
 
