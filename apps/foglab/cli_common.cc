@@ -31,6 +31,31 @@ void add_input_options(CLI::App& command, InputOptions& options, bool file_optio
                      "time variable/column used for the sample rate (default t/time/time_s)");
 }
 
+stats::TauGrid parse_taus_option(const std::string& text, const std::string& path) {
+  try {
+    return stats::parse_tau_grid(text);
+  } catch (const UsageError& e) {
+    if (path.empty()) throw;
+    throw UsageError(fmt::format("'{}': {}", path, e.what()));
+  }
+}
+
+io::InputFormat parse_format_option(const std::string& text, const std::string& path) {
+  try {
+    return io::input_format_from_string(text);
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("--format {} for '{}': {}", text, path, e.what()));
+  }
+}
+
+RateUnit parse_units_option(const std::string& text, const std::string& path) {
+  try {
+    return rate_unit_from_string(text);
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("--units {} for '{}': {}", text, path, e.what()));
+  }
+}
+
 io::Series load_input(const InputOptions& options) {
   if (options.path.empty()) {
     io::Series sample = io::builtin_sample();
@@ -43,10 +68,12 @@ io::Series load_input(const InputOptions& options) {
   io::ReadOptions read;
   read.channel = options.channel;
   read.sample_rate_hz = options.sample_rate_hz;
-  read.format = io::input_format_from_string(options.format);
-  read.unit = rate_unit_from_string(options.units);
+  read.format = parse_format_option(options.format, options.path);
+  read.unit = parse_units_option(options.units, options.path);
   read.time_channel = options.time_channel;
+  read.max_magnitude = io::kMaxSampleMagnitude;  // 1e308 overflows the statistics
   io::Series series = io::read_series(options.path, read);
+  for (const std::string& text : series.notes) note(text);
   if (options.channel.empty() && series.available_channels.size() > 1) {
     note(fmt::format("'{}' has channels {}; using '{}' (choose with --channel)", options.path,
                      fmt::join(series.available_channels, ", "), series.channel));

@@ -13,6 +13,7 @@
 #include "foglab/io/reader.h"
 #include "foglab/sim/error_model.h"
 #include "foglab/sim/lab2_variants.h"
+#include "foglab/stats/tau_grid.h"
 
 namespace foglab::cli {
 
@@ -29,7 +30,15 @@ struct InputOptions {
 /// Adds FILE and --channel/--fs/--format/--units/--time to `command`.
 void add_input_options(CLI::App& command, InputOptions& options, bool file_optional);
 
-/// Reads the record (or makes the built-in sample when no FILE was given).
+/// --taus parsed; a UsageError names the option and, when given, `path`.
+stats::TauGrid parse_taus_option(const std::string& text, const std::string& path);
+
+/// --format and --units parsed; a UsageError names the option and `path`.
+io::InputFormat parse_format_option(const std::string& text, const std::string& path);
+RateUnit parse_units_option(const std::string& text, const std::string& path);
+
+/// Reads the record (or makes the built-in sample when no FILE was given),
+/// printing the reader's notes (an integer MAT class converted, ...).
 io::Series load_input(const InputOptions& options);
 
 /// A JSON number, or null for NaN/Inf.

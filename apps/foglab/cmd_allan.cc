@@ -7,6 +7,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "foglab/core/error.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/stats/allan.h"
@@ -82,7 +83,7 @@ std::string to_table(const stats::AllanResult& r, const io::Series& series) {
 void run(const AllanCommand& c) {
   stats::AllanOptions options;
   options.kind = stats::allan_kind_from_string(c.kind);
-  options.grid = stats::parse_tau_grid(c.taus);
+  options.grid = parse_taus_option(c.taus, c.input.path);
   options.grid.min_clusters = c.min_clusters;
   options.confidence = !c.no_ci;
   const InputKind input = input_kind_from_string(c.input_kind);
@@ -91,8 +92,14 @@ void run(const AllanCommand& c) {
   progress(fmt::format("{} of {} samples{}", stats::to_string(options.kind), samples,
                        options.confidence ? " with noise identification and intervals" : ""));
   // In place: the record becomes the angle record, so memory holds one copy.
-  const stats::AllanResult result =
-      stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);
+  stats::AllanResult result;
+  try {
+    result = stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);
+  } catch (const DataError& e) {
+    throw DataError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
+  }
   series.values.resize(samples);  // only the count is used below
   // Render everything first, then write: a failure never leaves half the outputs.
   const std::string json = c.json_path.empty() ? "" : to_json(result, series, c).dump(2) + "\n";

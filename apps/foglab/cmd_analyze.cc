@@ -131,17 +131,26 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
     return {};
   }
 
+  // A variable the file holds that is no channel (a char or complex T1):
+  // reading it gives the reader's message saying why it cannot be used.
+  auto unusable = [&](const std::string& wanted) {
+    return wanted != series.channel &&
+           std::find(series.variables.begin(), series.variables.end(), wanted) !=
+               series.variables.end();
+  };
   std::string name;
   if (!c.temp_channel.empty()) {
     const bool index = std::all_of(c.temp_channel.begin(), c.temp_channel.end(),
                                    [](unsigned char ch) { return std::isdigit(ch) != 0; });
     const auto found = find_channel(series.available_channels, c.temp_channel, true);
-    if (!found && !index) {
+    if (!found && !index && unusable(c.temp_channel)) {
+      name = c.temp_channel;
+    } else if (!found && !index) {
       throw UsageError(fmt::format("--temp {}: '{}' has no channel '{}'; its channels are {}",
                                    c.temp_channel, path, c.temp_channel,
                                    fmt::join(series.available_channels, ", ")));
     }
-    name = found ? *found : c.temp_channel;
+    if (name.empty()) name = found ? *found : c.temp_channel;
   } else {
     const std::vector<std::string> wanted = paired_temperature_names(series.channel);
     for (const auto& w : wanted) {
@@ -151,6 +160,9 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
         name = *found;
         break;
       }
+    }
+    for (const auto& w : wanted) {
+      if (name.empty() && unusable(w)) name = w;
     }
     if (name.empty()) {
       tell(
@@ -174,7 +186,9 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   read.format = io::input_format_from_string(c.input.format);
   read.unit = RateUnit::deg_per_hour;  // identity: degC stay degC
   read.time_channel = c.input.time_channel;
+  read.max_magnitude = io::kMaxSampleMagnitude;
   io::Series t = io::read_series(path, read);
+  for (const std::string& text : t.notes) note(text);
   if (t.values.size() != series.values.size()) {
     throw DataError(fmt::format(
         "'{}': the rate channel {} has {} samples but the temperature channel {} has {}; "
@@ -189,7 +203,7 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
 void run(const AnalyzeCommand& c) {
   model::AnalysisOptions options;
   options.systematic.degree = parse_temp_degree(c.temp_degree);
-  options.grid = stats::parse_tau_grid(c.taus);
+  options.grid = parse_taus_option(c.taus, c.input.path);
   check_temperature_option(c);
 
   io::Series series = load_input(c.input);

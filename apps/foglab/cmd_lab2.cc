@@ -153,21 +153,42 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
     auto has = [&](const char* name) {
       return std::find(channels.begin(), channels.end(), name) != channels.end();
     };
-    if (!has(kRateNames[0]) && !has(kRateNames[1])) {
+    // Every variable of the file, usable or not (a char or complex Y1 is
+    // not a channel, but the reader says why when it is asked for it).
+    std::vector<std::string> variables;
+    if (!channels.empty()) {
+      io::ReadOptions any;
+      any.channel = has(kRateNames[0])   ? kRateNames[0]
+                    : has(kRateNames[1]) ? kRateNames[1]
+                                         : channels.front();
+      any.sample_rate_hz = 1.0;  // only the names are wanted here
+      variables = io::read_series(path, any).variables;
+    }
+    auto present = [&](const char* name) {
+      return std::find(variables.begin(), variables.end(), name) != variables.end();
+    };
+    io::ReadOptions read;
+    read.max_magnitude = io::kMaxSampleMagnitude;  // 1e308 would overflow the statistics
+    auto read_channel = [&](const char* name, std::optional<double> sample_rate_hz) {
+      read.channel = name;
+      read.sample_rate_hz = sample_rate_hz;
+      io::Series s = io::read_series(path, read);  // a wrong class: the reader's DataError
+      for (const std::string& text : s.notes) note(text);
+      return s;
+    };
+    if (!present(kRateNames[0]) && !present(kRateNames[1])) {
       throw DataError(fmt::format(
           "'{}': no Y1 or Y2 variable (the lab's layout is f, t, Y1, Y2, T1, T2); it has {}", path,
-          channels.empty() ? std::string("none") : fmt::format("{}", fmt::join(channels, ", "))));
+          variables.empty() ? std::string("none") : fmt::format("{}", fmt::join(variables, ", "))));
     }
     for (std::size_t k = 0; k < 2; ++k) {
-      if (!has(kRateNames[k])) {
+      if (!present(kRateNames[k])) {
         note(fmt::format("'{}' has no {}: its {} run is left out", path, kRateNames[k],
                          report::to_string(kConditions[k])));
         continue;
       }
       progress(fmt::format("reading '{}' {}", path, kRateNames[k]));
-      io::ReadOptions read;
-      read.channel = kRateNames[k];
-      io::Series rate = io::read_series(path, read);
+      io::Series rate = read_channel(kRateNames[k], std::nullopt);
       PendingRun p;
       p.run.gyro = gyro_name(path);
       p.run.condition = kConditions[k];
@@ -176,10 +197,8 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
       p.run.input.file_name = path;
       p.run.input.channel = rate.channel;
       p.json.input = input_json(rate);
-      if (has(kTemperatureNames[k])) {
-        read.channel = kTemperatureNames[k];
-        read.sample_rate_hz = rate.sample_rate_hz;
-        io::Series t = io::read_series(path, read);
+      if (present(kTemperatureNames[k])) {
+        io::Series t = read_channel(kTemperatureNames[k], rate.sample_rate_hz);
         if (t.values.size() != rate.values.size()) {
           throw DataError(
               fmt::format("'{}': {} has {} samples but {} has {}; they must be sampled together",

@@ -6,6 +6,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
@@ -35,8 +36,22 @@ void run(const PsdCommand& c) {
   stats::WelchOptions options;
   options.segment_length = c.segment;
   options.overlap = c.overlap;
-  const stats::PsdResult psd = stats::welch_psd(series.values, series.sample_rate_hz, options);
-  const stats::PsdResult smooth = stats::log_smooth(psd, c.smooth_per_decade);
+  // welch_psd() needs a segment of at least 16 samples (stats/psd.h): a
+  // shorter record is the data's fault, not an option's.
+  constexpr std::size_t kMinSamples = 16;
+  if (series.values.size() < kMinSamples) {
+    throw DataError(fmt::format("'{}' channel {}: the record has {} sample(s); the PSD needs at least {}",
+                                series.path, series.channel, series.values.size(), kMinSamples));
+  }
+  stats::PsdResult psd, smooth;
+  try {
+    psd = stats::welch_psd(series.values, series.sample_rate_hz, options);
+    smooth = stats::log_smooth(psd, c.smooth_per_decade);
+  } catch (const DataError& e) {
+    throw DataError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
+  }
 
   std::string json;
   if (!c.json_path.empty()) {

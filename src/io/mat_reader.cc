@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 #include <matio.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cfloat>
@@ -30,6 +31,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -209,6 +211,18 @@ void check_mat5_layout(const std::string& path, std::uint64_t size) {
     }
     offset += 8 + std::uint64_t{bytes};
   }
+  // Fewer than 8 bytes left: the start of a cut variable's tag (zeros are
+  // tolerated as padding).
+  if (offset < size) {
+    unsigned char rest[8] = {};
+    const auto count = static_cast<std::size_t>(size - offset);
+    if (!read_at(file.get(), offset, rest, count)) {
+      throw_data_error(path, fmt::format("cannot read the MAT file at byte {}", offset));
+    }
+    if (std::any_of(rest, rest + count, [](unsigned char b) { return b != 0; })) {
+      throw_truncated(path, index + 1, offset, 8.0, count);
+    }
+  }
 }
 
 // v4: per variable a 20-byte header "type, mrows, ncols, imagf, namlen"
@@ -247,6 +261,24 @@ void check_mat4_layout(const std::string& path, std::uint64_t size) {
     }
     offset += static_cast<std::uint64_t>(needed);
   }
+}
+
+// --- HDF5 files that are not MAT files ---
+
+// The offset of an HDF5 superblock signature (HDF5 looks at 0, 512, 1024,
+// 2048, ...; a v7.3 MAT file has it at 512, after MATLAB's header), or
+// nullopt.
+std::optional<std::uint64_t> hdf5_signature_offset(const std::string& path, std::uint64_t size) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) return std::nullopt;
+  for (std::uint64_t offset = 0; offset + sizeof(kSignature) <= size;
+       offset = offset == 0 ? 512 : offset * 2) {
+    unsigned char bytes[sizeof(kSignature)];
+    if (!read_at(file.get(), offset, bytes, sizeof(bytes))) return std::nullopt;
+    if (std::memcmp(bytes, kSignature, sizeof(kSignature)) == 0) return offset;
+  }
+  return std::nullopt;
 }
 
 // --- variables ---
@@ -359,6 +391,22 @@ std::string describe(const VarInfo& var) {
   return text;
 }
 
+bool is_integer_class(matio_classes c) {
+  switch (c) {
+    case MAT_C_INT8:
+    case MAT_C_UINT8:
+    case MAT_C_INT16:
+    case MAT_C_UINT16:
+    case MAT_C_INT32:
+    case MAT_C_UINT32:
+    case MAT_C_INT64:
+    case MAT_C_UINT64:
+      return true;
+    default:
+      return false;
+  }
+}
+
 // Why a variable cannot be a channel ("" if it can).
 std::string unreadable_reason(const VarInfo& var) {
   if (var.readable()) return {};
@@ -383,6 +431,16 @@ class MatFile {
     mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
     const auto messages = session_.messages(false);
     if (!mat_) {
+      if (const std::optional<std::uint64_t> at = hdf5_signature_offset(path, size_)) {
+        throw_data_error(
+            path, fmt::format("an HDF5 file (signature at byte {}) but not a MAT file: a v7.3 "
+                              "MAT file is an HDF5 file that starts with MATLAB's 128-byte "
+                              "header, and this one has none (written by h5py, Octave's "
+                              "save -hdf5 or the HDF5 library?); save the variables from "
+                              "MATLAB with save -v7.3 or from Octave with save -v7, or export "
+                              "them as CSV",
+                              *at));
+      }
       std::string detail = summary(messages);
       if (detail.find("does not seem to be a valid MAT file") != std::string::npos) detail.clear();
       throw_data_error(path, "not a MAT file (v4, v5, v7 or v7.3), or damaged beyond reading" +
@@ -570,8 +628,9 @@ double rate_from_time_variable(const std::string& path, MatFile& file, const Var
                                const VarInfo& channel) {
   if (!time.readable()) throw_data_error(path, unreadable_reason(time));
   if (time.numel() != channel.numel()) {
-    throw_data_error(path, fmt::format("time variable '{}' has {} samples but '{}' has {}",
-                                       time.name, time.numel(), channel.name, channel.numel()));
+    throw_data_error(path, fmt::format("time variable '{}' has {} samples but '{}' has {}{}",
+                                       time.name, time.numel(), channel.name, channel.numel(),
+                                       kIgnoreTimeHint));
   }
   const std::vector<double> time_s = file.read(time);
   // single-precision time steps carry float rounding, not gaps
@@ -592,9 +651,18 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
   series.path = path;
   series.available_channels = available_channels(file);
 
+  series.variables = file.names();
+
   const VarInfo* time = find_time_variable(path, file, options);
   const VarInfo& channel = choose_channel(path, file, options, time);
   series.channel = channel.name;
+  if (is_integer_class(channel.class_type)) {
+    const bool wide = channel.class_type == MAT_C_INT64 || channel.class_type == MAT_C_UINT64;
+    series.notes.push_back(fmt::format(
+        "{}: variable '{}' is {}: its integers are converted to double{}", quoted_path(path),
+        channel.name, describe(channel),
+        wide ? " (those beyond 2^53 in magnitude are rounded)" : ""));
+  }
 
   // The rate first: the time vector is read and freed before the channel,
   // so that at most one full-length vector is held at a time.
@@ -610,6 +678,11 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
       check_file_sample_rate(path, rate_hz, "variable f");
       series.sample_rate_hz = rate_hz;
       series.sample_rate_source = "variable f";
+      // A time vector beside f must agree with the channel too: a record
+      // with a gap or of another length is not analysed as if continuous.
+      if (time != nullptr && time != &channel && time->readable() && time->numel() >= 2) {
+        rate_from_time_variable(path, file, *time, channel);
+      }
     } else if (time != nullptr) {
       series.sample_rate_hz = rate_from_time_variable(path, file, *time, channel);
       series.sample_rate_source = "time column " + time->name;

@@ -75,6 +75,7 @@ Series read_raw(const std::string& path, const ReadOptions& options, InputFormat
   series.path = path;
   series.channel = std::string(1, '1');
   series.available_channels = {series.channel};
+  series.variables = series.available_channels;
 
   std::FILE* file = stdin;
   std::unique_ptr<std::FILE, FileCloser> owned;

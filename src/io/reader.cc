@@ -30,6 +30,10 @@ void throw_data_error(const std::string& path, std::string_view what) {
   throw DataError(fmt::format("{}: {}", quoted_path(path), what));
 }
 
+const char* const kIgnoreTimeHint =
+    "; to analyse the samples as evenly spaced anyway, give the sample rate with --fs HZ "
+    "(the time is then ignored)";
+
 namespace {
 
 // stat() + fopen() so that the message carries the system's own reason.
@@ -98,15 +102,17 @@ void TimeAxisCheck::add(double time_s, std::size_t line, double resolution_s) {
   const std::size_t index = count_++;
   resolution_s_ = std::max(resolution_s_, resolution_s);
   if (!std::isfinite(time_s)) {
-    throw_data_error(path_,
-                     fmt::format("time at {} is {}", where(index, line), format_value(time_s)));
+    throw_data_error(path_, fmt::format("time at {} is {}{}", where(index, line),
+                                        format_value(time_s), kIgnoreTimeHint));
   }
   if (index == 0) {
     first_s_ = time_s;
   } else if (!(time_s > previous_s_)) {
     throw_data_error(
-        path_, fmt::format("time is not increasing at {}: {} s follows {} s", where(index, line),
-                           format_value(time_s), format_value(previous_s_)));
+        path_, fmt::format("time is not increasing at {}: {} s follows {} s (a repeated or "
+                           "decreasing time){}",
+                           where(index, line), format_value(time_s), format_value(previous_s_),
+                           kIgnoreTimeHint));
   }
   if (settled_ && index > 0) {
     const double step = time_s - previous_s_;
@@ -117,9 +123,9 @@ void TimeAxisCheck::add(double time_s, std::size_t line, double resolution_s) {
     if (std::fabs(step - reference_s_) > tolerance_s) {
       throw_data_error(
           path_, fmt::format("time is not uniformly sampled at {}: step {} s ({} s "
-                             "-> {} s), expected {} s (a gap or an irregular step)",
+                             "-> {} s), expected {} s (a gap or an irregular step){}",
                              where(index, line), format_value(step), format_value(previous_s_),
-                             format_value(time_s), format_value(reference_s_)));
+                             format_value(time_s), format_value(reference_s_), kIgnoreTimeHint));
     }
   } else if (!settled_) {
     head_s_.push_back(time_s);
@@ -217,7 +223,7 @@ std::string describe_non_finite(double value) {
 }
 
 // Checks every sample and converts it to deg/h in the same pass.
-void finish_values(Series& series, RateUnit unit) {
+void finish_values(Series& series, RateUnit unit, double max_magnitude) {
   if (series.values.empty()) {
     throw_data_error(series.path, fmt::format("channel '{}' has no samples", series.channel));
   }
@@ -234,6 +240,16 @@ void finish_values(Series& series, RateUnit unit) {
           series.path,
           fmt::format("sample {} of '{}' ({} {}) overflows when converted to deg/h", i + 1,
                       series.channel, internal::format_value(value), to_string(unit)));
+    }
+    if (std::fabs(converted) > max_magnitude) {
+      throw_data_error(
+          series.path,
+          fmt::format("sample {} of '{}' is {}{}: too large (more than {:g} in magnitude, far "
+                      "beyond any gyro's rate or temperature, and the statistics would "
+                      "overflow); check the channel, its unit and the file",
+                      i + 1, series.channel, internal::format_value(value),
+                      unit == RateUnit::deg_per_hour ? "" : " " + std::string(to_string(unit)),
+                      max_magnitude));
     }
     series.values[i] = converted;
   }
@@ -271,6 +287,11 @@ InputFormat input_format_from_string(std::string_view text) {
 }
 
 Series read_series(const std::string& path, const ReadOptions& options) {
+  if (!(options.max_magnitude > 0.0)) {
+    throw UsageError(fmt::format("invalid largest sample magnitude {} for {}: expected > 0",
+                                 internal::format_value(options.max_magnitude),
+                                 quoted_path(path)));
+  }
   if (options.sample_rate_hz &&
       !(std::isfinite(*options.sample_rate_hz) && *options.sample_rate_hz > 0.0)) {
     throw UsageError(
@@ -300,7 +321,7 @@ Series read_series(const std::string& path, const ReadOptions& options) {
     series.sample_rate_hz = *options.sample_rate_hz;
     series.sample_rate_source = "option --fs";
   }
-  finish_values(series, options.unit);
+  finish_values(series, options.unit, options.max_magnitude);
   return series;
 }
 

@@ -39,6 +39,10 @@ std::string join_names(const std::vector<std::string>& names);
 /// A value for messages, to 12 significant digits (0.1 + 0.2 shows as 0.3).
 std::string format_value(double value);
 
+/// "; to analyse the samples as evenly spaced anyway, give ... --fs ...": how
+/// to proceed past a bad time axis, appended to its messages.
+extern const char* const kIgnoreTimeHint;
+
 /// True for the automatic time-channel names `t`, `time`, `time_s`. Text
 /// headers compare without regard to case (`Time`, `TIME_S`), except that a
 /// column named exactly `T` is the lab's temperature and never time.

@@ -21,6 +21,7 @@ Series builtin_sample() {
   series.sample_rate_hz = S::kSampleRateHz;
   series.sample_rate_source = "built-in";
   series.available_channels = {"Y1"};
+  series.variables = series.available_channels;
   series.values.resize(count);
   double walk = 0.0;
   for (auto& v : series.values) {

@@ -252,6 +252,12 @@ std::optional<Layout> read_layout(const std::string& path, LineReader& reader) {
     const bool binary = std::any_of(content.begin(), content.end(), [](char c) {
       return static_cast<unsigned char>(c) < 0x20 && c != '\t';
     });
+    if (content.rfind("\x89HDF", 0) == 0) {
+      throw_data_error(path,
+                       "this is an HDF5 file, not text: a MAT v7.3 file needs the extension "
+                       ".mat or the format mat; other HDF5 files cannot be read (export the "
+                       "data as CSV)");
+    }
     if (content.rfind("MATLAB ", 0) == 0 && content.find("MAT-file") != std::string_view::npos) {
       throw_data_error(path,
                        "this is a MAT file, not text: give it the extension .mat or the "
@@ -382,6 +388,7 @@ Series read_text(const std::string& path, const ReadOptions& options) {
   series.path = path;
   series.channel = layout.names[column];
   series.available_channels = layout.names;
+  series.variables = layout.names;
   std::optional<TimeAxisCheck> time_check;
   if (need_time) time_check.emplace(path, layout.names[*time], 0.0);
   // Room for the rows the file's size suggests, judged by the first data

@@ -13,7 +13,11 @@
 //
 // The sample rate comes, in this order, from ReadOptions::sample_rate_hz,
 // from a MAT variable `f`, or from a uniformly sampled time column (`t`,
-// `time` or `time_s`; gaps and non-monotonic time are data errors).
+// `time` or `time_s`; gaps and non-monotonic time are data errors whose
+// message says to give --fs to ignore the time). When `f` gives the rate,
+// a MAT time vector `t`/`time`/`time_s` beside it is still checked (same
+// length as the channel, increasing, no gaps), so that a record with a gap
+// is never analysed as if it were continuous; --fs skips every time check.
 // An explicit ReadOptions::time_channel is used before `f`. Text headers
 // match the time names without regard to case, except that a column named
 // exactly `T` is the lab's temperature. A time step counts as a gap when it
@@ -28,16 +32,20 @@
 // column of dates or words elsewhere does not matter.
 //
 // MAT files are read through matio into the result vector directly (any
-// numeric class is converted to double on the way; the time vector, when it
+// numeric class is converted to double on the way, and an integer class
+// gets a note in Series::notes; the time vector, when it
 // gives the rate, is read and released first), so reading takes about one
 // copy of the channel in memory. Damaged files (truncated, garbage, corrupt
-// compressed data) are DataErrors, and matio/HDF5 never print to stderr.
+// compressed data) are DataErrors, and matio/HDF5 never print to stderr. An
+// HDF5 file that is not a v7.3 MAT file (no MATLAB header) is a DataError
+// saying so.
 //
 // Errors: an unusable option is a UsageError (exit 2); unusable content is a
 // DataError (exit 3) whose message names the file and the variable, line,
 // column or sample index, and what was expected.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -75,7 +83,17 @@ struct ReadOptions {
   RateUnit unit = RateUnit::deg_per_hour;
   /// Time variable/column; empty: `t`, `time` or `time_s` when present.
   std::string time_channel;
+  /// The largest magnitude a sample may have once converted (deg/h, or degC
+  /// for a temperature); a larger one is a DataError naming the sample. No
+  /// limit by default, so that any finite double round-trips; the CLI's
+  /// analyses use kMaxSampleMagnitude.
+  double max_magnitude = std::numeric_limits<double>::infinity();
 };
+
+/// A limit for ReadOptions::max_magnitude: far beyond any gyro's rate or
+/// temperature, and small enough that the sums of squares and powers the
+/// statistics form over a record cannot overflow (1e308 would).
+inline constexpr double kMaxSampleMagnitude = 1e30;
 
 /// One channel read from a file, converted to foglab's units.
 struct Series {
@@ -91,11 +109,21 @@ struct Series {
   /// name order), `t` and `T1` included, scalars such as `f` not; text:
   /// every column; raw: "1".
   std::vector<std::string> available_channels;
+  /// Every variable (MAT) or column (text) the file holds, usable as a
+  /// channel or not (a char, struct or complex variable, `f`); raw: "1".
+  /// Tells a name that is absent from one whose content is unusable.
+  std::vector<std::string> variables;
+  /// What a user should know about how the samples were read (a MAT
+  /// variable of an integer class converted to double); the CLI prints each
+  /// as a note.
+  std::vector<std::string> notes;
 };
 
 /// Reads one channel. Checks that the values are finite (a NaN or Inf is a
-/// DataError naming the 1-based sample index) and that there is at least one
-/// sample. Throws UsageError / DataError as described above.
+/// DataError naming the 1-based sample index), no larger in magnitude than
+/// ReadOptions::max_magnitude (an absurd value such as 1e308 is then a
+/// DataError too), and that there is at least one sample. Throws UsageError
+/// / DataError as described above.
 Series read_series(const std::string& path, const ReadOptions& options);
 
 /// Names of the data channels (variables or columns) in a file.
