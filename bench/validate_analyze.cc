@@ -14,7 +14,8 @@
 // variance over at least two octaves of the usable tau range
 // [1/fs, duration/10] (the condition); the goals apply to those.
 //
-//   ./build/bench/validate_analyze [--seeds 20] [--filter TEXT] [--csv runs.csv]
+//   ./build/bench/validate_analyze [--seeds 20] [--filter TEXT] [--penalty P] [--inflation F]
+//                                  [--window W] [--csv runs.csv]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -360,12 +361,14 @@ int main(int argc, char** argv) {
       g_options.noise_fit.penalty = std::atof(argv[++i]);
     } else if (arg == "--inflation" && i + 1 < argc) {
       g_options.noise_fit.correlation_inflation = std::atof(argv[++i]);
+    } else if (arg == "--window" && i + 1 < argc) {
+      g_options.noise_fit.interval_window = std::atof(argv[++i]);
     } else if (arg == "--csv" && i + 1 < argc) {
       csv_path = argv[++i];
     } else {
       fmt::print(stderr,
                  "usage: validate_analyze [--seeds N] [--filter TEXT] [--penalty P] [--inflation "
-                 "F] [--csv FILE]\n");
+                 "F] [--window W] [--csv FILE]\n");
       return 2;
     }
   }

@@ -8,7 +8,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
+#include "allan_covariance.h"
 #include "foglab/core/error.h"
 #include "foglab/stats/edf.h"
 
@@ -118,6 +121,10 @@ struct Points {
   // (random walk), -1 (flicker), 0 (white) and +2 (white phase); empty when
   // the averaging factors are unknown (the data's own edf is used then).
   std::vector<std::array<double, 4>> edf_by_alpha;
+  // The averaging factors of the points and the record's angle samples
+  // (empty and 0 when unknown: no correlation across tau can be modelled).
+  std::vector<std::int64_t> factors;
+  std::int64_t phase_points = 0;
 
   // The expected Allan variance of term t per unit squared coefficient.
   double basis_at(NoiseTerm t, std::size_t i, double tc) const {
@@ -377,40 +384,144 @@ NoiseModel to_model(const SubsetFit& f) {
   return m;
 }
 
-// Covariance of (ln c_j for the linear terms, then ln sigma^2, ln Tc) from
-// the Fisher information of the gamma likelihood: sum_i (v_i/2) g_i g_i'
-// with g_i = d ln mu_i / d theta.
+// The scaled gradients a_i = sqrt(v_i/2) d ln mu_i / d theta (rows), theta =
+// (ln c_j for the linear terms, then ln sigma^2, ln Tc): the Fisher
+// information of the gamma likelihood is A'A, and the score's covariance
+// A'RA when the points' standardised errors have correlation R.
 // Without `with_tc`, Tc is held at its value (the conditional covariance of
 // the others).
-Eigen::MatrixXd log_parameter_covariance(const Points& p, const SubsetFit& f,
-                                         std::vector<NoiseTerm>& order, bool with_tc = true) {
+Eigen::MatrixXd log_parameter_gradients(const Points& p, const SubsetFit& f,
+                                        std::vector<NoiseTerm>& order, bool with_tc = true) {
   order.clear();
   for (NoiseTerm t : kTerms) {
     if (f.mask & bit(t)) order.push_back(t);
   }
   const bool gm = with_tc && (f.mask & bit(NoiseTerm::gm)) != 0;
   const Eigen::Index k = static_cast<Eigen::Index>(order.size()) + (gm ? 1 : 0);
-  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(k, k);
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(p.y.size()), k);
   for (std::size_t i = 0; i < p.y.size(); ++i) {
-    Eigen::VectorXd g(k);
+    const auto row = static_cast<Eigen::Index>(i);
+    const double w = std::sqrt(0.5 * p.v[i]) / f.mu[i];
     for (std::size_t j = 0; j < order.size(); ++j) {
       const int t = static_cast<int>(order[j]);
-      g(static_cast<Eigen::Index>(j)) = f.c[t] * p.basis_at(order[j], i, f.tc) / f.mu[i];
+      a(row, static_cast<Eigen::Index>(j)) = w * f.c[t] * p.basis_at(order[j], i, f.tc);
     }
     if (gm) {
       const double h = 1e-5;
       const double up = p.basis_at(NoiseTerm::gm, i, f.tc * std::exp(h));
       const double down = p.basis_at(NoiseTerm::gm, i, f.tc * std::exp(-h));
-      g(k - 1) = f.c[static_cast<int>(NoiseTerm::gm)] * (up - down) / (2.0 * h) / f.mu[i];
+      a(row, k - 1) = w * f.c[static_cast<int>(NoiseTerm::gm)] * (up - down) / (2.0 * h);
     }
-    info += 0.5 * p.v[i] * g * g.transpose();
   }
-  // A direction the data do not inform has no finite variance (not zero).
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(info);
-  if (!lu.isInvertible()) {
-    return Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::infinity());
+  return a;
+}
+
+// The columns of A that carry information: a coefficient fitted at
+// practically zero (a candidate that is really its subset) has a column of
+// zeros, and would make the whole information singular.
+std::vector<Eigen::Index> informed_columns(const Eigen::MatrixXd& a) {
+  const Eigen::VectorXd norm = a.colwise().norm();
+  const double largest = norm.size() > 0 ? norm.maxCoeff() : 0.0;
+  std::vector<Eigen::Index> informed;
+  for (Eigen::Index j = 0; j < norm.size(); ++j) {
+    if (norm(j) > 1e-8 * largest) informed.push_back(j);
   }
-  return lu.inverse();
+  return informed;
+}
+
+// The inverse of the information A'A over the informed columns; a direction
+// the data do not inform has no finite variance (not zero).
+Eigen::MatrixXd inverse_information(const Eigen::MatrixXd& a) {
+  const Eigen::Index k = a.cols();
+  Eigen::MatrixXd inverse = Eigen::MatrixXd::Constant(k, k, kInf);
+  const std::vector<Eigen::Index> informed = informed_columns(a);
+  if (informed.empty()) return inverse;
+  const Eigen::MatrixXd sub = a(Eigen::all, informed);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(sub.transpose() * sub);
+  if (!lu.isInvertible()) return inverse;
+  inverse(informed, informed) = lu.inverse();
+  return inverse;
+}
+
+// Covariance of the log parameters (log_parameter_gradients) from the
+// Fisher information of the gamma likelihood, the points independent.
+Eigen::MatrixXd log_parameter_covariance(const Points& p, const SubsetFit& f,
+                                         std::vector<NoiseTerm>& order, bool with_tc = true) {
+  return inverse_information(log_parameter_gradients(p, f, order, with_tc));
+}
+
+// How much the correlation R between the points' errors widens each
+// parameter's variance: the sandwich (robust) covariance J^-1 (A'RA) J^-1,
+// J = A'A, of the estimator that treats the points as independent
+// (White, "Maximum likelihood estimation of misspecified models",
+// Econometrica 50, 1982; for the wavelet variance, Guerrier et al., JASA
+// 108, 2013), divided by J^-1 on the diagonal, over the informed columns.
+// 1 where J is singular.
+Eigen::VectorXd sandwich_ratios(const Eigen::MatrixXd& a, const Eigen::MatrixXd& correlation) {
+  Eigen::VectorXd ratio = Eigen::VectorXd::Ones(a.cols());
+  const std::vector<Eigen::Index> informed = informed_columns(a);
+  if (informed.empty()) return ratio;
+  const Eigen::MatrixXd sub = a(Eigen::all, informed);
+  const Eigen::MatrixXd naive = inverse_information(sub);
+  if (!naive.allFinite()) return ratio;
+  const Eigen::MatrixXd robust = naive * (sub.transpose() * correlation * sub) * naive;
+  for (std::size_t j = 0; j < informed.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    if (naive(jj, jj) > 0) ratio(informed[j]) = robust(jj, jj) / naive(jj, jj);
+  }
+  return ratio;
+}
+
+// The covariance [(deg/h)^4] of the points' Allan variance estimates under
+// the model `f`: the exact one for Gaussian noise (allan_covariance.h) of
+// the undetrended model (the fit's coefficients are its). Removing a
+// polynomial scales each estimate roughly as it scales its mean, so point
+// i's row and column are scaled by the ratio of the detrended mean to the
+// undetrended one. A rate ramp is deterministic and has no such
+// covariance, but a fitted one stands for a slow drift the record cannot
+// tell from a ramp: its share of each point gets the variance the fit
+// assumes (2 mu_R^2/v) and the correlation of the steepest noise modelled,
+// a random walk (cross terms with the other terms left out).
+Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
+  const double tau0 = p.tau.front() / static_cast<double>(p.factors.front());
+  NoiseModel model = to_model(f);
+  const double ramp = model.R;
+  model.R = 0.0;
+  Eigen::MatrixXd c = detail::allan_variance_covariance(model, tau0, p.factors, p.phase_points);
+  const auto n = c.rows();
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double undetrended = allan_variance(model, p.tau[k]);
+    const double detrended = f.mu[k] - ramp * ramp * p.basis_at(NoiseTerm::R, k, f.tc);
+    scale(i) = undetrended > 0 ? detrended / undetrended : 1.0;
+  }
+  c = scale.asDiagonal() * c * scale.asDiagonal();
+  if (ramp > 0) {
+    const Eigen::MatrixXd walk =
+        detail::allan_variance_covariance({.K = 1.0}, tau0, p.factors, p.phase_points);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double share = ramp * ramp * p.basis_at(NoiseTerm::R, k, f.tc);  // mu_R
+      scale(i) = std::sqrt(2.0 / p.v[k]) * share / std::sqrt(std::max(walk(i, i), 1e-300));
+    }
+    c += scale.asDiagonal() * walk * scale.asDiagonal();
+  }
+  return c;
+}
+
+// The matrix R of sandwich_ratios() for the fit `f`: the points'
+// covariance divided by the standard deviations the fit's weights assume,
+// sqrt(2/v_i) mu_i (its diagonal shows where the edf of the dominant noise
+// type misstate a mixture's variance).
+Eigen::MatrixXd standardised(const Eigen::MatrixXd& covariance, const Points& p,
+                             const SubsetFit& f) {
+  Eigen::VectorXd z(covariance.rows());
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    z(i) = std::sqrt(0.5 * p.v[k]) / f.mu[k];
+  }
+  return z.asDiagonal() * covariance * z.asDiagonal();
 }
 
 // Profile-likelihood 95 % intervals of the Gauss-Markov pair. When the hump
@@ -427,10 +538,10 @@ struct GaussMarkovIntervals {
 };
 
 GaussMarkovIntervals gauss_markov_intervals(const Points& p, const SubsetFit& chosen,
-                                            double scale) {
+                                            double tc_scale, double sigma_scale) {
   constexpr double kChi2_95 = 3.841458820694124;
   const int gm = static_cast<int>(NoiseTerm::gm);
-  const double threshold = chosen.deviance + kChi2_95 * scale;
+  const double tc_allowed = kChi2_95 * tc_scale, sigma_allowed = kChi2_95 * sigma_scale;
   // Twelve points per decade from well below the shortest tau to far beyond
   // the longest, and the optimum itself.
   const double lo = std::log(std::min(p.tau.front() * 0.1, chosen.tc));
@@ -440,50 +551,56 @@ GaussMarkovIntervals gauss_markov_intervals(const Points& p, const SubsetFit& ch
   for (int s = 0; s <= steps; ++s) ln_tc.push_back(lo + (hi - lo) * s / steps);
   ln_tc.push_back(std::log(chosen.tc));
   std::sort(ln_tc.begin(), ln_tc.end());
-  std::vector<double> excess(ln_tc.size());  // deviance above the threshold
+  std::vector<double> rise(ln_tc.size());  // profile deviance above the minimum
   GaussMarkovIntervals r;
   r.sigma_low = std::sqrt(chosen.c[gm]);
   r.sigma_high = r.sigma_low;
   for (std::size_t s = 0; s < ln_tc.size(); ++s) {
     const SubsetFit f = fit_subset(p, chosen.mask, std::exp(ln_tc[s]));
-    excess[s] = f.feasible ? f.deviance - threshold : kInf;
-    if (!(excess[s] <= 0.0)) continue;
+    rise[s] = f.feasible ? f.deviance - chosen.deviance : kInf;
+    if (!(rise[s] <= sigma_allowed)) continue;
     // Conditional interval of ln sigma^2 at this Tc: the quadratic
-    // deviance reaches the threshold at +-sqrt(-excess * variance).
+    // deviance reaches the threshold at +-sqrt((allowed - rise) * variance).
     std::vector<NoiseTerm> order;
     const Eigen::MatrixXd cov = log_parameter_covariance(p, f, order, /*with_tc=*/false);
     const auto j = static_cast<Eigen::Index>(std::find(order.begin(), order.end(), NoiseTerm::gm) -
                                              order.begin());
-    const double half = std::sqrt(std::max(0.0, -excess[s] * cov(j, j)));
+    const double half = std::sqrt(std::max(0.0, (sigma_allowed - rise[s]) * cov(j, j)));
     const double sigma = std::sqrt(f.c[gm]);
     r.sigma_low = std::min(r.sigma_low, sigma * std::exp(-0.5 * half));
     r.sigma_high = std::max(r.sigma_high, sigma * std::exp(0.5 * half));
   }
-  // Tc's ends: where the excess crosses zero either side of the optimum
-  // (linear in ln Tc between grid points); infinite when it never does.
+  // The ends of the Tc region within `allowed`: where the rise crosses it
+  // either side of the optimum (linear in ln Tc between grid points); 0 and
+  // infinite when it never does.
   const auto best = static_cast<std::size_t>(
       std::find(ln_tc.begin(), ln_tc.end(), std::log(chosen.tc)) - ln_tc.begin());
-  auto crossing = [&](std::size_t inside, std::size_t outside) {
-    const double e0 = excess[inside], e1 = excess[outside];
-    const double w = std::isfinite(e1) ? e0 / (e0 - e1) : 0.0;
-    return std::exp(ln_tc[inside] + w * (ln_tc[outside] - ln_tc[inside]));
+  auto ends = [&](double allowed) {
+    auto crossing = [&](std::size_t inside, std::size_t outside) {
+      const double e0 = rise[inside] - allowed, e1 = rise[outside] - allowed;
+      const double w = std::isfinite(e1) ? e0 / (e0 - e1) : 0.0;
+      return std::exp(ln_tc[inside] + w * (ln_tc[outside] - ln_tc[inside]));
+    };
+    std::pair<double, double> e{0.0, kInf};
+    for (std::size_t s = best; s > 0; --s) {
+      if (!(rise[s - 1] <= allowed)) {
+        e.first = crossing(s, s - 1);
+        break;
+      }
+    }
+    for (std::size_t s = best; s + 1 < ln_tc.size(); ++s) {
+      if (!(rise[s + 1] <= allowed)) {
+        e.second = crossing(s, s + 1);
+        break;
+      }
+    }
+    return e;
   };
-  r.tc_low = 0.0;
-  for (std::size_t s = best; s > 0; --s) {
-    if (!(excess[s - 1] <= 0.0)) {
-      r.tc_low = crossing(s, s - 1);
-      break;
-    }
-  }
-  r.tc_high = kInf;
-  for (std::size_t s = best; s + 1 < ln_tc.size(); ++s) {
-    if (!(excess[s + 1] <= 0.0)) {
-      r.tc_high = crossing(s, s + 1);
-      break;
-    }
-  }
-  if (!std::isfinite(r.tc_high)) r.sigma_high = kInf;
-  if (r.tc_low == 0.0) r.sigma_low = 0.0;
+  std::tie(r.tc_low, r.tc_high) = ends(tc_allowed);
+  // sigma's region is open where its Tc region is.
+  const auto [sigma_tc_low, sigma_tc_high] = ends(sigma_allowed);
+  if (!std::isfinite(sigma_tc_high)) r.sigma_high = kInf;
+  if (sigma_tc_low == 0.0) r.sigma_low = 0.0;
   return r;
 }
 
@@ -510,6 +627,66 @@ double upper_bound(const Points& p, const SubsetFit& chosen, NoiseTerm term, dou
     (dev(mid) < target ? lo : hi) = mid;
   }
   return std::sqrt(hi);
+}
+
+// The 95 % intervals of the terms of `f` (in kTerms order, the Gauss-
+// Markov term's for sigma; NaN for terms not in f) and of Tc.
+// Neighbouring tau estimates share most of their data, so the information
+// of the independent-points likelihood overstates what the points hold:
+// each parameter's variance is scaled by its sandwich ratio under the
+// points' `covariance` (point_covariance()) and by the fit's `dispersion`.
+// Without the averaging factors that covariance is unknown (null) and the
+// fixed `inflation` stands in. The Gauss-Markov pair comes from its
+// profile, the deviance's allowance scaled the same way (sigma^2's ratio
+// for sigma, Tc's for Tc).
+struct Intervals {
+  std::array<std::pair<double, double>, kNoiseTerms> term;
+  std::pair<double, double> tc{kNaN, kNaN};
+};
+
+Intervals intervals_of(const Points& p, const SubsetFit& f, const Eigen::MatrixXd* covariance,
+                       double dispersion, double inflation) {
+  Intervals r;
+  r.term.fill({kNaN, kNaN});
+  std::vector<NoiseTerm> order;
+  const Eigen::MatrixXd gradients = log_parameter_gradients(p, f, order);
+  const Eigen::MatrixXd cov = inverse_information(gradients);
+  const Eigen::VectorXd ratio = covariance
+                                    ? sandwich_ratios(gradients, standardised(*covariance, p, f))
+                                    : Eigen::VectorXd::Constant(gradients.cols(), inflation);
+  auto scale_of = [&](Eigen::Index j) { return dispersion * ratio(j); };
+  for (std::size_t j = 0; j < order.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    const auto t = static_cast<std::size_t>(order[j]);
+    if (order[j] == NoiseTerm::gm) {
+      const GaussMarkovIntervals g =
+          gauss_markov_intervals(p, f, scale_of(gradients.cols() - 1), scale_of(jj));
+      r.term[t] = {g.sigma_low, g.sigma_high};
+      r.tc = {g.tc_low, g.tc_high};
+      continue;
+    }
+    const double value = std::sqrt(f.c[t]);
+    // ln(coefficient) = ln(c)/2
+    const double sd = 0.5 * std::sqrt(std::max(0.0, cov(jj, jj) * scale_of(jj)));
+    r.term[t] = {value * std::exp(-kZ95 * sd), value * std::exp(kZ95 * sd)};
+  }
+  return r;
+}
+
+// Whether a term of `f` carries under 1 % of its mean at every point: the
+// candidate is then its own subset with a coefficient at the boundary,
+// where the log-scale information of the others is meaningless (the
+// near-zero term may trade against any of them).
+bool holds_a_negligible_term(const Points& p, const SubsetFit& f) {
+  for (NoiseTerm t : kTerms) {
+    if (!(f.mask & bit(t))) continue;
+    double share = 0.0;
+    for (std::size_t i = 0; i < p.y.size(); ++i) {
+      share = std::max(share, f.c[static_cast<int>(t)] * p.basis_at(t, i, f.tc) / f.mu[i]);
+    }
+    if (share < 0.01) return true;
+  }
+  return false;
 }
 
 bool admissible(int mask, const NoiseFitOptions& options) {
@@ -647,9 +824,11 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
             stats::greenhall_edf(alphas[a], 2, factors[i], phase_points, true, false);
       }
       p.edf_by_alpha.push_back(e);
+      p.factors.push_back(factors[i]);
     }
   }
   p.detrend = detrend;
+  p.phase_points = phase_points;
   if (p.y.size() < 3) {
     throw UsageError(fmt::format(
         "noise-model fit: {} usable Allan-deviation points (edf >= {}); at least 3 are needed",
@@ -711,32 +890,33 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     r.random_bias_process = RandomBiasProcess::wiener;
   }
 
-  // Intervals of the chosen terms.
-  const double scale = r.dispersion * options.correlation_inflation;
-  std::vector<NoiseTerm> order;
-  const Eigen::MatrixXd cov = log_parameter_covariance(pc, chosen, order);
+  // Intervals (intervals_of()), under the chosen model's covariance of the
+  // points.
+  const bool modelled = !pc.factors.empty();
+  const Eigen::MatrixXd covariance = modelled ? point_covariance(pc, chosen) : Eigen::MatrixXd();
+  const Eigen::MatrixXd* known = modelled ? &covariance : nullptr;
   // The reported parameter of each term (gm: its sigma), in kTerms order.
   auto estimate_for = [&](NoiseTerm t) -> ParameterEstimate& {
     return r.*(reported_parameters()[static_cast<std::size_t>(t)].estimate);
   };
-  for (std::size_t j = 0; j < order.size(); ++j) {
-    if (order[j] == NoiseTerm::gm) continue;  // its pair by profile, below
-    ParameterEstimate& e = estimate_for(order[j]);
-    const double value = coefficient(r.model, order[j]);
-    // ln(coefficient) = ln(c)/2
-    const double sd =
-        0.5 * std::sqrt(std::max(
-                  0.0, cov(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j)) * scale));
-    e = {value, value * std::exp(-kZ95 * sd), value * std::exp(kZ95 * sd), kNaN,
-         TermStatus::resolved};
+  const Intervals own =
+      intervals_of(pc, chosen, known, r.dispersion, options.correlation_inflation);
+  for (NoiseTerm t : kTerms) {
+    if (!(chosen.mask & bit(t))) continue;
+    const auto [low, high] = own.term[static_cast<std::size_t>(t)];
+    estimate_for(t) = {coefficient(r.model, t), low, high, kNaN, TermStatus::resolved};
   }
   if (chosen.mask & gm_bit) {
-    const GaussMarkovIntervals g = gauss_markov_intervals(pc, chosen, scale);
-    r.gm_sigma = {r.model.gm_sigma, g.sigma_low, g.sigma_high, kNaN, TermStatus::resolved};
-    r.gm_tc = {r.model.gm_tc, g.tc_low, g.tc_high, kNaN, TermStatus::resolved};
+    r.gm_tc = {r.model.gm_tc, own.tc.first, own.tc.second, kNaN, TermStatus::resolved};
   }
 
-  // Terms left out: status and one-sided bound.
+  // Terms left out: status and one-sided bound, the deviance's allowance
+  // scaled by the term's sandwich ratio in the enlarged model at zero (its
+  // column d mu/d c, the chosen model's gradients beside it).
+  std::vector<NoiseTerm> order;
+  const Eigen::MatrixXd gradients = log_parameter_gradients(pc, chosen, order);
+  const Eigen::MatrixXd chosen_r =
+      modelled ? standardised(covariance, pc, chosen) : Eigen::MatrixXd();
   for (NoiseTerm t : kTerms) {
     if (chosen.mask & bit(t)) continue;
     const int enlarged = chosen.mask | bit(t);
@@ -745,7 +925,17 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
       const SubsetFit bigger = fit_subset_profiled(pc, enlarged);
       if (bigger.feasible) status = TermStatus::upper_bound;
     }
-    const double ub = upper_bound(pc, chosen, t, scale);
+    double bound_scale = r.dispersion * options.correlation_inflation;
+    if (modelled && t != NoiseTerm::gm) {
+      Eigen::MatrixXd a(gradients.rows(), gradients.cols() + 1);
+      a.leftCols(gradients.cols()) = gradients;
+      for (std::size_t i = 0; i < pc.y.size(); ++i) {
+        a(static_cast<Eigen::Index>(i), gradients.cols()) =
+            std::sqrt(0.5 * pc.v[i]) * pc.basis_at(t, i, chosen.tc) / chosen.mu[i];
+      }
+      bound_scale = r.dispersion * sandwich_ratios(a, chosen_r)(gradients.cols());
+    }
+    const double ub = upper_bound(pc, chosen, t, bound_scale);
     ParameterEstimate& e = estimate_for(t);
     // A one-sided interval [0, bound]: the term may be there, this small.
     const bool bounded = std::isfinite(ub);
@@ -753,6 +943,53 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
          ub, status};
     if (t == NoiseTerm::gm) {
       r.gm_tc = {kNaN, kNaN, kNaN, kNaN, status};
+    }
+  }
+
+  // The other candidates the criterion can hardly tell from the chosen one
+  // (within `interval_window` of its criterion: the chosen one with a
+  // term the data leave undecided, or the other random-bias process) give
+  // their intervals too, and each reported interval is the union: an
+  // interval conditional on the selected model alone misses the truth
+  // whenever the selection dropped a term that shifts the others (a small
+  // flicker term left out pulls a Gauss-Markov sigma or a random walk up
+  // by 15-30 %; docs/validation.md). A chosen term's interval is the union
+  // over the candidates that hold it; a random-bias term left out (K, or
+  // the Gauss-Markov pair) gets the largest upper end as its bound (Tc the
+  // union of the intervals). The estimates, the statuses and the decision
+  // stay those of the chosen model.
+  const double best = criterion(chosen);
+  for (std::size_t k = 1; k < fits.size(); ++k) {
+    const SubsetFit& f = fits[k];
+    if (!(criterion(f) - best <= options.interval_window)) break;  // sorted
+    if (holds_a_negligible_term(p, f)) continue;
+    Points q = p;
+    q.v = f.v;
+    const Intervals other = intervals_of(q, f, known, r.dispersion, options.correlation_inflation);
+    for (NoiseTerm t : kTerms) {
+      if (!(f.mask & bit(t))) continue;
+      ParameterEstimate& e = estimate_for(t);
+      const auto [low, high] = other.term[static_cast<std::size_t>(t)];
+      if (t == NoiseTerm::gm) {  // NaN when Tc has no interval yet
+        r.gm_tc.ci95_low = std::fmin(r.gm_tc.ci95_low, other.tc.first);
+        r.gm_tc.ci95_high = std::fmax(r.gm_tc.ci95_high, other.tc.second);
+      }
+      if (chosen.mask & bit(t)) {
+        e.ci95_low = std::min(e.ci95_low, low);
+        e.ci95_high = std::max(e.ci95_high, high);
+        continue;
+      }
+      // A linear term left out keeps its profile bound (a log-scale
+      // interval of a coefficient near zero reaches far up); the random
+      // bias left out takes the other process's, when finite (a Gauss-
+      // Markov sigma whose Tc may be endless, like a random walk's, has
+      // none).
+      if (t != NoiseTerm::K && t != NoiseTerm::gm) continue;
+      if (!std::isfinite(high)) continue;        // no bound from that candidate
+      e.upper_95 = std::fmax(e.upper_95, high);  // NaN when it had no bound
+      e.ci95_low = 0.0;
+      e.ci95_high = e.upper_95;
+      if (e.status == TermStatus::upper_bound) e.value = e.upper_95;
     }
   }
   return r;

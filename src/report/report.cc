@@ -37,6 +37,11 @@ ParameterText parameter_text(const model::ParameterEstimate& p) {
     t.value = "-";
     if (std::isfinite(p.upper_95)) t.interval = fmt::format("(< {})", g(p.upper_95));
   }
+  // A Gauss-Markov Tc left out may still have the interval of the close
+  // Gauss-Markov candidates (noise_fit.h), not one-sided from 0.
+  if (p.status != model::TermStatus::resolved && p.ci95_low > 0.0) {
+    t.interval = fmt::format("[{}, {}]", g(p.ci95_low), g(p.ci95_high));
+  }
   return t;
 }
 

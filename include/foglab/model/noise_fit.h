@@ -41,20 +41,42 @@
 //
 // Uncertainty: the 95 % interval of a chosen term comes from the observed
 // Fisher information of the gamma likelihood in log-parameter space,
-// scaled by the fit's dispersion D/(points - parameters) when that exceeds
-// one and by `correlation_inflation` for the correlation between
-// neighbouring tau estimates (which the independent-points likelihood
-// ignores), then mapped back (so the interval is positive and asymmetric).
+// corrected for what the independent-points likelihood ignores: the
+// overlapping estimates at neighbouring tau share most of their data
+// (correlation 0.5 for white noise, 0.7 for flicker, 0.9 for a random walk
+// between octaves). The covariance of the Allan variance estimates across
+// tau under the chosen model, exact for Gaussian noise (Greenhall's
+// structure-function form, src/model/allan_covariance.h), gives the
+// sandwich covariance J^-1 (G'W Sigma W G) J^-1 of the fit (White 1982;
+// Guerrier et al. 2013), and each parameter's variance is scaled by its
+// ratio to the naive J^-1 (about 2 for N and Tc, 2.3 for B, 3 for K and
+// sigma^2) and by the fit's dispersion D/(points - parameters) when that
+// exceeds one, then mapped back (so the interval is positive and
+// asymmetric).
+// Without the averaging factors (the span form of fit_noise_model()) the
+// covariance cannot be computed and `correlation_inflation` stands in.
 // The Gauss-Markov pair is the exception: its likelihood is far from
 // quadratic when the hump is only partly in the record, so Tc's interval is
-// the profile-likelihood one (deviance within 3.84 x the same scale of its
-// minimum) and sigma's the projection of the joint region; an end the data
-// do not close (a process indistinguishable from a random walk) is infinite.
-// A term left out gets a one-sided 95 % upper bound from the profile
-// deviance (the value at which adding it costs 2.71 in D, times the same
-// scale), reported as the interval [0, bound], and the status
-// `upper_bound` when the data pull it above zero but not significantly, or
-// `absent` when they pull it to zero.
+// the profile-likelihood one (deviance within 3.84 x Tc's scale of its
+// minimum) and sigma's the projection of the joint region (with sigma^2's
+// scale); an end the data do not close (a process indistinguishable from a
+// random walk) is infinite. A term left out gets a one-sided 95 % upper
+// bound from the profile deviance (the value at which adding it costs 2.71
+// in D, times its own sandwich scale in the enlarged model), reported as
+// the interval [0, bound], and the status `upper_bound` when the data pull
+// it above zero but not significantly, or `absent` when they pull it to
+// zero.
+// Those intervals hold for the chosen model; when the selection is wrong
+// they miss (a small flicker term left out biases a Gauss-Markov sigma or a
+// random walk up by 15-30 %; a random walk taken for a Gauss-Markov process
+// is bounded beside the term that took its variance, a Gauss-Markov process
+// taken for a random walk not at all). So every candidate whose criterion
+// is within `interval_window` of the chosen one (docs/validation.md) also
+// gives its intervals, and the reported ones are the unions: over the
+// candidates holding a chosen term, and as the upper bound of a random-bias
+// term left out (K; for a Gauss-Markov process, sigma's [0, bound] and the
+// union of Tc's intervals). The estimates, statuses and the decision are the
+// chosen model's.
 #pragma once
 
 #include <array>
@@ -96,8 +118,10 @@ struct ParameterEstimate {
   double value =
       0.0;  ///< the estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent
   /// The 95 % interval; for a term left out, the one-sided [0, upper_95]
-  /// (NaN when no bound could be set). A Gauss-Markov end the data do not
-  /// close is infinite (ci95_high) or 0 (ci95_low).
+  /// (NaN when no bound could be set), except the Gauss-Markov Tc's: the
+  /// union of its intervals under the candidates that hold the term (NaN
+  /// when none is close). A Gauss-Markov end the data do not close is
+  /// infinite (ci95_high) or 0 (ci95_low).
   double ci95_low = 0.0;
   double ci95_high = 0.0;
   /// One-sided 95 % upper bound for a term left out (NaN when resolved or
@@ -114,8 +138,14 @@ struct NoiseFitOptions {
   /// Cost of one parameter in the selection criterion D + penalty * p.
   double penalty = 6.0;
   /// Multiplies the covariance of the chosen parameters, for the correlation
-  /// of neighbouring tau estimates (set by the simulation study).
+  /// of neighbouring tau estimates, when that correlation cannot be
+  /// modelled (the averaging factors unknown: the span form of
+  /// fit_noise_model()).
   double correlation_inflation = 3.0;
+  /// Candidates whose criterion is within this of the chosen model's widen
+  /// the reported intervals to the union of theirs (set by the simulation
+  /// study).
+  double interval_window = 6.0;
   bool allow_gauss_markov = true;
   /// Allow a Wiener and a Gauss-Markov term in the same model.
   bool allow_wiener_with_gauss_markov = false;

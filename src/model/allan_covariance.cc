@@ -1,0 +1,172 @@
+#include "allan_covariance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace foglab::model::detail {
+namespace {
+
+// Generalised phase structure function D(s) [(deg/h)^2 s^2] of the model's
+// terms, x the integrated rate, s >= 0 [s]: the covariance of two
+// combinations sum_a w_a x(t_a) and sum_b u_b x(s_b) whose weights cancel
+// constants and straight lines (second differences, the Allan variance's)
+// is -1/2 sum_ab w_a u_b D(|t_a - s_b|) (Yaglom's generalised covariance;
+// Greenhall, "A structure function representation theorem with
+// applications to frequency stability estimation", IEEE Trans. Instrum.
+// Meas. 32, 1983). Each term's constant follows from its Allan variance
+// (noise_fit.h), AVAR(tau) = (4 D(tau) - D(2 tau)) / (2 tau^2):
+//   white rate N:      N^2 s
+//   quantisation Q:    2 Q^2 for s > 0 (white angle of variance Q^2)
+//   flicker B:         -2 h s^2 ln s, h = B^2/(2 pi) (two-sided PSD h/|f|)
+//   Wiener K:          -K^2 s^3/6
+//   Gauss-Markov:      2 sigma^2 Tc^2 (s/Tc - 1 + e^(-s/Tc))
+// (polynomials of degree <= 1 in s, which any such pair cancels, left out).
+double structure(const NoiseModel& m, double s) {
+  if (s <= 0) return 0.0;
+  const double h = m.B * m.B / (2.0 * std::numbers::pi);
+  double d =
+      m.N * m.N * s + 2.0 * m.Q * m.Q - 2.0 * h * s * s * std::log(s) - m.K * m.K * s * s * s / 6.0;
+  if (m.gm_sigma > 0 && m.gm_tc > 0) {
+    const double x = s / m.gm_tc;
+    const double e = x < 1e-4 ? x * x * (0.5 - x / 6.0) : x - 1.0 + std::exp(-x);
+    d += 2.0 * m.gm_sigma * m.gm_sigma * m.gm_tc * m.gm_tc * e;
+  }
+  return d;
+}
+
+// Eight-point Gauss-Legendre rule on [-1, 1].
+constexpr std::array<double, 8> kNodes = {
+    -0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+    0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+constexpr std::array<double, 8> kWeights = {
+    0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+    0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+
+// Below this sum of the two averaging factors the lag sum is done term by
+// term; above it, the summand is smooth between its break points on the
+// scale of the factors and the sum is an integral (Euler-Maclaurin: the
+// error is of relative order 1/m^2).
+constexpr std::int64_t kExactLagSum = 64;
+
+}  // namespace
+
+// For Gaussian data the overlapping estimate at factor m,
+//   A_m = sum_k d_k^2 / (2 m^2 tau0^2 n_m),  d_k = x_{k+2m} - 2 x_{k+m} + x_k,
+// n_m = N - 2 m terms, has Cov(A_p, A_q) = 2 sum_{k,l} C(l - k)^2 / (4 p^2 q^2
+// tau0^4 n_p n_q) (Isserlis), C(l) = Cov(d^p_k, d^q_{k+l}) from D above; the
+// double sum is sum_l count(l) C(l)^2 with count(l) the pairs at lag l.
+// C(l) bends where l + b q - a p = 0 (a, b = 0, 1, 2) and, for white,
+// quantisation and Wiener noise, vanishes outside [-2q, 2p] (the two second
+// differences see disjoint increments or one sits inside a linear part of
+// the other); flicker and Gauss-Markov terms leave tails (flicker C ~ l^-2,
+// so C^2 ~ l^-4), summed out to 16 (p + q) past that interval term by term
+// and to about 64 (p + q) in the integral (the rest is of relative order
+// 1/16^3 and 1/64^3).
+Eigen::MatrixXd allan_variance_covariance(const NoiseModel& model, double tau0_s,
+                                          std::span<const std::int64_t> m,
+                                          std::int64_t phase_points) {
+  const auto count = static_cast<Eigen::Index>(m.size());
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(count, count);
+  const bool tails = model.B > 0 || model.gm_sigma > 0;
+  constexpr std::array<double, 3> w = {1.0, -2.0, 1.0};
+  // D at whole lags, for the term-by-term sums (the largest lag they reach).
+  const std::int64_t max_lag = kExactLagSum * (tails ? 18 : 2);
+  std::vector<double> table(static_cast<std::size_t>(max_lag) + 1);
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    table[k] = structure(model, static_cast<double>(k) * tau0_s);
+  }
+  for (Eigen::Index i = 0; i < count; ++i) {
+    for (Eigen::Index j = i; j < count; ++j) {
+      const std::int64_t p = m[static_cast<std::size_t>(i)], q = m[static_cast<std::size_t>(j)];
+      const std::int64_t np = phase_points - 2 * p, nq = phase_points - 2 * q;
+      if (np <= 0 || nq <= 0) continue;
+      const double pd = static_cast<double>(p), qd = static_cast<double>(q);
+      const double npd = static_cast<double>(np), nqd = static_cast<double>(nq);
+      auto pairs = [&](double l) {
+        return std::max(0.0, std::min(npd, nqd - l) - std::max(0.0, -l));
+      };
+      double sum = 0.0;
+      if (p + q <= kExactLagSum) {
+        const std::int64_t tail = tails ? 16 * (p + q) : 0;
+        const std::int64_t lo = std::max(-np + 1, -2 * q - tail);
+        const std::int64_t hi = std::min(nq - 1, 2 * p + tail);
+        for (std::int64_t l = lo; l <= hi; ++l) {
+          double c = 0.0;
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              const std::int64_t s = l + b * q - a * p;
+              c += w[a] * w[b] * table[static_cast<std::size_t>(s < 0 ? -s : s)];
+            }
+          }
+          c *= -0.5;
+          sum += pairs(static_cast<double>(l)) * c * c;
+        }
+      } else {
+        auto covariance_at = [&](double l) {
+          double c = 0.0;
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              c += w[a] * w[b] * structure(model, std::fabs(l + b * qd - a * pd) * tau0_s);
+            }
+          }
+          return -0.5 * c;
+        };
+        // Break points, tails in doubling steps, all inside the lags that
+        // have pairs at all.
+        std::vector<double> edges;
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b) edges.push_back(a * pd - b * qd);
+        }
+        if (tails) {
+          const double step = 0.5 * (pd + qd);
+          for (int k = 1; k <= 7; ++k) {
+            edges.push_back(2.0 * pd + step * (std::exp2(k) - 1.0));
+            edges.push_back(-2.0 * qd - step * (std::exp2(k) - 1.0));
+          }
+        }
+        for (double& e : edges) e = std::clamp(e, -npd, nqd);
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (std::size_t s = 0; s + 1 < edges.size(); ++s) {
+          const double mid = 0.5 * (edges[s] + edges[s + 1]);
+          const double half = 0.5 * (edges[s + 1] - edges[s]);
+          for (std::size_t g = 0; g < kNodes.size(); ++g) {
+            const double l = mid + half * kNodes[g];
+            const double c = covariance_at(l);
+            sum += half * kWeights[g] * pairs(l) * c * c;
+          }
+        }
+        // Quantisation (white angle) correlates only at the break points,
+        // where it adds Q^2 sum w_a w_b over the coinciding samples.
+        if (model.Q > 0) {
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              const double l = a * pd - b * qd;
+              double weight = 0.0;
+              bool first = true;
+              for (int a2 = 0; a2 < 3; ++a2) {
+                for (int b2 = 0; b2 < 3; ++b2) {
+                  if (a2 * pd - b2 * qd != l) continue;
+                  first = first && a2 * 3 + b2 >= a * 3 + b;
+                  weight += w[a2] * w[b2];
+                }
+              }
+              if (!first) continue;  // that lag is counted once
+              const double c = covariance_at(l), cq = model.Q * model.Q * weight;
+              sum += pairs(l) * (c * c - (c - cq) * (c - cq));
+            }
+          }
+        }
+      }
+      const double tau0_4 = tau0_s * tau0_s * tau0_s * tau0_s;
+      cov(i, j) = 2.0 * sum / (4.0 * pd * pd * qd * qd * tau0_4 * npd * nqd);
+      cov(j, i) = cov(i, j);
+    }
+  }
+  return cov;
+}
+
+}  // namespace foglab::model::detail
