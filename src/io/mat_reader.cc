@@ -21,7 +21,10 @@
 //     delivers doubles straight into our vector (no second full copy) for
 //     every numeric class and every file version.
 #include <fmt/format.h>
+#include <fcntl.h>
 #include <matio.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -29,6 +32,7 @@
 #include <cfloat>
 #include <climits>
 #include <cmath>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -180,6 +184,37 @@ std::uint32_t decode_u32(const unsigned char* bytes, bool little_endian) {
                                      index, offset, needed, remaining));
 }
 
+// An uncompressed matrix element starts with the sub-elements array flags,
+// dimensions and name, each "type, size, data" (or, when the size fits in
+// the upper half of the type word, "small" with the data in 4 bytes). Each
+// must fit inside the element: matio allocates what a sub-element claims
+// before reading it (a 4 GB name in an 848-byte element was a fuzzing
+// finding, fuzz/regressions/mat_reader/).
+void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::size_t index,
+                              std::uint64_t offset, std::uint32_t bytes, bool little_endian) {
+  std::uint64_t at = 0;  // within the element's data
+  for (int sub = 0; sub < 3 && at + 8 <= bytes; ++sub) {
+    unsigned char tag[8];
+    if (!read_at(file, offset + 8 + at, tag, sizeof(tag))) {
+      throw_data_error(path, fmt::format("cannot read the MAT file at byte {}", offset + 8 + at));
+    }
+    const std::uint32_t word = decode_u32(tag, little_endian);
+    if ((word >> 16) != 0) {  // small data element: 4 bytes of data in the tag's second word
+      at += 8;
+      continue;
+    }
+    const std::uint64_t sub_bytes = decode_u32(tag + 4, little_endian);
+    const std::uint64_t padded = (sub_bytes + 7) / 8 * 8;
+    if (at + 8 + sub_bytes > bytes) {
+      throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) "
+                                         "has a part claiming {} bytes where its {}-byte "
+                                         "element has only {} left",
+                                         index, offset, sub_bytes, bytes, bytes - at - 8));
+    }
+    at += 8 + padded;
+  }
+}
+
 // v5/v7: a 128-byte header, then elements "type (4 bytes), size (4 bytes),
 // data" of type matrix (14) or compressed matrix (15).
 void check_mat5_layout(const std::string& path, std::uint64_t size) {
@@ -209,6 +244,8 @@ void check_mat5_layout(const std::string& path, std::uint64_t size) {
     if (bytes > size - offset - 8) {
       throw_truncated(path, index, offset, 8.0 + bytes, size - offset);
     }
+    if (type == MAT_T_MATRIX) check_mat5_matrix_header(path, file.get(), index, offset, bytes,
+                                                       little_endian);
     offset += 8 + std::uint64_t{bytes};
   }
   // Fewer than 8 bytes left: the start of a cut variable's tag (zeros are
@@ -268,6 +305,76 @@ void check_mat4_layout(const std::string& path, std::uint64_t size) {
 // The offset of an HDF5 superblock signature (HDF5 looks at 0, 512, 1024,
 // 2048, ...; a v7.3 MAT file has it at 512, after MATLAB's header), or
 // nullopt.
+// HDF5 (1.10, Debian 12) can crash (SIGSEGV in H5F__accum_read under
+// H5Gget_info, from Mat_Open()) on a damaged v7.3 file — a fuzzing finding,
+// fuzz/regressions/mat_reader/. A library crash must not take foglab down
+// without a word, so a v7.3 file is first opened, and its variables' headers
+// read, in a child process; when the child dies of a signal the file is
+// reported as damaged. (Only the metadata is probed; reading one file's
+// headers twice costs milliseconds.)
+void probe_mat73_in_child(const std::string& path) {
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return;  // no process to spare: read it directly
+  if (pid == 0) {
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (devnull >= 0) {
+      ::dup2(devnull, STDOUT_FILENO);
+      ::dup2(devnull, STDERR_FILENO);
+    }
+    if (mat_t* mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY)) {
+      while (matvar_t* var = Mat_VarReadNextInfo(mat)) Mat_VarFree(var);
+      Mat_Close(mat);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    throw_data_error(path, fmt::format("the MAT file (v7.3, HDF5) is damaged: the HDF5 library "
+                                       "crashed reading its structure ({})",
+                                       ::strsignal(WTERMSIG(status))));
+  }
+}
+
+// Before matio sees a file without v5's header marks ("IM"/"MI" at bytes
+// 126-127): when its first 20 bytes read as a v4 variable header that
+// claims more bytes (name and data) than the file holds, it is refused here
+// — Mat_Open() would otherwise allocate the claimed name length (up to
+// 4 GB) while trying v4 (a fuzzing finding, fuzz/regressions/mat_reader/).
+void check_mat4_first_header(const std::string& path, std::uint64_t size) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  unsigned char header[128] = {};
+  if (!file || !read_at(file.get(), 0, header, std::min<std::uint64_t>(size, sizeof(header)))) {
+    return;  // Mat_Open() reports unreadable files
+  }
+  if (size >= 128 && ((header[126] == 'I' && header[127] == 'M') ||
+                      (header[126] == 'M' && header[127] == 'I'))) {
+    return;  // v5, v7 or v7.3: checked after opening
+  }
+  if (size < 20) return;
+  constexpr std::array<int, 6> kElementBytes = {8, 4, 4, 2, 2, 1};
+  bool any_valid = false;
+  double smallest_need = std::numeric_limits<double>::infinity();
+  for (const bool little_endian : {true, false}) {
+    std::array<std::uint32_t, 5> f{};
+    for (std::size_t k = 0; k < f.size(); ++k) f[k] = decode_u32(header + 4 * k, little_endian);
+    const std::uint32_t type = f[0];
+    if (!(type < 5000 && (type / 100) % 10 == 0 && (type / 10) % 10 <= 5 && type % 10 <= 2)) {
+      continue;
+    }
+    any_valid = true;
+    const double need = 20.0 + f[4] +
+                        static_cast<double>(f[1]) * f[2] * kElementBytes[(type / 10) % 10] *
+                            (f[3] != 0 ? 2 : 1);
+    smallest_need = std::min(smallest_need, need);
+  }
+  if (any_valid && smallest_need > static_cast<double>(size)) {
+    throw_truncated(path, 1, 0, smallest_need, size);
+  }
+}
+
 std::optional<std::uint64_t> hdf5_signature_offset(const std::string& path, std::uint64_t size) {
   static constexpr unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
   FilePtr file(std::fopen(path.c_str(), "rb"));
@@ -427,6 +534,8 @@ class MatFile {
     }
     size_ = *size;
     if (size_ == 0) throw_data_error(path, "the MAT file is empty");
+    check_mat4_first_header(path, size_);
+    if (hdf5_signature_offset(path, size_) == std::uint64_t{512}) probe_mat73_in_child(path);
     session_.clear();
     mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
     const auto messages = session_.messages(false);

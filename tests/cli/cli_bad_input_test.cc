@@ -20,7 +20,7 @@ struct BadCase {
   std::string name;
   std::string file_content;  // written to the file named `file`
   std::string file;
-  std::string args;          // after "allan FILE"
+  std::string args;  // after "allan FILE"
   int exit_code;
   std::vector<std::string> message;  // fragments the error must contain
 };
@@ -43,7 +43,8 @@ TEST_P(CliBadInput, ClearMessageExitCodeAndNoOutputLost) {
   const test::CliRun r = test::run_foglab(args);
   EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
   for (const auto& fragment : c.message) {
-    EXPECT_NE(r.err.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos)
+        << "missing '" << fragment << "' in: " << r.err;
   }
   EXPECT_EQ(test::read_file(dir / "kept.json"), "previous result");
   EXPECT_FALSE(std::filesystem::exists(dir / "new.csv"));
@@ -58,35 +59,79 @@ INSTANTIATE_TEST_SUITE_P(
     Issue2, CliBadInput,
     ::testing::Values(
         BadCase{"EmptyFile", "", "empty.csv", "--fs 1", 3, {"empty.csv", "no data"}},
-        BadCase{"HeaderOnly", "rate\n", "header.csv", "--fs 1", 3,
+        BadCase{"HeaderOnly",
+                "rate\n",
+                "header.csv",
+                "--fs 1",
+                3,
                 {"header.csv", "header", "no data rows"}},
-        BadCase{"NonNumericCell", "t,rate\n0,1\n1,2\n2,abc\n", "cell.csv", "", 3,
+        BadCase{"NonNumericCell",
+                "t,rate\n0,1\n1,2\n2,abc\n",
+                "cell.csv",
+                "",
+                3,
                 {"cell.csv", "line 4", "column 2", "rate", "'abc'"}},
-        BadCase{"NaNSample", "1\n2\n3\n4\nnan\n6\n", "nan.txt", "--fs 1", 3,
+        BadCase{"NaNSample",
+                "1\n2\n3\n4\nnan\n6\n",
+                "nan.txt",
+                "--fs 1",
+                3,
                 {"nan.txt", "sample 5", "NaN"}},
-        BadCase{"InfSample", "1\n2\ninf\n4\n", "inf.txt", "--fs 1", 3,
-                {"inf.txt", "sample 3", "Inf"}},
-        BadCase{"TooFewSamplesForTheGrid", "1\n2\n3\n", "short.txt", "--fs 1", 3,
+        BadCase{
+            "InfSample", "1\n2\ninf\n4\n", "inf.txt", "--fs 1", 3, {"inf.txt", "sample 3", "Inf"}},
+        BadCase{"TooFewSamplesForTheGrid",
+                "1\n2\n3\n",
+                "short.txt",
+                "--fs 1",
+                3,
                 {"too few", "oadev", "10 clusters"}},
-        BadCase{"TooFewSamplesForAStatistic", "1\n2\n", "two.txt", "--fs 1 --kind hdev --taus 1",
-                3, {"hdev needs at least 3 rate samples"}},
-        BadCase{"TauBeyondTheRecord", "1\n2\n3\n4\n5\n6\n", "six.txt", "--fs 1 --taus 100", 3,
+        BadCase{"TooFewSamplesForAStatistic",
+                "1\n2\n",
+                "two.txt",
+                "--fs 1 --kind hdev --taus 1",
+                3,
+                {"hdev needs at least 3 rate samples"}},
+        BadCase{"TauBeyondTheRecord",
+                "1\n2\n3\n4\n5\n6\n",
+                "six.txt",
+                "--fs 1 --taus 100",
+                3,
                 {"tau 100 s needs more samples"}},
-        BadCase{"GarbageMatFile", std::string(3000, '\x5a'), "garbage.mat", "", 3,
+        BadCase{"GarbageMatFile",
+                std::string(3000, '\x5a'),
+                "garbage.mat",
+                "",
+                3,
                 {"garbage.mat", "not a MAT file"}},
-        BadCase{"UnknownUnit", "1\n2\n3\n", "u.txt", "--fs 1 --units furlong/s", 2,
+        BadCase{"UnknownUnit",
+                "1\n2\n3\n",
+                "u.txt",
+                "--fs 1 --units furlong/s",
+                2,
                 {"unknown rate unit 'furlong/s'", "deg/h, deg/s or rad/s"}},
         BadCase{"ZeroSampleRate", "1\n2\n3\n", "z.txt", "--fs 0", 2, {"--fs 0", "positive"}},
         BadCase{"NegativeSampleRate", "1\n2\n3\n", "n.txt", "--fs -5", 2, {"--fs -5"}},
-        BadCase{"NegativeTau", "1\n2\n3\n", "t.txt", "--fs 1 --taus 1,-2", 2,
+        BadCase{"NegativeTau",
+                "1\n2\n3\n",
+                "t.txt",
+                "--fs 1 --taus 1,-2",
+                2,
                 {"tau -2 s is not positive"}},
         BadCase{"ZeroTau", "1\n2\n3\n", "t0.txt", "--fs 1 --taus 0", 2, {"not positive"}},
-        BadCase{"UnknownStatistic", "1\n2\n3\n", "k.txt", "--fs 1 --kind allan", 2,
+        BadCase{"UnknownStatistic",
+                "1\n2\n3\n",
+                "k.txt",
+                "--fs 1 --kind allan",
+                2,
                 {"unknown statistic 'allan'"}},
         BadCase{"MissingFile", "", "", "--fs 1", 2, {"cannot open", "missing.csv"}},
-        BadCase{"RawWithoutSampleRate", std::string(64, '\0'), "raw.f64", "", 2,
-                {"raw.f64", "--fs"}},
-        BadCase{"TruncatedRaw", std::string(63, '\0'), "cut.f64", "--fs 1", 3,
+        BadCase{
+            "RawWithoutSampleRate", std::string(64, '\0'), "raw.f64", "", 2, {"raw.f64", "--fs"}},
+        BadCase{"TruncatedRaw",
+                std::string(63, '\0'),
+                "cut.f64",
+                "--fs 1",
+                3,
                 {"cut.f64", "not a multiple of 8"}}),
     [](const auto& info) { return info.param.name; });
 
@@ -152,6 +197,77 @@ TEST(CliUsage, UnknownOptionsAndMissingArgumentsAreUsageErrors) {
   const test::CliRun help = test::run_foglab("allan --help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--taus"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace foglab
+
+namespace foglab {
+namespace {
+
+TEST(CliBadMat, AV4HeaderClaimingAHugeNameIsRefusedBeforeMatioAllocatesIt) {
+  // A fuzzing finding (fuzz/regressions/mat_reader/oom-v4-name-length; its
+  // first byte is the fuzz target's mode): a 1.5 kB file whose first v4
+  // header claims a 1.8 GB name made Mat_Open() allocate it.
+  const std::string input =
+      test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." / ".." / "fuzz" /
+                      "regressions" / "mat_reader" / "oom-v4-name-length");
+  ASSERT_GT(input.size(), 100u);
+  test::TempDir dir;
+  std::ofstream(dir / "v4.mat", std::ios::binary) << input.substr(1);
+  const test::CliRun r = test::run_foglab("allan " + quote(dir / "v4.mat"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("v4.mat"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1828799004 bytes"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace foglab
+
+namespace foglab {
+namespace {
+
+TEST(CliBadMat, AV5SubElementClaimingMoreThanItsElementIsRefused) {
+  // A fuzzing finding (fuzz/regressions/mat_reader/oom-v5-name-length): an
+  // uncompressed v5 matrix whose name claims 4 GB inside an 848-byte element
+  // made matio allocate it.
+  const std::string input =
+      test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." / ".." / "fuzz" /
+                      "regressions" / "mat_reader" / "oom-v5-name-length");
+  ASSERT_GT(input.size(), 1000u);
+  test::TempDir dir;
+  std::ofstream(dir / "v5.mat", std::ios::binary) << input.substr(1);
+  const test::CliRun r = test::run_foglab("allan " + quote(dir / "v5.mat"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("v5.mat"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("variable #2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("4143972352 bytes"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace foglab
+
+namespace foglab {
+namespace {
+
+TEST(CliBadMat, AV73FileThatCrashesTheHdf5LibraryIsADataError) {
+  // A fuzzing finding (fuzz/regressions/mat_reader/crash-v73-hdf5-segv): a
+  // damaged v7.3 file on which HDF5 1.10 segfaults inside Mat_Open(); the
+  // reader probes v7.3 files in a child process and reports the crash.
+  const std::string input =
+      test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." / ".." / "fuzz" /
+                      "regressions" / "mat_reader" / "crash-v73-hdf5-segv");
+  ASSERT_GT(input.size(), 1000u);
+  test::TempDir dir;
+  std::ofstream(dir / "v73.mat", std::ios::binary) << input.substr(1);
+  std::ofstream(dir / "kept.json") << "previous result";
+  const test::CliRun r =
+      test::run_foglab("allan " + quote(dir / "v73.mat") + " --json " + quote(dir / "kept.json"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("v73.mat"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("damaged"), std::string::npos) << r.err;
+  EXPECT_EQ(test::read_file(dir / "kept.json"), "previous result");
 }
 
 }  // namespace
