@@ -72,7 +72,10 @@ int run_command_line(int argc, char** argv) {
     std::cerr << "foglab: error: " << e.what() << "\n";
     return kExitData;
   } catch (const std::bad_alloc&) {
-    std::cerr << "foglab: error: out of memory\n";
+    // Nothing was written (outputs are rendered before any is written).
+    std::cerr << "foglab: error: out of memory: the record and its analysis need more memory "
+                 "than this process may use (analyze: 10-40 bytes per sample; see "
+                 "bench/RESULTS.md); no output was written\n";
     return kExitInternal;
   } catch (const std::exception& e) {
     std::cerr << "foglab: internal error: " << e.what() << "\n";
