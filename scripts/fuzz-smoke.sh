@@ -6,9 +6,11 @@
 # exception other than foglab's usage/data errors fails the run; libFuzzer
 # leaves the input as crash-* in build-fuzz/findings/: fix the bug and keep
 # the input in fuzz/regressions/<target>/.
-# Needs clang-14, libclang-rt-14-dev, libomp-14-dev (scripts/install-deps.sh --tests).
+# Needs clang-14, libclang-rt-14-dev, libomp-14-dev (installed by
+# scripts/install-deps.sh --fuzz, which this script runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --fuzz
 seconds=${FOGLAB_FUZZ_SECONDS:-30}
 build=build-fuzz
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages foglab needs to build and run, skipping
 # those already present; with --tests also what the test suite needs
-# (GNU Octave; headless Chromium for the report's browser test). Run as root (or with sudo).
+# (GNU Octave; headless Chromium for the reports' browser test); with
+# --fuzz what the fuzz targets need (clang-14, libFuzzer, libomp). Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -15,10 +16,13 @@ if [ "${1:-}" = "--tests" ]; then
   # octave-cli runs the lab's MATLAB steps on lab2-data files in the tests
   # (octave 7 from Debian 12); its plots need a font, a Recommends of
   # octave-common that --no-install-recommends would skip.
-  # chromium opens the lab reports in the browser test (headless); clang-14
-  # with its runtime (libFuzzer, sanitizers) and OpenMP builds the fuzz
-  # targets (scripts/fuzz-smoke.sh).
-  packages+=(octave fonts-freefont-otf chromium clang-14 libclang-rt-14-dev libomp-14-dev)
+  # chromium opens the lab reports in the browser test (headless).
+  packages+=(octave fonts-freefont-otf chromium)
+fi
+if [ "${1:-}" = "--fuzz" ]; then
+  # clang-14 with its runtime (libFuzzer, sanitizers) and OpenMP builds the
+  # fuzz targets (scripts/fuzz-smoke.sh).
+  packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)
 fi
 
 missing=()
