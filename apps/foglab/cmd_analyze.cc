@@ -134,9 +134,8 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   // A variable the file holds that is no channel (a char or complex T1):
   // reading it gives the reader's message saying why it cannot be used.
   auto unusable = [&](const std::string& wanted) {
-    return wanted != series.channel &&
-           std::find(series.variables.begin(), series.variables.end(), wanted) !=
-               series.variables.end();
+    return wanted != series.channel && std::find(series.variables.begin(), series.variables.end(),
+                                                 wanted) != series.variables.end();
   };
   std::string name;
   if (!c.temp_channel.empty()) {

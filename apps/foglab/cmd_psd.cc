@@ -40,8 +40,9 @@ void run(const PsdCommand& c) {
   // shorter record is the data's fault, not an option's.
   constexpr std::size_t kMinSamples = 16;
   if (series.values.size() < kMinSamples) {
-    throw DataError(fmt::format("'{}' channel {}: the record has {} sample(s); the PSD needs at least {}",
-                                series.path, series.channel, series.values.size(), kMinSamples));
+    throw DataError(
+        fmt::format("'{}' channel {}: the record has {} sample(s); the PSD needs at least {}",
+                    series.path, series.channel, series.values.size(), kMinSamples));
   }
   stats::PsdResult psd, smooth;
   try {

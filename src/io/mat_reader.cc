@@ -20,8 +20,8 @@
 //     set the class of the variable's info to double before reading, so it
 //     delivers doubles straight into our vector (no second full copy) for
 //     every numeric class and every file version.
-#include <fmt/format.h>
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <matio.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,10 +29,10 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cerrno>
 #include <cfloat>
 #include <climits>
 #include <cmath>
-#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -244,8 +244,8 @@ void check_mat5_layout(const std::string& path, std::uint64_t size) {
     if (bytes > size - offset - 8) {
       throw_truncated(path, index, offset, 8.0 + bytes, size - offset);
     }
-    if (type == MAT_T_MATRIX) check_mat5_matrix_header(path, file.get(), index, offset, bytes,
-                                                       little_endian);
+    if (type == MAT_T_MATRIX)
+      check_mat5_matrix_header(path, file.get(), index, offset, bytes, little_endian);
     offset += 8 + std::uint64_t{bytes};
   }
   // Fewer than 8 bytes left: the start of a cut variable's tag (zeros are
@@ -262,12 +262,29 @@ void check_mat5_layout(const std::string& path, std::uint64_t size) {
   }
 }
 
+// The bytes a v4 variable occupies (its 20-byte header "type, mrows, ncols,
+// imagf, namlen", the name and the data), or nothing when the header is no
+// valid v4 header in that byte order (type = 1000 M + 100 O + 10 P + T).
+std::optional<double> mat4_variable_bytes(const unsigned char* header, bool little_endian) {
+  constexpr std::array<int, 6> kElementBytes = {8, 4, 4, 2, 2, 1};
+  std::array<std::uint32_t, 5> field{};
+  for (std::size_t k = 0; k < field.size(); ++k) {
+    field[k] = decode_u32(header + 4 * k, little_endian);
+  }
+  const std::uint32_t type = field[0];
+  if (!(type < 5000 && (type / 100) % 10 == 0 && (type / 10) % 10 <= 5 && type % 10 <= 2)) {
+    return std::nullopt;
+  }
+  return 20.0 + field[4] +
+         static_cast<double>(field[1]) * field[2] * kElementBytes[(type / 10) % 10] *
+             (field[3] != 0 ? 2 : 1);
+}
+
 // v4: per variable a 20-byte header "type, mrows, ncols, imagf, namlen"
 // (type = 1000 M + 100 O + 10 P + T), the name, then the data.
 void check_mat4_layout(const std::string& path, std::uint64_t size) {
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) throw_data_error(path, "cannot reopen the MAT file");
-  constexpr std::array<int, 6> kElementBytes = {8, 4, 4, 2, 2, 1};
   std::uint64_t offset = 0;
   std::size_t index = 0;
   while (offset < size) {
@@ -276,23 +293,14 @@ void check_mat4_layout(const std::string& path, std::uint64_t size) {
     if (size - offset < sizeof(header) || !read_at(file.get(), offset, header, sizeof(header))) {
       throw_truncated(path, index, offset, sizeof(header), size - offset);
     }
-    std::array<std::uint32_t, 5> field{};
-    auto decode = [&](bool little_endian) {
-      for (std::size_t k = 0; k < field.size(); ++k) {
-        field[k] = decode_u32(header + 4 * k, little_endian);
-      }
-      const std::uint32_t type = field[0];
-      return type < 5000 && (type / 100) % 10 == 0 && (type / 10) % 10 <= 5 && type % 10 <= 2;
-    };
-    if (!decode(true) && !decode(false)) {
+    std::optional<double> bytes = mat4_variable_bytes(header, true);
+    if (!bytes) bytes = mat4_variable_bytes(header, false);
+    if (!bytes) {
       throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) has "
                                          "no valid v4 header",
                                          index, offset));
     }
-    const int element_bytes = kElementBytes[(field[0] / 10) % 10];
-    const double needed =
-        20.0 + field[4] +
-        static_cast<double>(field[1]) * field[2] * element_bytes * (field[3] != 0 ? 2 : 1);
+    const double needed = *bytes;
     if (needed > static_cast<double>(size - offset)) {
       throw_truncated(path, index, offset, needed, size - offset);
     }
@@ -349,26 +357,18 @@ void check_mat4_first_header(const std::string& path, std::uint64_t size) {
   if (!file || !read_at(file.get(), 0, header, std::min<std::uint64_t>(size, sizeof(header)))) {
     return;  // Mat_Open() reports unreadable files
   }
-  if (size >= 128 && ((header[126] == 'I' && header[127] == 'M') ||
-                      (header[126] == 'M' && header[127] == 'I'))) {
+  if (size >= 128 &&
+      ((header[126] == 'I' && header[127] == 'M') || (header[126] == 'M' && header[127] == 'I'))) {
     return;  // v5, v7 or v7.3: checked after opening
   }
   if (size < 20) return;
-  constexpr std::array<int, 6> kElementBytes = {8, 4, 4, 2, 2, 1};
   bool any_valid = false;
   double smallest_need = std::numeric_limits<double>::infinity();
   for (const bool little_endian : {true, false}) {
-    std::array<std::uint32_t, 5> f{};
-    for (std::size_t k = 0; k < f.size(); ++k) f[k] = decode_u32(header + 4 * k, little_endian);
-    const std::uint32_t type = f[0];
-    if (!(type < 5000 && (type / 100) % 10 == 0 && (type / 10) % 10 <= 5 && type % 10 <= 2)) {
-      continue;
+    if (const std::optional<double> need = mat4_variable_bytes(header, little_endian)) {
+      any_valid = true;
+      smallest_need = std::min(smallest_need, *need);
     }
-    any_valid = true;
-    const double need = 20.0 + f[4] +
-                        static_cast<double>(f[1]) * f[2] * kElementBytes[(type / 10) % 10] *
-                            (f[3] != 0 ? 2 : 1);
-    smallest_need = std::min(smallest_need, need);
   }
   if (any_valid && smallest_need > static_cast<double>(size)) {
     throw_truncated(path, 1, 0, smallest_need, size);
@@ -399,6 +399,22 @@ struct VarDeleter {
 };
 using VarPtr = std::unique_ptr<matvar_t, VarDeleter>;
 
+bool is_integer_class(matio_classes c) {
+  switch (c) {
+    case MAT_C_INT8:
+    case MAT_C_UINT8:
+    case MAT_C_INT16:
+    case MAT_C_UINT16:
+    case MAT_C_INT32:
+    case MAT_C_UINT32:
+    case MAT_C_INT64:
+    case MAT_C_UINT64:
+      return true;
+    default:
+      return false;
+  }
+}
+
 struct VarInfo {
   std::string name;
   matio_classes class_type = MAT_C_EMPTY;
@@ -417,21 +433,9 @@ struct VarInfo {
     return long_dims <= 1;
   }
   bool numeric() const {
-    switch (class_type) {
-      case MAT_C_DOUBLE:
-      case MAT_C_SINGLE:
-      case MAT_C_INT8:
-      case MAT_C_UINT8:
-      case MAT_C_INT16:
-      case MAT_C_UINT16:
-      case MAT_C_INT32:
-      case MAT_C_UINT32:
-      case MAT_C_INT64:
-      case MAT_C_UINT64:
-        return !logical;
-      default:
-        return false;
-    }
+    const bool number =
+        class_type == MAT_C_DOUBLE || class_type == MAT_C_SINGLE || is_integer_class(class_type);
+    return number && !logical;
   }
   // Something read_series can return: a real numeric vector with samples.
   bool readable() const { return numeric() && !complex && is_vector() && numel() >= 1; }
@@ -496,22 +500,6 @@ std::string describe(const VarInfo& var) {
   std::string text = fmt::format("{}{} {}", var.complex ? "complex " : "", dims, class_name(var));
   if (var.numeric() && !var.is_vector()) text += " matrix";
   return text;
-}
-
-bool is_integer_class(matio_classes c) {
-  switch (c) {
-    case MAT_C_INT8:
-    case MAT_C_UINT8:
-    case MAT_C_INT16:
-    case MAT_C_UINT16:
-    case MAT_C_INT32:
-    case MAT_C_UINT32:
-    case MAT_C_INT64:
-    case MAT_C_UINT64:
-      return true;
-    default:
-      return false;
-  }
 }
 
 // Why a variable cannot be a channel ("" if it can).
@@ -737,9 +725,9 @@ double rate_from_time_variable(const std::string& path, MatFile& file, const Var
                                const VarInfo& channel) {
   if (!time.readable()) throw_data_error(path, unreadable_reason(time));
   if (time.numel() != channel.numel()) {
-    throw_data_error(path, fmt::format("time variable '{}' has {} samples but '{}' has {}{}",
-                                       time.name, time.numel(), channel.name, channel.numel(),
-                                       kIgnoreTimeHint));
+    throw_data_error(path,
+                     fmt::format("time variable '{}' has {} samples but '{}' has {}{}", time.name,
+                                 time.numel(), channel.name, channel.numel(), kIgnoreTimeHint));
   }
   const std::vector<double> time_s = file.read(time);
   // single-precision time steps carry float rounding, not gaps
@@ -767,10 +755,10 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
   series.channel = channel.name;
   if (is_integer_class(channel.class_type)) {
     const bool wide = channel.class_type == MAT_C_INT64 || channel.class_type == MAT_C_UINT64;
-    series.notes.push_back(fmt::format(
-        "{}: variable '{}' is {}: its integers are converted to double{}", quoted_path(path),
-        channel.name, describe(channel),
-        wide ? " (those beyond 2^53 in magnitude are rounded)" : ""));
+    series.notes.push_back(
+        fmt::format("{}: variable '{}' is {}: its integers are converted to double{}",
+                    quoted_path(path), channel.name, describe(channel),
+                    wide ? " (those beyond 2^53 in magnitude are rounded)" : ""));
   }
 
   // The rate first: the time vector is read and freed before the channel,

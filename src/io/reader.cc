@@ -289,8 +289,7 @@ InputFormat input_format_from_string(std::string_view text) {
 Series read_series(const std::string& path, const ReadOptions& options) {
   if (!(options.max_magnitude > 0.0)) {
     throw UsageError(fmt::format("invalid largest sample magnitude {} for {}: expected > 0",
-                                 internal::format_value(options.max_magnitude),
-                                 quoted_path(path)));
+                                 internal::format_value(options.max_magnitude), quoted_path(path)));
   }
   if (options.sample_rate_hz &&
       !(std::isfinite(*options.sample_rate_hz) && *options.sample_rate_hz > 0.0)) {

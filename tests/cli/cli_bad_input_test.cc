@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <matio.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -205,70 +206,55 @@ TEST(CliUsage, UnknownOptionsAndMissingArgumentsAreUsageErrors) {
 namespace foglab {
 namespace {
 
-TEST(CliBadMat, AV4HeaderClaimingAHugeNameIsRefusedBeforeMatioAllocatesIt) {
-  // A fuzzing finding (fuzz/regressions/mat_reader/oom-v4-name-length; its
-  // first byte is the fuzz target's mode): a 1.5 kB file whose first v4
-  // header claims a 1.8 GB name made Mat_Open() allocate it.
-  const std::string input =
-      test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." / ".." / "fuzz" /
-                      "regressions" / "mat_reader" / "oom-v4-name-length");
-  ASSERT_GT(input.size(), 100u);
+// The MAT-reader findings of the fuzz target (fuzz/regressions/mat_reader/;
+// each file's first byte is the target's mode byte, not part of the file).
+struct FuzzFinding {
+  std::string name;                  // in fuzz/regressions/mat_reader/
+  std::vector<std::string> message;  // besides the file name
+};
+
+void PrintTo(const FuzzFinding& f, std::ostream* os) { *os << f.name; }
+
+class CliFuzzFinding : public ::testing::TestWithParam<FuzzFinding> {};
+
+TEST_P(CliFuzzFinding, IsADataErrorWithoutHugeAllocationsOrACrash) {
+  const FuzzFinding& f = GetParam();
+  const std::string input = test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." /
+                                            ".." / "fuzz" / "regressions" / "mat_reader" / f.name);
+  ASSERT_GT(input.size(), 100u) << f.name;
   test::TempDir dir;
-  std::ofstream(dir / "v4.mat", std::ios::binary) << input.substr(1);
-  const test::CliRun r = test::run_foglab("allan " + quote(dir / "v4.mat"));
-  EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_NE(r.err.find("v4.mat"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("1828799004 bytes"), std::string::npos) << r.err;
-}
-
-}  // namespace
-}  // namespace foglab
-
-namespace foglab {
-namespace {
-
-TEST(CliBadMat, AV5SubElementClaimingMoreThanItsElementIsRefused) {
-  // A fuzzing finding (fuzz/regressions/mat_reader/oom-v5-name-length): an
-  // uncompressed v5 matrix whose name claims 4 GB inside an 848-byte element
-  // made matio allocate it.
-  const std::string input =
-      test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." / ".." / "fuzz" /
-                      "regressions" / "mat_reader" / "oom-v5-name-length");
-  ASSERT_GT(input.size(), 1000u);
-  test::TempDir dir;
-  std::ofstream(dir / "v5.mat", std::ios::binary) << input.substr(1);
-  const test::CliRun r = test::run_foglab("allan " + quote(dir / "v5.mat"));
-  EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_NE(r.err.find("v5.mat"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("variable #2"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("4143972352 bytes"), std::string::npos) << r.err;
-}
-
-}  // namespace
-}  // namespace foglab
-
-namespace foglab {
-namespace {
-
-TEST(CliBadMat, AV73FileThatCrashesTheHdf5LibraryIsADataError) {
-  // A fuzzing finding (fuzz/regressions/mat_reader/crash-v73-hdf5-segv): a
-  // damaged v7.3 file on which HDF5 1.10 segfaults inside Mat_Open(); the
-  // reader probes v7.3 files in a child process and reports the crash.
-  const std::string input =
-      test::read_file(std::filesystem::path(FOGLAB_TEST_DATA_DIR) / ".." / ".." / "fuzz" /
-                      "regressions" / "mat_reader" / "crash-v73-hdf5-segv");
-  ASSERT_GT(input.size(), 1000u);
-  test::TempDir dir;
-  std::ofstream(dir / "v73.mat", std::ios::binary) << input.substr(1);
+  std::ofstream(dir / "input.mat", std::ios::binary) << input.substr(1);
   std::ofstream(dir / "kept.json") << "previous result";
   const test::CliRun r =
-      test::run_foglab("allan " + quote(dir / "v73.mat") + " --json " + quote(dir / "kept.json"));
+      test::run_foglab("allan " + quote(dir / "input.mat") + " --json " + quote(dir / "kept.json"));
   EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_NE(r.err.find("v73.mat"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("damaged"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("input.mat"), std::string::npos) << r.err;
+  for (const std::string& fragment : f.message) {
+    EXPECT_NE(r.err.find(fragment), std::string::npos)
+        << "missing '" << fragment << "' in " << r.err;
+  }
   EXPECT_EQ(test::read_file(dir / "kept.json"), "previous result");
 }
+
+INSTANTIATE_TEST_SUITE_P(Issue7, CliFuzzFinding,
+                         ::testing::Values(
+                             // A 1.5 kB file whose first v4 header claims a 1.8 GB name, which
+                             // Mat_Open() allocated.
+                             FuzzFinding{"oom-v4-name-length", {"truncated", "1828799004 bytes"}},
+                             // An uncompressed v5 matrix whose name claims 4 GB inside an
+                             // 848-byte element, which matio allocated.
+                             FuzzFinding{"oom-v5-name-length", {"variable #2", "4143972352 bytes"}},
+                             // A compressed v5 header whose inflated dimensions are huge.
+                             FuzzFinding{"oom-v5-compressed-header", {"corrupt"}},
+                             // A damaged v7.3 file on which HDF5 1.10 segfaults inside
+                             // Mat_Open(): probed in a child process, reported as damaged.
+                             FuzzFinding{"crash-v73-hdf5-segv", {"damaged", "HDF5"}}),
+                         [](const auto& info) {
+                           std::string name = info.param.name;
+                           for (char& c : name)
+                             c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace foglab
