@@ -32,6 +32,7 @@
 
 #include "support/cli.h"
 #include "support/files.h"
+#include "support/mat_writer.h"
 
 namespace foglab {
 namespace {
@@ -119,131 +120,7 @@ void set_cell(std::vector<std::string>& rows, std::size_t row, std::size_t colum
 
 // ---- MAT files with matio ---------------------------------------------------
 
-template <typename T>
-constexpr matio_classes class_of() {
-  if constexpr (std::is_same_v<T, double>) return MAT_C_DOUBLE;
-  if constexpr (std::is_same_v<T, float>) return MAT_C_SINGLE;
-  if constexpr (std::is_same_v<T, std::int8_t>) return MAT_C_INT8;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return MAT_C_UINT8;
-  if constexpr (std::is_same_v<T, std::int16_t>) return MAT_C_INT16;
-  if constexpr (std::is_same_v<T, std::uint16_t>) return MAT_C_UINT16;
-  if constexpr (std::is_same_v<T, std::int32_t>) return MAT_C_INT32;
-  if constexpr (std::is_same_v<T, std::uint32_t>) return MAT_C_UINT32;
-  if constexpr (std::is_same_v<T, std::int64_t>) return MAT_C_INT64;
-  if constexpr (std::is_same_v<T, std::uint64_t>) return MAT_C_UINT64;
-  return MAT_C_EMPTY;
-}
-
-template <typename T>
-constexpr matio_types type_of() {
-  if constexpr (std::is_same_v<T, double>) return MAT_T_DOUBLE;
-  if constexpr (std::is_same_v<T, float>) return MAT_T_SINGLE;
-  if constexpr (std::is_same_v<T, std::int8_t>) return MAT_T_INT8;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return MAT_T_UINT8;
-  if constexpr (std::is_same_v<T, std::int16_t>) return MAT_T_INT16;
-  if constexpr (std::is_same_v<T, std::uint16_t>) return MAT_T_UINT16;
-  if constexpr (std::is_same_v<T, std::int32_t>) return MAT_T_INT32;
-  if constexpr (std::is_same_v<T, std::uint32_t>) return MAT_T_UINT32;
-  if constexpr (std::is_same_v<T, std::int64_t>) return MAT_T_INT64;
-  if constexpr (std::is_same_v<T, std::uint64_t>) return MAT_T_UINT64;
-  return MAT_T_UNKNOWN;
-}
-
-// Writes variables of any class into one MAT file.
-class MatWriter {
- public:
-  MatWriter(const fs::path& path, mat_ft version) {
-    mat_ = Mat_CreateVer(path.c_str(), nullptr, version);
-    EXPECT_NE(mat_, nullptr) << "cannot create " << path;
-  }
-  ~MatWriter() {
-    if (mat_ != nullptr) Mat_Close(mat_);
-  }
-  MatWriter(const MatWriter&) = delete;
-  MatWriter& operator=(const MatWriter&) = delete;
-
-  template <typename T>
-  void vector(const std::string& name, std::vector<T> data) {
-    std::size_t dims[2] = {data.size(), 1};
-    write(Mat_VarCreate(name.c_str(), class_of<T>(), type_of<T>(), 2, dims, data.data(), 0));
-  }
-  void scalar(const std::string& name, double value) { vector(name, std::vector<double>{value}); }
-  void matrix(const std::string& name, std::size_t rows, std::size_t cols) {
-    std::vector<double> data(rows * cols, 1.0);
-    std::size_t dims[2] = {rows, cols};
-    write(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, data.data(), 0));
-  }
-  void empty(const std::string& name) {
-    std::size_t dims[2] = {0, 0};
-    write(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, nullptr, 0));
-  }
-  void complex_vector(const std::string& name, std::size_t n) {
-    std::vector<double> re = rate_samples(n), im(n, 0.5);
-    mat_complex_split_t split = {re.data(), im.data()};
-    std::size_t dims[2] = {n, 1};
-    write(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, &split, MAT_F_COMPLEX));
-  }
-  void text(const std::string& name, const std::string& value) {
-    std::vector<char> data(value.begin(), value.end());
-    std::size_t dims[2] = {1, value.size()};
-    write(Mat_VarCreate(name.c_str(), MAT_C_CHAR, MAT_T_UTF8, 2, dims, data.data(), 0));
-  }
-  void logical(const std::string& name, std::size_t n) {
-    std::vector<std::uint8_t> data(n, 1);
-    std::size_t dims[2] = {n, 1};
-    write(
-        Mat_VarCreate(name.c_str(), MAT_C_UINT8, MAT_T_UINT8, 2, dims, data.data(), MAT_F_LOGICAL));
-  }
-  // An n x 1 sparse column with every other element set.
-  void sparse(const std::string& name, std::size_t n) {
-    std::vector<mat_uint32_t> ir;
-    std::vector<double> data;
-    for (std::size_t i = 0; i < n; i += 2) {
-      ir.push_back(static_cast<mat_uint32_t>(i));
-      data.push_back(1.0 + static_cast<double>(i));
-    }
-    std::vector<mat_uint32_t> jc = {0, static_cast<mat_uint32_t>(ir.size())};
-    mat_sparse_t s{};
-    s.nzmax = ir.size();
-    s.nir = ir.size();
-    s.ir = ir.data();
-    s.njc = jc.size();
-    s.jc = jc.data();
-    s.ndata = data.size();
-    s.data = data.data();
-    std::size_t dims[2] = {n, 1};
-    write(
-        Mat_VarCreate(name.c_str(), MAT_C_SPARSE, MAT_T_DOUBLE, 2, dims, &s, MAT_F_DONT_COPY_DATA));
-  }
-  void structure(const std::string& name, std::size_t n) {
-    const char* fields[] = {"data"};
-    std::size_t dims[2] = {1, 1};
-    matvar_t* var = Mat_VarCreateStruct(name.c_str(), 2, dims, fields, 1);
-    std::vector<double> values = rate_samples(n);
-    std::size_t vdims[2] = {n, 1};
-    Mat_VarSetStructFieldByName(
-        var, "data", 0,
-        Mat_VarCreate("data", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, vdims, values.data(), 0));
-    write(var);
-  }
-  void cell(const std::string& name, std::size_t n) {
-    std::size_t dims[2] = {1, 1};
-    matvar_t* var = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
-    std::vector<double> values = rate_samples(n);
-    std::size_t vdims[2] = {n, 1};
-    Mat_VarSetCell(var, 0,
-                   Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, vdims, values.data(), 0));
-    write(var);
-  }
-
- private:
-  void write(matvar_t* var) {
-    ASSERT_NE(var, nullptr);
-    EXPECT_EQ(Mat_VarWrite(mat_, var, MAT_COMPRESSION_NONE), 0) << var->name;
-    Mat_VarFree(var);
-  }
-  mat_t* mat_ = nullptr;
-};
+using test::MatWriter;
 
 // What a lab-layout file holds; each field can be replaced by a case.
 struct LabLayout {
@@ -867,15 +744,19 @@ std::vector<Case> catalogue() {
   const std::vector<Wrong> wrong = {
       {"Char", [](MatWriter& m, const std::string& v) { m.text(v, "gyro rate"); }, {"1x9 char"}},
       {"Complex",
-       [](MatWriter& m, const std::string& v) { m.complex_vector(v, kSamples); },
+       [](MatWriter& m, const std::string& v) {
+         m.complex_vector(v, rate_samples(kSamples), std::vector<double>(kSamples, 0.5));
+       },
        {"complex 400x1 double"}},
       {"Sparse",
        [](MatWriter& m, const std::string& v) { m.sparse(v, kSamples); },
        {"400x1 sparse"}},
       {"Struct",
-       [](MatWriter& m, const std::string& v) { m.structure(v, kSamples); },
+       [](MatWriter& m, const std::string& v) { m.structure(v, rate_samples(kSamples)); },
        {"1x1 struct"}},
-      {"Cell", [](MatWriter& m, const std::string& v) { m.cell(v, kSamples); }, {"1x1 cell"}},
+      {"Cell",
+       [](MatWriter& m, const std::string& v) { m.cell(v, rate_samples(kSamples)); },
+       {"1x1 cell"}},
       {"Logical",
        [](MatWriter& m, const std::string& v) { m.logical(v, kSamples); },
        {"400x1 logical"}},

@@ -26,6 +26,7 @@
 #include "foglab/io/reader.h"
 #include "support/expect.h"
 #include "support/files.h"
+#include "support/mat_writer.h"
 
 namespace foglab::io {
 namespace {
@@ -37,8 +38,8 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using ::testing::UnorderedElementsAre;
 
-using test::TempDir;
 using test::message_of;
+using test::TempDir;
 
 std::vector<unsigned char> read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -51,90 +52,7 @@ void write_bytes(const std::string& path, const std::vector<unsigned char>& byte
             static_cast<std::streamsize>(bytes.size()));
 }
 
-template <typename T>
-constexpr matio_classes class_of() {
-  if constexpr (std::is_same_v<T, double>) return MAT_C_DOUBLE;
-  if constexpr (std::is_same_v<T, float>) return MAT_C_SINGLE;
-  if constexpr (std::is_same_v<T, std::int16_t>) return MAT_C_INT16;
-  if constexpr (std::is_same_v<T, std::int32_t>) return MAT_C_INT32;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return MAT_C_UINT8;
-  return MAT_C_EMPTY;
-}
-
-template <typename T>
-constexpr matio_types type_of() {
-  if constexpr (std::is_same_v<T, double>) return MAT_T_DOUBLE;
-  if constexpr (std::is_same_v<T, float>) return MAT_T_SINGLE;
-  if constexpr (std::is_same_v<T, std::int16_t>) return MAT_T_INT16;
-  if constexpr (std::is_same_v<T, std::int32_t>) return MAT_T_INT32;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return MAT_T_UINT8;
-  return MAT_T_UNKNOWN;
-}
-
-// Writes variables into one MAT file with matio.
-class MatWriter {
- public:
-  MatWriter(const std::string& path, mat_ft version, matio_compression compression)
-      : compression_(compression) {
-    mat_ = Mat_CreateVer(path.c_str(), nullptr, version);
-    EXPECT_NE(mat_, nullptr) << "cannot create " << path;
-  }
-  ~MatWriter() { close(); }
-
-  void close() {
-    if (mat_ != nullptr) Mat_Close(mat_);
-    mat_ = nullptr;
-  }
-
-  template <typename T>
-  void vector(const std::string& name, std::vector<T> data, bool row = false) {
-    std::size_t dims[2] = {row ? 1 : data.size(), row ? data.size() : 1};
-    write(Mat_VarCreate(name.c_str(), class_of<T>(), type_of<T>(), 2, dims, data.data(), 0));
-  }
-  void scalar(const std::string& name, double value) { vector(name, std::vector<double>{value}); }
-  void matrix(const std::string& name, std::size_t rows, std::size_t cols) {
-    std::vector<double> data(rows * cols, 1.0);
-    std::size_t dims[2] = {rows, cols};
-    write(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, data.data(), 0));
-  }
-  void complex_vector(const std::string& name, std::size_t n) {
-    std::vector<double> re(n, 1.0), im(n, 2.0);
-    mat_complex_split_t split = {re.data(), im.data()};
-    std::size_t dims[2] = {n, 1};
-    write(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, &split, MAT_F_COMPLEX));
-  }
-  void text(const std::string& name, const std::string& value) {
-    std::vector<char> data(value.begin(), value.end());
-    std::size_t dims[2] = {1, value.size()};
-    write(Mat_VarCreate(name.c_str(), MAT_C_CHAR, MAT_T_UTF8, 2, dims, data.data(), 0));
-  }
-  void logical(const std::string& name, std::size_t n) {
-    std::vector<std::uint8_t> data(n, 1);
-    std::size_t dims[2] = {n, 1};
-    write(
-        Mat_VarCreate(name.c_str(), MAT_C_UINT8, MAT_T_UINT8, 2, dims, data.data(), MAT_F_LOGICAL));
-  }
-  void structure(const std::string& name) {
-    const char* fields[] = {"a", nullptr};
-    std::size_t dims[2] = {1, 1};
-    matvar_t* var = Mat_VarCreateStruct2(name.c_str(), 2, dims, fields);
-    double value = 1.0;
-    std::size_t one[2] = {1, 1};
-    Mat_VarSetStructFieldByName(var, "a", 0,
-                                Mat_VarCreate("a", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, one, &value, 0));
-    write(var);
-  }
-
- private:
-  void write(matvar_t* var) {
-    ASSERT_NE(var, nullptr);
-    EXPECT_EQ(Mat_VarWrite(mat_, var, compression_), 0);
-    Mat_VarFree(var);
-  }
-
-  mat_t* mat_ = nullptr;
-  matio_compression compression_;
-};
+using test::MatWriter;
 
 std::vector<double> ramp(std::size_t n, double first, double step) {
   std::vector<double> out(n);
@@ -289,7 +207,7 @@ TEST_P(MatVersionTest, MatrixAndComplexVariablesAreRejectedByName) {
   const std::string path = make([](MatWriter& mat) {
     mat.scalar("f", 10.0);
     mat.matrix("M", 3, 4);
-    mat.complex_vector("Z", 6);
+    mat.complex_vector("Z", std::vector<double>(6, 1.0), std::vector<double>(6, 2.0));
   });
   ReadOptions options;
   options.channel = "M";
@@ -419,7 +337,7 @@ TEST_P(MatV5PlusTest, CharStructAndLogicalVariablesAreRejectedByName) {
   const std::string path = make([](MatWriter& mat) {
     mat.scalar("f", 10.0);
     mat.text("label", "gyro1");
-    mat.structure("meta");
+    mat.structure("meta", {1.0});
     mat.logical("ok", 3);
     mat.vector("Y1", ramp(4, 0.0, 1.0));
   });
