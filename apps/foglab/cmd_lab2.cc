@@ -149,21 +149,9 @@ std::vector<PendingRun> generated_runs(const Lab2Command& c, std::vector<Generat
 std::vector<PendingRun> file_runs(const Lab2Command& c) {
   std::vector<PendingRun> runs;
   for (const std::string& path : c.files) {
-    const std::vector<std::string> channels = io::list_channels(path);
-    auto has = [&](const char* name) {
-      return std::find(channels.begin(), channels.end(), name) != channels.end();
-    };
     // Every variable of the file, usable or not (a char or complex Y1 is
     // not a channel, but the reader says why when it is asked for it).
-    std::vector<std::string> variables;
-    if (!channels.empty()) {
-      io::ReadOptions any;
-      any.channel = has(kRateNames[0])   ? kRateNames[0]
-                    : has(kRateNames[1]) ? kRateNames[1]
-                                         : channels.front();
-      any.sample_rate_hz = 1.0;  // only the names are wanted here
-      variables = io::read_series(path, any).variables;
-    }
+    const std::vector<std::string> variables = io::list_variables(path);
     auto present = [&](const char* name) {
       return std::find(variables.begin(), variables.end(), name) != variables.end();
     };

@@ -800,4 +800,10 @@ std::vector<std::string> list_mat_channels(const std::string& path) {
   return available_channels(file);
 }
 
+std::vector<std::string> list_mat_variables(const std::string& path) {
+  MatioSession session;
+  MatFile file(path, session);
+  return file.names();
+}
+
 }  // namespace foglab::io::internal

@@ -340,4 +340,13 @@ std::vector<std::string> list_channels(const std::string& path, InputFormat form
   return {};
 }
 
+std::vector<std::string> list_variables(const std::string& path, InputFormat format) {
+  const InputFormat resolved = resolve_format(path, format);
+  if (resolved == InputFormat::mat) {
+    check_format_source(path, resolved);
+    return internal::list_mat_variables(path);
+  }
+  return list_channels(path, resolved);  // text columns and raw files: every name is a channel
+}
+
 }  // namespace foglab::io

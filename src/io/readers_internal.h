@@ -127,6 +127,7 @@ class MatioSession {
 
 Series read_mat(const std::string& path, const ReadOptions& options);
 std::vector<std::string> list_mat_channels(const std::string& path);
+std::vector<std::string> list_mat_variables(const std::string& path);
 
 Series read_text(const std::string& path, const ReadOptions& options);
 std::vector<std::string> list_text_channels(const std::string& path);

@@ -130,4 +130,11 @@ Series read_series(const std::string& path, const ReadOptions& options);
 std::vector<std::string> list_channels(const std::string& path,
                                        InputFormat format = InputFormat::automatic);
 
+/// Every variable name a file holds, usable as a channel or not (a MAT
+/// file's char, struct or complex variables too; text columns and raw files
+/// as list_channels()), without reading any data: Series::variables of a
+/// read. Asking read_series() for an unusable one gives the reason.
+std::vector<std::string> list_variables(const std::string& path,
+                                        InputFormat format = InputFormat::automatic);
+
 }  // namespace foglab::io
