@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "optics_internal.h"
 
 namespace foglab::sim {
 namespace {
@@ -20,14 +21,6 @@ std::int64_t stride_for(std::int64_t samples, int points, int samples_per_transi
   while (stride > 1 && stride % samples_per_transit == 0) ++stride;
   if (stride % 2 == 0 && samples_per_transit % 2 == 0) ++stride;
   return stride;
-}
-
-double mean_of_last(const std::vector<double>& v, std::size_t count) {
-  const std::size_t k = std::min(v.size(), count);
-  if (k == 0) return std::numeric_limits<double>::quiet_NaN();
-  double s = 0.0;
-  for (std::size_t i = v.size() - k; i < v.size(); ++i) s += v[i];
-  return s / static_cast<double>(k);
 }
 
 }  // namespace
@@ -125,8 +118,8 @@ Lab1Result run_lab1(const Coil& coil, const Lab1Options& o) {
   off.trace_limit = static_cast<std::size_t>(
       std::ceil(o.window_periods * off_period_s / proper.sample_interval_s));
   r.off_frequency = simulate_open_loop(coil, RateInput::constant(rate), run_s, off);
-  r.off_frequency_signal_ratio = mean_of_last(r.off_frequency.periods.demodulated, 50) /
-                                 mean_of_last(proper.periods.demodulated, 50);
+  r.off_frequency_signal_ratio = detail::mean_of_last(r.off_frequency.periods.demodulated, 50) /
+                                 detail::mean_of_last(proper.periods.demodulated, 50);
   // Theory with the gate: below f_m the phase difference is +-pi/2 for the
   // first tau0 of each half period H, 0 for the rest (where the two halves
   // cancel), and the first g = gate_fraction H are left out; at f_m the

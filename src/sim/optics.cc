@@ -11,6 +11,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/units.h"
+#include "optics_internal.h"
 
 namespace foglab::sim {
 namespace {
@@ -31,6 +32,12 @@ std::int64_t half_index(double position) {
   return static_cast<std::int64_t>(std::floor(position + kEdgeEpsilon));
 }
 
+/// A rate profile's value at t inside segment i (time_s[i] <= t <= time_s[i + 1]).
+double profile_segment_value(const RateInput& r, std::size_t i, double t) {
+  const double w = (t - r.time_s[i]) / (r.time_s[i + 1] - r.time_s[i]);
+  return r.profile_rad_s[i] + w * (r.profile_rad_s[i + 1] - r.profile_rad_s[i]);
+}
+
 /// The input rate at increasing times, without a search per sample.
 class RateCursor {
  public:
@@ -41,8 +48,7 @@ class RateCursor {
     if (t <= ts.front()) return r_.profile_rad_s.front();
     if (t >= ts.back()) return r_.profile_rad_s.back();
     while (i_ + 1 < ts.size() && ts[i_ + 1] <= t) ++i_;
-    const double w = (t - ts[i_]) / (ts[i_ + 1] - ts[i_]);
-    return r_.profile_rad_s[i_] + w * (r_.profile_rad_s[i_ + 1] - r_.profile_rad_s[i_]);
+    return profile_segment_value(r_, i_, t);
   }
 
  private:
@@ -206,13 +212,6 @@ OpticsResult run(const Coil& coil, const RateInput& rate, double duration_s, con
   return out;
 }
 
-double mean_of_last(const std::vector<double>& v, int count) {
-  const std::size_t k = std::min<std::size_t>(v.size(), static_cast<std::size_t>(count));
-  if (k == 0) return std::numeric_limits<double>::quiet_NaN();
-  return std::accumulate(v.end() - static_cast<std::ptrdiff_t>(k), v.end(), 0.0) /
-         static_cast<double>(k);
-}
-
 SweepResult sweep(const Coil& coil, double range_rad_s, const OpticsOptions& options,
                   const ClosedLoopOptions* loop, const SweepOptions& s) {
   check_positive(range_rad_s, "the sweep range [rad/s]");
@@ -244,7 +243,8 @@ SweepResult sweep(const Coil& coil, double range_rad_s, const OpticsOptions& opt
       o.trace_stride = 0;
       const OpticsResult sim = loop ? simulate_closed_loop(coil, input, total_s, o, *loop)
                                     : simulate_open_loop(coil, input, total_s, o);
-      out = mean_of_last(loop ? sim.periods.output : sim.periods.demodulated, s.average_periods);
+      out = detail::mean_of_last(loop ? sim.periods.output : sim.periods.demodulated,
+                                 static_cast<std::size_t>(s.average_periods));
     }
     r.outputs.push_back(out);
     r.scale_factors.push_back(out / rate);
@@ -366,9 +366,7 @@ double RateInput::at(double t_s) const {
       if (t_s <= time_s.front()) return profile_rad_s.front();
       if (t_s >= time_s.back()) return profile_rad_s.back();
       const auto it = std::upper_bound(time_s.begin(), time_s.end(), t_s);
-      const std::size_t i = static_cast<std::size_t>(it - time_s.begin()) - 1;
-      const double w = (t_s - time_s[i]) / (time_s[i + 1] - time_s[i]);
-      return profile_rad_s[i] + w * (profile_rad_s[i + 1] - profile_rad_s[i]);
+      return profile_segment_value(*this, static_cast<std::size_t>(it - time_s.begin()) - 1, t_s);
     }
   }
   return 0.0;
