@@ -91,6 +91,31 @@ nlohmann::json coil_json(const sim::Coil& coil, const sim::CoilNumbers& n) {
           {"foglab_version", std::string(version())}};
 }
 
+/// A sweep in the CLI's units: rates [deg/s]; outputs S [a.u.] (open loop)
+/// or the output rate [deg/s] (closed loop); scale factors output/rate.
+struct SweepInDegrees {
+  std::vector<double> rates_deg_s, outputs, scale_factors;
+};
+
+SweepInDegrees in_degrees(const sim::SweepResult& s) {
+  SweepInDegrees d;
+  for (std::size_t i = 0; i < s.rates_rad_s.size(); ++i) {
+    d.rates_deg_s.push_back(s.rates_rad_s[i] * kDegPerRad);
+    d.outputs.push_back(s.closed_loop ? s.outputs[i] * kDegPerRad : s.outputs[i]);
+    d.scale_factors.push_back(d.outputs.back() / d.rates_deg_s.back());
+  }
+  return d;
+}
+
+/// CLI.md's sweep fields (rates, outputs, scale factors, nonlinearity).
+nlohmann::json sweep_json(const sim::SweepResult& s) {
+  const SweepInDegrees d = in_degrees(s);
+  return {{"rates_deg_s", d.rates_deg_s},
+          {"outputs", d.outputs},
+          {"scale_factors", d.scale_factors},
+          {"nonlinearity_percent", s.nonlinearity_percent}};
+}
+
 // ---- coil ------------------------------------------------------------------------------
 
 struct CoilCommand {
@@ -295,31 +320,25 @@ void run_sweep(const SweepCommand& c) {
   std::optional<double> range30;
   if (!closed) range30 = sim::range_for_nonlinearity(coil, 30.0, o, so);
 
-  std::vector<double> rates_deg, outputs, sfs;
-  for (std::size_t i = 0; i < s.rates_rad_s.size(); ++i) {
-    rates_deg.push_back(s.rates_rad_s[i] * kDegPerRad);
-    outputs.push_back(closed ? s.outputs[i] * kDegPerRad : s.outputs[i]);
-    sfs.push_back(outputs.back() / rates_deg.back());
-  }
-  nlohmann::json j = {
-      {"scheme", c.scheme},
-      {"modulation", closed ? "square" : c.modulation},
-      {"method", c.method},
-      {"rates_deg_s", rates_deg},
-      {"outputs", outputs},
-      {"scale_factors", sfs},
-      {"nonlinearity_percent", s.nonlinearity_percent},
-      {"range_for_30_percent_deg_s",
-       range30 ? nlohmann::json(*range30 * kDegPerRad) : nlohmann::json(nullptr)},
-      {"omega_pi2_deg_s", n.omega_pi2_deg_s},
-      {"units",
-       {{"rates_deg_s", "deg/s"},
-        {"outputs", closed ? "deg/s (the feedback converted to rate)"
-                           : "a.u. (demodulated signal S, detector gain x intensity)"},
-        {"scale_factors", closed ? "1 (output / rate)" : "a.u. per deg/s"},
-        {"nonlinearity_percent", "% ((max - min) / mean scale factor)"},
-        {"range_for_30_percent_deg_s", "deg/s (open loop only)"}}},
-      {"foglab_version", std::string(version())}};
+  const SweepInDegrees d = in_degrees(s);
+  const std::vector<double>& rates_deg = d.rates_deg_s;
+  const std::vector<double>& outputs = d.outputs;
+  const std::vector<double>& sfs = d.scale_factors;
+  nlohmann::json j = sweep_json(s);
+  j.update({{"scheme", c.scheme},
+            {"modulation", closed ? "square" : c.modulation},
+            {"method", c.method},
+            {"range_for_30_percent_deg_s",
+             range30 ? nlohmann::json(*range30 * kDegPerRad) : nlohmann::json(nullptr)},
+            {"omega_pi2_deg_s", n.omega_pi2_deg_s},
+            {"units",
+             {{"rates_deg_s", "deg/s"},
+              {"outputs", closed ? "deg/s (the feedback converted to rate)"
+                                 : "a.u. (demodulated signal S, detector gain x intensity)"},
+              {"scale_factors", closed ? "1 (output / rate)" : "a.u. per deg/s"},
+              {"nonlinearity_percent", "% ((max - min) / mean scale factor)"},
+              {"range_for_30_percent_deg_s", "deg/s (open loop only)"}}},
+            {"foglab_version", std::string(version())}});
   std::string csv;
   if (!c.csv_path.empty()) {
     csv = fmt::format(
@@ -376,28 +395,16 @@ void run_lab1(const Lab1Command& c) {
   const sim::CoilNumbers& n = result.numbers;
   const nlohmann::json coil_j = coil_json(coil, n);
   nlohmann::json sweeps = nlohmann::json::object();
-  auto sweep_j = [](const sim::SweepResult& s) {
-    std::vector<double> rates, outputs, sfs;
-    for (std::size_t i = 0; i < s.rates_rad_s.size(); ++i) {
-      rates.push_back(s.rates_rad_s[i] * kDegPerRad);
-      outputs.push_back(s.closed_loop ? s.outputs[i] * kDegPerRad : s.outputs[i]);
-      sfs.push_back(outputs.back() / rates.back());
-    }
-    return nlohmann::json{{"rates_deg_s", rates},
-                          {"outputs", outputs},
-                          {"scale_factors", sfs},
-                          {"nonlinearity_percent", s.nonlinearity_percent}};
-  };
-  sweeps["open_loop_square"] = sweep_j(result.sweep_square);
+  sweeps["open_loop_square"] = sweep_json(result.sweep_square);
   sweeps["open_loop_square"]["range_for_30_percent_deg_s"] =
       result.range_30_rad_s ? nlohmann::json(*result.range_30_rad_s * kDegPerRad)
                             : nlohmann::json();
-  sweeps["open_loop_square_analytic"] = sweep_j(result.sweep_square_analytic);
+  sweeps["open_loop_square_analytic"] = sweep_json(result.sweep_square_analytic);
   sweeps["open_loop_square_analytic"]["range_for_30_percent_deg_s"] =
       result.range_30_analytic_rad_s ? nlohmann::json(*result.range_30_analytic_rad_s * kDegPerRad)
                                      : nlohmann::json();
-  sweeps["open_loop_sine"] = sweep_j(result.sweep_sine);
-  sweeps["closed_loop"] = sweep_j(result.sweep_closed);
+  sweeps["open_loop_sine"] = sweep_json(result.sweep_sine);
+  sweeps["closed_loop"] = sweep_json(result.sweep_closed);
   const nlohmann::json j = {
       {"variant", c.variant},
       {"coil", coil_j},
