@@ -83,23 +83,6 @@ std::string run_title(const std::string& gyro, report::Lab2Condition condition,
   return fmt::format("{}, {} ({}, {})", gyro, report::to_string(condition), file, channel);
 }
 
-report::Lab2Truth truth_of(const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
-  report::Lab2Truth t;
-  t.random_bias_process = std::string(sim::to_string(g.random_bias));
-  t.N = g.model.N;
-  t.K = wiener ? g.model.K : kNaN;
-  t.gm_sigma = wiener ? kNaN : g.model.gm_sigma;
-  t.gm_tc = wiener ? kNaN : g.model.gm_tc;
-  t.bias_instability_deg_h = r.bias_instability.adev_deg_h;
-  t.bias_at_t_ref_deg_h = r.bias_at_t_ref_deg_h;
-  t.lab_constant_term_deg_h = r.lab_constant_term_deg_h;
-  t.c1_deg_h_per_c = g.model.temp_coefs.empty() ? 0.0 : g.model.temp_coefs[0];
-  t.accuracy_class = g.verdict.accuracy_class;
-  return t;
-}
-
 /// A generated gyro's two recordings, for its MAT file in the lab's layout.
 struct GeneratedFile {
   std::string name;  ///< "FOG1_1.mat"
@@ -125,7 +108,7 @@ std::vector<PendingRun> generated_runs(const Lab2Command& c, std::vector<Generat
       p.run.input.file_name = g.file_name;
       p.run.input.channel = r.rate_name;
       p.run.input.temperature_channel = r.temperature_name;
-      if (!c.no_answers) p.run.truth = truth_of(g, r);
+      if (!c.no_answers) p.run.truth = report::lab2_truth(g, r);
       p.rate_deg_h = rec.rate_deg_h;
       p.temperature_c = rec.temperature_c;
       p.sample_rate_hz = rec.sample_rate_hz;

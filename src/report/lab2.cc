@@ -449,6 +449,22 @@ std::string_view to_string(Lab2Condition condition) {
   return condition == Lab2Condition::constant ? "constant temperature" : "temperature ramp";
 }
 
+Lab2Truth lab2_truth(const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
+  const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
+  Lab2Truth t;
+  t.random_bias_process = std::string(sim::to_string(g.random_bias));
+  t.N = g.model.N;
+  t.K = wiener ? g.model.K : kNaN;
+  t.gm_sigma = wiener ? kNaN : g.model.gm_sigma;
+  t.gm_tc = wiener ? kNaN : g.model.gm_tc;
+  t.bias_instability_deg_h = r.bias_instability.adev_deg_h;
+  t.bias_at_t_ref_deg_h = r.bias_at_t_ref_deg_h;
+  t.lab_constant_term_deg_h = r.lab_constant_term_deg_h;
+  t.c1_deg_h_per_c = g.model.temp_coefs.empty() ? 0.0 : g.model.temp_coefs[0];
+  t.accuracy_class = g.verdict.accuracy_class;
+  return t;
+}
+
 std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs) {
   std::vector<Lab2Table> tables;
   for (const Lab2Run& run : runs) {

@@ -40,19 +40,7 @@ const std::vector<Lab2Run>& variant_runs() {
         run.input.channel = r.rate_name;
         run.input.temperature_channel = r.temperature_name;
         run.input.preview = preview_record(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
-        const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
-        Lab2Truth t;
-        t.random_bias_process = std::string(sim::to_string(g.random_bias));
-        t.N = g.model.N;
-        t.K = wiener ? g.model.K : NAN;
-        t.gm_sigma = wiener ? NAN : g.model.gm_sigma;
-        t.gm_tc = wiener ? NAN : g.model.gm_tc;
-        t.bias_instability_deg_h = r.bias_instability.adev_deg_h;
-        t.bias_at_t_ref_deg_h = r.bias_at_t_ref_deg_h;
-        t.lab_constant_term_deg_h = r.lab_constant_term_deg_h;
-        t.c1_deg_h_per_c = g.model.temp_coefs.at(0);
-        t.accuracy_class = g.verdict.accuracy_class;
-        run.truth = t;
+        run.truth = lab2_truth(g, r);
         run.result = model::analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
         out.push_back(std::move(run));
       }

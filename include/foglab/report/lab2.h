@@ -28,6 +28,7 @@
 #include "foglab/core/accuracy_class.h"
 #include "foglab/model/analysis.h"
 #include "foglab/report/report.h"
+#include "foglab/sim/lab2_variants.h"
 
 namespace foglab::report {
 
@@ -50,6 +51,9 @@ struct Lab2Truth {
   double c1_deg_h_per_c = 0.0;           ///< linear temperature coefficient
   AccuracyClass accuracy_class = AccuracyClass::consumer;
 };
+
+/// The truth of a generated run (sim/lab2_variants.h's answer key).
+Lab2Truth lab2_truth(const sim::Lab2Gyro& gyro, const sim::Lab2Run& run);
 
 /// One analysed run.
 struct Lab2Run {
