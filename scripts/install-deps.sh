@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages foglab needs to build and run, skipping
 # those already present; with --tests also what the test suite needs
-# (GNU Octave; headless Chromium for the reports' browser test); with
-# --fuzz what the fuzz targets need (clang-14, libFuzzer, libomp). Run as root (or with sudo).
+# (GNU Octave; headless Chromium for the reports' browser test; clang-14
+# with its sanitizer and libFuzzer runtimes for the sanitizer build); with
+# --fuzz only the latter. Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -19,9 +20,10 @@ if [ "${1:-}" = "--tests" ]; then
   # chromium opens the lab reports in the browser test (headless).
   packages+=(octave fonts-freefont-otf chromium)
 fi
-if [ "${1:-}" = "--fuzz" ]; then
-  # clang-14 with its runtime (libFuzzer, sanitizers) and OpenMP builds the
-  # fuzz targets (scripts/fuzz-smoke.sh).
+if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--fuzz" ]; then
+  # clang-14 with its runtime (ASan, UBSan, libFuzzer) and OpenMP builds the
+  # "asan" preset: the tests under the sanitizers and the fuzz targets
+  # (scripts/sanitize-tests.sh, scripts/fuzz-smoke.sh).
   packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)
 fi
 

@@ -1,6 +1,6 @@
 // Numerical care on a long record: 10^9 samples of 1e-3 deg/h white noise on
 // a 1e6 deg/h bias give the same deviations as the noise alone, to 1e-6
-// relative (issue 2, item 6). Needs about 16 GB of memory; run alone (SERIAL).
+// relative (issue 2, item 6). Needs about 16 GB of memory.
 // FOGLAB_LARGE_SAMPLES overrides the length for quick local runs.
 #include <gtest/gtest.h>
 
