@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <sys/resource.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdlib>
 #include <string>
@@ -13,7 +14,15 @@
 
 int main(int argc, char** argv) {
   using namespace foglab;
-  const std::size_t n = argc > 1 ? std::stoull(argv[1]) : 100'000'000;
+  CLI::App app{"Peak memory of allan_deviation relative to the input array", "bench_allan_memory"};
+  std::size_t n = 100'000'000;
+  app.add_option("samples", n, "record length")
+      ->check(CLI::Range(std::size_t{16}, std::size_t{1} << 40));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help is not an error; anything else is a usage error
+  }
   const std::vector<double> y = bench::gyro_record(n);
   const auto t0 = std::chrono::steady_clock::now();
   const stats::AllanResult r = stats::allan_deviation(y, 100.0, InputKind::rate, {});

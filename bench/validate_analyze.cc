@@ -18,10 +18,10 @@
 //                                  [--window W] [--csv runs.csv]
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <string>
@@ -349,28 +349,25 @@ void report(const std::vector<Outcome>& outcomes, const std::string& title) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{"Accuracy of foglab analyze against the generator's truth (docs/validation.md)",
+               "validate_analyze"};
   int seeds = 20;
   std::string filter, csv_path;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--seeds" && i + 1 < argc) {
-      seeds = std::atoi(argv[++i]);
-    } else if (arg == "--filter" && i + 1 < argc) {
-      filter = argv[++i];
-    } else if (arg == "--penalty" && i + 1 < argc) {
-      g_options.noise_fit.penalty = std::atof(argv[++i]);
-    } else if (arg == "--inflation" && i + 1 < argc) {
-      g_options.noise_fit.correlation_inflation = std::atof(argv[++i]);
-    } else if (arg == "--window" && i + 1 < argc) {
-      g_options.noise_fit.interval_window = std::atof(argv[++i]);
-    } else if (arg == "--csv" && i + 1 < argc) {
-      csv_path = argv[++i];
-    } else {
-      fmt::print(stderr,
-                 "usage: validate_analyze [--seeds N] [--filter TEXT] [--penalty P] [--inflation "
-                 "F] [--window W] [--csv FILE]\n");
-      return 2;
-    }
+  app.add_option("--seeds", seeds, "seeds per scenario")->check(CLI::Range(1, 100000));
+  app.add_option("--filter", filter, "only scenarios whose name contains this");
+  app.add_option("--penalty", g_options.noise_fit.penalty, "selection penalty per parameter")
+      ->check(CLI::Range(0.0, 1e3));
+  app.add_option("--inflation", g_options.noise_fit.correlation_inflation,
+                 "correlation inflation of the Allan points")
+      ->check(CLI::Range(1e-3, 1e3));
+  app.add_option("--window", g_options.noise_fit.interval_window,
+                 "criterion window of the candidates whose intervals are joined")
+      ->check(CLI::Range(0.0, 1e3));
+  app.add_option("--csv", csv_path, "write every run to this CSV file");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help is not an error; anything else is a usage error
   }
   std::vector<Outcome> class_outcomes, lab_outcomes;
   const std::vector<Scenario> classes = class_scenarios();
