@@ -7,11 +7,14 @@
 #include <cstdio>
 #include <string>
 
+#include "foglab/core/error.h"
 #include "foglab/io/reader.h"
 #include "foglab/io/sample.h"
 #include "foglab/stats/allan.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   using namespace foglab;
   io::Series series;
   if (argc > 1) {
@@ -23,8 +26,8 @@ int main(int argc, char** argv) {
   }
 
   stats::AllanOptions options;  // OADEV, octave grid, >= 10 clusters per tau
-  const stats::AllanResult r = stats::allan_deviation(series.values, series.sample_rate_hz,
-                                                      InputKind::rate, options);
+  const stats::AllanResult r =
+      stats::allan_deviation(series.values, series.sample_rate_hz, InputKind::rate, options);
 
   std::printf("%10s %14s %14s %14s %6s\n", "tau [s]", "ADEV [deg/h]", "95% low", "95% high",
               "alpha");
@@ -33,4 +36,20 @@ int main(int argc, char** argv) {
                 r.ci95_high[k], r.alpha[k]);
   }
   return 0;
+}
+
+}  // namespace
+
+// foglab's error policy (core/error.h): a bad argument is a UsageError, bad
+// data a DataError naming the file and what was expected.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const foglab::UsageError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return foglab::kExitUsage;
+  } catch (const foglab::DataError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return foglab::kExitData;
+  }
 }

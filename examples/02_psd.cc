@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "foglab/core/error.h"
 #include "foglab/io/reader.h"
 #include "foglab/io/sample.h"
 #include "foglab/stats/psd.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   using namespace foglab;
   io::Series series;
   if (argc > 1) {
@@ -36,4 +39,20 @@ int main(int argc, char** argv) {
   }
   std::printf("white-noise density N = %.4g deg/h/sqrt(Hz)\n", std::sqrt(sum / count));
   return 0;
+}
+
+}  // namespace
+
+// foglab's error policy (core/error.h): a bad argument is a UsageError, bad
+// data a DataError naming the file and what was expected.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const foglab::UsageError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return foglab::kExitUsage;
+  } catch (const foglab::DataError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return foglab::kExitData;
+  }
 }
