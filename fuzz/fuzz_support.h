@@ -13,6 +13,7 @@
 #include <string>
 
 #include "foglab/core/error.h"
+#include "foglab/io/reader.h"
 
 namespace foglab::fuzz {
 
@@ -35,6 +36,17 @@ void expect_only_foglab_errors(Body&& body) {
   } catch (const UsageError&) {
   } catch (const DataError&) {
   }
+}
+
+/// Reads `path` as the CLI does: the channel list, then the series. Only
+/// foglab's errors may come out, and a series that does come back must be
+/// usable (samples and a positive rate); anything else traps.
+inline void read_like_the_cli(const std::string& path, const io::ReadOptions& options) {
+  expect_only_foglab_errors([&] {
+    io::list_channels(path, options.format);
+    const io::Series s = io::read_series(path, options);
+    if (s.values.empty() || !(s.sample_rate_hz > 0.0)) __builtin_trap();
+  });
 }
 
 }  // namespace foglab::fuzz
