@@ -2,6 +2,8 @@
 // live here: the commands parse, call the library and write what it returns.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -9,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "foglab/core/error.h"
 #include "foglab/core/units.h"
 #include "foglab/io/reader.h"
 #include "foglab/sim/error_model.h"
@@ -36,6 +39,19 @@ stats::TauGrid parse_taus_option(const std::string& text, const std::string& pat
 /// --format and --units parsed; a UsageError names the option and `path`.
 io::InputFormat parse_format_option(const std::string& text, const std::string& path);
 RateUnit parse_units_option(const std::string& text, const std::string& path);
+
+/// Runs `work` on a loaded series: a usage or data error from the library is
+/// rethrown with the file and channel in front, so that the message names them.
+template <typename Work>
+decltype(auto) naming_the_input(const io::Series& series, Work&& work) {
+  try {
+    return work();
+  } catch (const DataError& e) {
+    throw DataError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
+  }
+}
 
 /// Reads the record (or makes the built-in sample when no FILE was given),
 /// printing the reader's notes (an integer MAT class converted, ...).

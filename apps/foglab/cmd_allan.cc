@@ -7,7 +7,6 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "foglab/core/error.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/stats/allan.h"
@@ -92,14 +91,9 @@ void run(const AllanCommand& c) {
   progress(fmt::format("{} of {} samples{}", stats::to_string(options.kind), samples,
                        options.confidence ? " with noise identification and intervals" : ""));
   // In place: the record becomes the angle record, so memory holds one copy.
-  stats::AllanResult result;
-  try {
-    result = stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);
-  } catch (const DataError& e) {
-    throw DataError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
-  } catch (const UsageError& e) {
-    throw UsageError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
-  }
+  const stats::AllanResult result = naming_the_input(series, [&] {
+    return stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);
+  });
   series.values.resize(samples);  // only the count is used below
   // Render everything first, then write: a failure never leaves half the outputs.
   const std::string json = c.json_path.empty() ? "" : to_json(result, series, c).dump(2) + "\n";

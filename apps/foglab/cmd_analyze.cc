@@ -232,14 +232,9 @@ void run(const AnalyzeCommand& c) {
   }
 
   progress(fmt::format("analysing {} samples", samples));
-  model::AnalysisResult result;
-  try {
-    result = model::analyze(series.values, temperature.values_c, series.sample_rate_hz, options);
-  } catch (const DataError& e) {
-    throw DataError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
-  } catch (const UsageError& e) {
-    throw UsageError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
-  }
+  model::AnalysisResult result = naming_the_input(series, [&] {
+    return model::analyze(series.values, temperature.values_c, series.sample_rate_hz, options);
+  });
   series.values.clear();
   series.values.shrink_to_fit();
 

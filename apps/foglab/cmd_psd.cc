@@ -44,15 +44,10 @@ void run(const PsdCommand& c) {
         fmt::format("'{}' channel {}: the record has {} sample(s); the PSD needs at least {}",
                     series.path, series.channel, series.values.size(), kMinSamples));
   }
-  stats::PsdResult psd, smooth;
-  try {
-    psd = stats::welch_psd(series.values, series.sample_rate_hz, options);
-    smooth = stats::log_smooth(psd, c.smooth_per_decade);
-  } catch (const DataError& e) {
-    throw DataError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
-  } catch (const UsageError& e) {
-    throw UsageError(fmt::format("'{}' channel {}: {}", series.path, series.channel, e.what()));
-  }
+  const stats::PsdResult psd = naming_the_input(
+      series, [&] { return stats::welch_psd(series.values, series.sample_rate_hz, options); });
+  const stats::PsdResult smooth =
+      naming_the_input(series, [&] { return stats::log_smooth(psd, c.smooth_per_decade); });
 
   std::string json;
   if (!c.json_path.empty()) {
