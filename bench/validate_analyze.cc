@@ -71,47 +71,13 @@ const foglab::model::ParameterEstimate& estimate_of(const foglab::model::NoiseFi
   return r.*(foglab::model::reported_parameters()[static_cast<std::size_t>(p)].estimate);
 }
 
-// Allan variance of one term of the truth (sim's model) at tau.
-double term_avar(const foglab::sim::ErrorModel& m, int p, double tau) {
-  foglab::sim::ErrorModel only;
-  switch (p) {
-    case 0:
-      only.N = m.N;
-      break;
-    case 1:
-      only.B = m.B;
-      break;
-    case 2:
-      only.K = m.K;
-      break;
-    case 3:
-      only.R = m.R;
-      break;
-    case 4:
-      only.Q = m.Q;
-      break;
-    default:
-      only.gm_sigma = m.gm_sigma;
-      only.gm_tc = m.gm_tc;
-      break;
-  }
-  return foglab::sim::model_allan_variance(only, tau);
-}
-
-// Longest stretch (octaves) of [tau_min, tau_max] where the term carries at
-// least half the Allan variance.
-double visible_octaves(const foglab::sim::ErrorModel& m, int p, double tau_min, double tau_max) {
-  const int steps = 400;
-  double best = 0.0, run = 0.0;
-  const double step = std::log2(tau_max / tau_min) / steps;
-  for (int s = 0; s <= steps; ++s) {
-    const double tau = tau_min * std::exp2(s * step);
-    const double total = foglab::sim::model_allan_variance(m, tau);
-    const bool carries = total > 0 && term_avar(m, p, tau) >= 0.5 * total;
-    run = carries ? run + step : 0.0;
-    best = std::max(best, run);
-  }
-  return best;
+// The truth's term behind parameter p (Tc goes with the Gauss-Markov term).
+foglab::sim::ModelTerm term_of(int p) {
+  using foglab::sim::ModelTerm;
+  constexpr ModelTerm kTerms[kParamCount] = {
+      ModelTerm::white,        ModelTerm::flicker,      ModelTerm::random_walk, ModelTerm::ramp,
+      ModelTerm::quantisation, ModelTerm::gauss_markov, ModelTerm::gauss_markov};
+  return kTerms[p];
 }
 
 std::string process_of(const foglab::sim::ErrorModel& m) {
@@ -229,8 +195,9 @@ Outcome run(const Scenario& s, std::uint64_t seed) {
     o.low[p] = e.ci95_low;
     o.high[p] = e.ci95_high;
     o.status[p] = e.status;
-    o.octaves[p] =
-        o.truth[p] > 0 ? visible_octaves(s.model, p == 6 ? 5 : p, tau_min, tau_max) : 0.0;
+    o.octaves[p] = o.truth[p] > 0
+                       ? foglab::sim::term_dominance_octaves(s.model, term_of(p), tau_min, tau_max)
+                       : 0.0;
   }
   if (a.systematic) {
     o.degree = a.systematic->degree;

@@ -36,6 +36,9 @@ nlohmann::json lab2_units() {
   units["arw_deg_per_sqrt_h"] = "deg/sqrt(h)";
   units["bias_instability_deg_h"] = "deg/h (minimum of the model ADEV in usable_tau_s)";
   units["usable_tau_s"] = "s, [1/fs, duration/10]";
+  units["random_bias_octaves"] =
+      "octaves of usable_tau_s over which the random bias carries at least half the Allan "
+      "variance (2 or more: the record shows it)";
   return units;
 }
 
@@ -74,6 +77,7 @@ nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const
         {"K", optional_number(wiener, g.model.K)},
         {"gm_sigma", optional_number(!wiener, g.model.gm_sigma)},
         {"gm_tc", optional_number(!wiener, g.model.gm_tc)},
+        {"random_bias_octaves", r.random_bias_octaves},
         {"flicker_floor_deg_h", std::sqrt(2.0 * std::log(2.0) / M_PI) * g.model.B},
         {"bias_instability_deg_h", r.bias_instability.adev_deg_h},
         {"bias_instability_tau_s", r.bias_instability.tau_s},
@@ -106,6 +110,7 @@ std::string answers_csv(const nlohmann::json& rows) {
                                              "K",
                                              "gm_sigma",
                                              "gm_tc",
+                                             "random_bias_octaves",
                                              "flicker_floor_deg_h",
                                              "bias_instability_deg_h",
                                              "bias_instability_tau_s",

@@ -29,11 +29,60 @@ double model_allan_variance(const ErrorModel& m, double tau_s) {
   return avar;
 }
 
+double term_allan_variance(const ErrorModel& m, ModelTerm term, double tau_s) {
+  ErrorModel only;
+  switch (term) {
+    case ModelTerm::white:
+      only.N = m.N;
+      break;
+    case ModelTerm::flicker:
+      only.B = m.B;
+      break;
+    case ModelTerm::random_walk:
+      only.K = m.K;
+      break;
+    case ModelTerm::ramp:
+      only.R = m.R;
+      break;
+    case ModelTerm::quantisation:
+      only.Q = m.Q;
+      break;
+    case ModelTerm::gauss_markov:
+      only.gm_sigma = m.gm_sigma;
+      only.gm_tc = m.gm_tc;
+      break;
+  }
+  return model_allan_variance(only, tau_s);
+}
+
+double term_dominance_octaves(const ErrorModel& model, ModelTerm term, double tau_min_s,
+                              double tau_max_s) {
+  if (!(tau_min_s > 0.0) || !(tau_max_s >= tau_min_s)) {
+    throw UsageError(
+        fmt::format("term_dominance_octaves: invalid tau range [{}, {}] s", tau_min_s, tau_max_s));
+  }
+  constexpr int kSteps = 400;
+  const double step = std::log2(tau_max_s / tau_min_s) / kSteps;
+  double best = 0.0;
+  int first = -1;  // the grid point where the current stretch began
+  for (int s = 0; s <= kSteps; ++s) {
+    const double tau = tau_min_s * std::exp2(s * step);
+    const double total = model_allan_variance(model, tau);
+    if (total > 0.0 && term_allan_variance(model, term, tau) >= 0.5 * total) {
+      if (first < 0) first = s;
+      best = std::max(best, (s - first) * step);
+    } else {
+      first = -1;
+    }
+  }
+  return best;
+}
+
 AdevMinimum model_adev_minimum(const ErrorModel& model, double tau_min_s, double tau_max_s,
                                int points_per_decade) {
   if (!(tau_min_s > 0.0) || !(tau_max_s >= tau_min_s) || points_per_decade < 1) {
-    throw UsageError(fmt::format("model_adev_minimum: invalid tau range [{}, {}] s", tau_min_s,
-                                 tau_max_s));
+    throw UsageError(
+        fmt::format("model_adev_minimum: invalid tau range [{}, {}] s", tau_min_s, tau_max_s));
   }
   const double lo = std::log10(tau_min_s);
   const double hi = std::log10(tau_max_s);
@@ -144,19 +193,40 @@ struct GyroDesign {
   const char* description;
   double sample_rate_hz;
   double duration_s;
-  double arw_lo, arw_hi;            // [deg/sqrt(h)]
-  double floor_lo, floor_hi;        // [deg/h] 0.664 B
-  double cross_lo, cross_hi;        // [s] tau* / Tc
-  double bias_lo, bias_hi;          // [deg/h] magnitude
+  double arw_lo, arw_hi;              // [deg/sqrt(h)]
+  double floor_lo, floor_hi;          // [deg/h] 0.664 B
+  double bias_lo, bias_hi;            // [deg/h] magnitude
   double c1_lo, c1_hi, c2_lo, c2_hi;  // magnitudes
 };
 
 constexpr GyroDesign kFog1{
     "closed-loop FOG, intermediate grade (1550 nm source, km-long coil, phase-ramp feedback)",
-    10.0, 3.0 * 3600.0, 0.006, 0.02, 0.02, 0.06, 150.0, 600.0, 0.5, 3.0, 0.15, 0.4, 0.005, 0.02};
+    10.0,
+    3.0 * 3600.0,
+    0.006,
+    0.02,
+    0.02,
+    0.06,
+    0.5,
+    3.0,
+    0.15,
+    0.4,
+    0.005,
+    0.02};
 constexpr GyroDesign kFog2{
     "open-loop FOG, tactical grade (830 nm source, all-fibre, piezo modulator)",
-    20.0, 2.0 * 3600.0, 0.08, 0.25, 1.5, 4.0, 60.0, 240.0, 5.0, 25.0, 2.0, 4.0, 0.05, 0.2};
+    20.0,
+    2.0 * 3600.0,
+    0.08,
+    0.25,
+    1.0,
+    2.5,
+    5.0,
+    25.0,
+    2.0,
+    4.0,
+    0.05,
+    0.2};
 
 const double kFlickerFloor = std::sqrt(2.0 * std::log(2.0) / 3.14159265358979324);
 constexpr double kJitterC = 0.02;
@@ -175,6 +245,9 @@ void fill_answers(Lab2Run& run, const ErrorModel& model) {
   run.usable_tau_min_s = 1.0 / fs;
   run.usable_tau_max_s = std::max(run.usable_tau_min_s, duration / 10.0);
   run.bias_instability = model_adev_minimum(model, run.usable_tau_min_s, run.usable_tau_max_s);
+  run.random_bias_octaves = term_dominance_octaves(
+      model, model.gm_sigma > 0.0 ? ModelTerm::gauss_markov : ModelTerm::random_walk,
+      run.usable_tau_min_s, run.usable_tau_max_s);
 }
 
 Lab2Gyro make_gyro(int variant, int gyro, const Lab2Options& options) {
@@ -191,18 +264,34 @@ Lab2Gyro make_gyro(int variant, int gyro, const Lab2Options& options) {
   g.arw_deg_sqrt_h = draw.log_uniform(0, d.arw_lo, d.arw_hi);
   m.N = 60.0 * g.arw_deg_sqrt_h;
   m.B = draw.log_uniform(1, d.floor_lo, d.floor_hi) / kFlickerFloor;
-  const double cross_s = draw.log_uniform(2, d.cross_lo, d.cross_hi);
+  // The random bias is placed so that the record shows it (header): its
+  // position counts back from the end of the design duration's usable range.
+  const double usable_end_s = d.duration_s / 10.0;
+  auto rest_avar = [&](double tau) {  // white noise and flicker at tau
+    return m.N * m.N / tau + kFlickerFloor * kFlickerFloor * m.B * m.B;
+  };
   if (wiener) {
-    m.K = std::sqrt(3.0) * m.N / cross_s;  // white and random-walk ADEV lines cross at cross_s
+    // The random walk's Allan variance K^2 tau / 3 equals the rest's at
+    // tau_w and grows past it, so it carries more than half from there on.
+    const double tau_w = usable_end_s / std::exp2(draw.linear(2, 2.5, 4.0));
+    m.K = std::sqrt(3.0 * rest_avar(tau_w) / tau_w);
   } else {
-    m.gm_tc = cross_s;
-    const double hump_ratio = draw.linear(3, 2.5, 5.0);
-    // GM ADEV peaks near 0.62 sigma at 1.89 Tc; white ADEV there is N/sqrt(1.89 Tc).
-    m.gm_sigma = hump_ratio * m.N / std::sqrt(1.89 * m.gm_tc) / 0.62;
+    // The hump of the Gauss-Markov ADEV (0.62 sigma at 1.89 Tc) well inside
+    // the usable range and well above the rest there.
+    const double hump_s = usable_end_s / std::exp2(draw.linear(2, 2.0, 3.5));
+    m.gm_tc = hump_s / 1.89;
+    m.gm_sigma = draw.linear(3, 2.0, 4.0) * std::sqrt(rest_avar(hump_s)) / 0.62;
   }
   m.bias = draw.sign(4) * draw.log_uniform(5, d.bias_lo, d.bias_hi);
-  m.temp_coefs = {draw.sign(6) * draw.linear(7, d.c1_lo, d.c1_hi),
-                  draw.sign(8) * draw.linear(9, d.c2_lo, d.c2_hi)};
+  // What the noise wanders over the run (the random bias, the flicker floor
+  // three times, the white noise's mean): the ramp's temperature law must
+  // stand out of it, so the coefficients are scaled up together if needed.
+  const double floor_deg_h = kFlickerFloor * m.B;
+  const double wander = m.K * std::sqrt(d.duration_s) + m.gm_sigma + 3.0 * floor_deg_h +
+                        m.N / std::sqrt(d.duration_s);
+  const double scale = std::max(1.0, 0.75 * wander / (d.c1_lo * kRampSpanC / 2.0));
+  m.temp_coefs = {draw.sign(6) * scale * draw.linear(7, d.c1_lo, d.c1_hi),
+                  draw.sign(8) * scale * draw.linear(9, d.c2_lo, d.c2_hi)};
   m.input_rate = 0.0;
   const double t0_c = std::round(draw.linear(10, 22.0, 28.0) * 10.0) / 10.0;
 
@@ -242,8 +331,8 @@ Lab2Gyro make_gyro(int variant, int gyro, const Lab2Options& options) {
 
 Lab2Variant lab2_variant(int variant, const Lab2Options& options) {
   if (variant < 1 || variant > kLab2Variants) {
-    throw UsageError(fmt::format("lab-2 variant {} does not exist (1..{})", variant,
-                                 kLab2Variants));
+    throw UsageError(
+        fmt::format("lab-2 variant {} does not exist (1..{})", variant, kLab2Variants));
   }
   if (options.duration_s && !(*options.duration_s > 0.0 && std::isfinite(*options.duration_s))) {
     throw UsageError(fmt::format("lab-2 duration must be > 0 s, got {}", *options.duration_s));

@@ -14,8 +14,8 @@
 namespace foglab::sim {
 namespace {
 
-using ::testing::HasSubstr;
 using test::message_of;
+using ::testing::HasSubstr;
 
 double polyval(const std::array<double, 3>& p, double x) { return (p[0] * x + p[1]) * x + p[2]; }
 
@@ -30,7 +30,8 @@ TEST(Lab2Variants, SixVariantsWithDistinctParameters) {
     b1.insert(v.gyros[0].model.B);
     bias2.insert(v.gyros[1].model.bias);
     for (const Lab2Gyro& g : v.gyros) {
-      EXPECT_EQ(g.file_name, "FOG" + std::to_string(g.gyro) + "_" + std::to_string(v.variant) + ".mat");
+      EXPECT_EQ(g.file_name,
+                "FOG" + std::to_string(g.gyro) + "_" + std::to_string(v.variant) + ".mat");
       for (const Lab2Run& r : g.runs) EXPECT_TRUE(streams.insert(r.generator.stream).second);
     }
   }
@@ -65,6 +66,58 @@ TEST(Lab2Variants, EachVariantHasOneWienerAndOneGaussMarkovGyro) {
       }
     }
   }
+}
+
+TEST(Lab2Variants, EveryRandomBiasShowsOverTwoOctavesForManySeeds) {
+  // The lab asks which process the random bias is, so the record must show
+  // it: more than half the Allan variance over two octaves of the usable
+  // range, with a Gauss-Markov hump (1.89 Tc) two octaves inside its end.
+  for (std::uint64_t seed : {2021ULL, 1ULL, 2ULL, 99ULL, 5001ULL, 123456789ULL}) {
+    Lab2Options options;
+    options.seed = seed;
+    for (const Lab2Variant& v : lab2_variants(options)) {
+      for (const Lab2Gyro& g : v.gyros) {
+        const bool wiener = g.random_bias == RandomBiasProcess::wiener;
+        for (const Lab2Run& r : g.runs) {
+          EXPECT_GE(r.random_bias_octaves, 2.0) << "seed " << seed << ' ' << g.file_name;
+          EXPECT_DOUBLE_EQ(r.random_bias_octaves,
+                           term_dominance_octaves(
+                               g.model, wiener ? ModelTerm::random_walk : ModelTerm::gauss_markov,
+                               r.usable_tau_min_s, r.usable_tau_max_s));
+          if (!wiener) {
+            EXPECT_LE(1.89 * g.model.gm_tc, r.usable_tau_max_s / 4.0 * (1 + 1e-12))
+                << "seed " << seed << ' ' << g.file_name;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(Lab2Variants, TheRampShowsTheTemperatureLawOverTheWanderForManySeeds) {
+  // A random bias that shows wanders far over hours; the 10 degC ramp must
+  // still move the bias by more than that, or the ramp run's polyfit reads
+  // the noise (the header's 0.75; octave_compat_test checks the fits).
+  int scaled = 0, gyros = 0;
+  for (std::uint64_t seed : {2021ULL, 1ULL, 2ULL, 99ULL, 5001ULL, 123456789ULL}) {
+    Lab2Options options;
+    options.seed = seed;
+    for (const Lab2Variant& v : lab2_variants(options)) {
+      for (const Lab2Gyro& g : v.gyros) {
+        const ErrorModel& m = g.model;
+        const double d = g.runs[1].generator.duration_s;
+        const double wander = m.K * std::sqrt(d) + m.gm_sigma +
+                              3.0 * std::sqrt(2.0 * std::log(2.0) / M_PI) * m.B +
+                              m.N / std::sqrt(d);
+        EXPECT_GE(std::abs(m.temp_coefs[0]) * 5.0, 0.75 * wander * (1 - 1e-12))
+            << "seed " << seed << ' ' << g.file_name;
+        scaled += std::abs(m.temp_coefs[0]) > (g.gyro == 1 ? 0.4 : 4.0);
+        ++gyros;
+      }
+    }
+  }
+  // the physical ranges hold for most gyros; only strong random walks scale them
+  EXPECT_LT(scaled, gyros * 2 / 3);
 }
 
 TEST(Lab2Variants, Fog1AndFog2AreOfDifferentClassesForManySeeds) {
@@ -113,7 +166,8 @@ TEST(Lab2Answers, PolyfitCoefficientsReproduceTheModelPolynomial) {
         EXPECT_NEAR(r.lab_constant_term_deg_h, model_at(0.0), 1e-9 * (1 + std::abs(model_at(0))));
         EXPECT_EQ(r.lab_constant_term_deg_h, r.polyfit_p[2]);
         for (double temp : {-10.0, 0.0, 20.0, 25.0, 31.5}) {
-          EXPECT_NEAR(polyval(r.polyfit_p, temp), model_at(temp), 1e-9 * (1 + std::abs(model_at(temp))));
+          EXPECT_NEAR(polyval(r.polyfit_p, temp), model_at(temp),
+                      1e-9 * (1 + std::abs(model_at(temp))));
         }
         EXPECT_DOUBLE_EQ(r.bias_at_t_ref_deg_h, model_at(r.t_ref_c));
         EXPECT_EQ(r.constant_term_well_conditioned, r.temperature.kind == TemperatureKind::ramp);
@@ -167,6 +221,32 @@ TEST(ModelTheory, AllanVarianceTermsHaveTheirIeee952Values) {
   const AdevMinimum m = model_adev_minimum(nk, 0.1, 1e5);
   EXPECT_NEAR(m.tau_s, std::sqrt(3.0) * 1.0 / 0.01, 1e-3);
   EXPECT_NEAR(m.adev_deg_h, std::sqrt(2 * 1.0 * 0.01 / std::sqrt(3.0)), 1e-9);
+}
+
+TEST(ModelTheory, DominanceOctavesEndWhereTheLinesCross) {
+  // White noise and a random walk cross at tau = sqrt(3) N / K = 100 s:
+  // white carries the Allan variance below, the random walk above.
+  ErrorModel nk;
+  nk.N = 1.0;
+  nk.K = std::sqrt(3.0) / 100.0;
+  // within a step of the 400-step grid either way (the crossing is a grid point)
+  const double grid = 1.5 * std::log2(1e4 / 1.0) / 400;
+  EXPECT_NEAR(term_dominance_octaves(nk, ModelTerm::white, 1.0, 1e4), std::log2(100.0), grid);
+  EXPECT_NEAR(term_dominance_octaves(nk, ModelTerm::random_walk, 1.0, 1e4), std::log2(100.0), grid);
+  EXPECT_EQ(term_dominance_octaves(nk, ModelTerm::flicker, 1.0, 1e4), 0.0);
+  // A term alone carries all of it, over the whole range.
+  EXPECT_NEAR(term_dominance_octaves(nk, ModelTerm::white, 1.0, 10.0), std::log2(10.0), 1e-9);
+  // Each term's Allan variance adds up to the model's.
+  nk.B = 0.05;
+  nk.gm_sigma = 0.2;
+  nk.gm_tc = 30.0;
+  double sum = 0.0;
+  for (ModelTerm t : {ModelTerm::white, ModelTerm::flicker, ModelTerm::random_walk, ModelTerm::ramp,
+                      ModelTerm::quantisation, ModelTerm::gauss_markov}) {
+    sum += term_allan_variance(nk, t, 40.0);
+  }
+  EXPECT_NEAR(sum, model_allan_variance(nk, 40.0), 1e-12 * sum);
+  EXPECT_THROW(term_dominance_octaves(nk, ModelTerm::white, 0.0, 10.0), UsageError);
 }
 
 TEST(ModelTheory, RawPolynomialExpandsAboutTheReference) {

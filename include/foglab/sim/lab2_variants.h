@@ -15,15 +15,32 @@
 //     0.006..0.02 deg/sqrt(h); flicker floor 0.664 B 0.02..0.06 deg/h;
 //     temperature coefficients |c1| 0.15..0.4 deg/h/degC, |c2| 0.005..0.02.
 //   * FOG2 — open-loop, tactical grade: 20 Hz for 2 h; ARW 0.08..0.25
-//     deg/sqrt(h); flicker floor 1.5..4 deg/h; |c1| 2..4 deg/h/degC,
+//     deg/sqrt(h); flicker floor 1..2.5 deg/h; |c1| 2..4 deg/h/degC,
 //     |c2| 0.05..0.2.
-//   * the random bias is a Wiener process (K set so that the white and
-//     random-walk lines of the ADEV cross at tau* = sqrt(3) N/K, 150..600 s
-//     for FOG1 and 60..240 s for FOG2) in odd variants for FOG1 and even
-//     variants for FOG2; otherwise a Gauss-Markov process with Tc in the same
-//     tau* range and sigma making its ADEV hump (0.62 sigma near 1.89 Tc)
-//     2.5..5 times the white-noise ADEV there. So each variant has one gyro
-//     of each kind.
+//   * the random bias is a Wiener process in odd variants for FOG1 and even
+//     variants for FOG2, otherwise a first-order Gauss-Markov process, so
+//     each variant has one gyro of each kind. It is placed so that the
+//     record shows it, since the lab asks which process it is: it carries at
+//     least half the Allan variance over at least two octaves of the usable
+//     tau range (random_bias_octaves, also in the answer key). With the
+//     range's end tau_u = duration / 10 (1080 s for FOG1, 720 s for FOG2):
+//       - Wiener: K such that the random walk's Allan variance K^2 tau / 3
+//         equals that of white noise and flicker at tau_w = tau_u / 2^u,
+//         u drawn in 2.5..4 octaves (FOG1: tau_w 68..191 s, FOG2 45..127 s);
+//       - Gauss-Markov: the ADEV hump (0.62 sigma at 1.89 Tc) at
+//         tau_u / 2^g, g in 2..3.5 octaves (FOG1: Tc 51..143 s, FOG2
+//         34..95 s), and 2..4 times the ADEV of white noise and flicker
+//         there.
+//     (Before 2026-11-22 the process sat at the end of the range, where in
+//     four Wiener records out of five it did not show at all;
+//     docs/validation.md.)
+//   * c1 and c2 are scaled up together where needed so that the ramp moves
+//     the bias (|c1| x 5 degC at the ends) by at least 0.75 of what the noise
+//     wanders over the run, K sqrt(duration) or sigma plus three flicker
+//     floors plus N / sqrt(duration): the lab's first question needs the
+//     temperature law to show as its second needs the random bias to show.
+//     A visible random walk wanders far over hours, so FOG2's |c1| reaches
+//     about 20 deg/h/degC in its strongest Wiener variants.
 //   * constant bias drawn in +-(0.5..3) deg/h (FOG1), +-(5..25) deg/h (FOG2);
 //     no input rate (the sensitive axis is taken horizontal, pointing east,
 //     so it sees no Earth rate); thermostat at T0 uniform in 22..28 degC with
@@ -46,8 +63,8 @@
 #include <string_view>
 #include <vector>
 
-#include "foglab/sim/error_model.h"
 #include "foglab/core/accuracy_class.h"
+#include "foglab/sim/error_model.h"
 #include "foglab/sim/generator.h"
 
 namespace foglab::sim {
@@ -67,10 +84,24 @@ using foglab::to_string;
 double model_allan_variance(const ErrorModel& model, double tau_s);
 
 struct AdevMinimum {
-  double adev_deg_h = 0.0;  ///< [deg/h] the minimum
-  double tau_s = 0.0;       ///< [s] where it occurs
+  double adev_deg_h = 0.0;     ///< [deg/h] the minimum
+  double tau_s = 0.0;          ///< [s] where it occurs
   bool at_range_edge = false;  ///< the minimum is at tau_min_s or tau_max_s
 };
+
+/// One term of the model (the Gauss-Markov sigma and Tc together).
+enum class ModelTerm { white, flicker, random_walk, ramp, quantisation, gauss_markov };
+
+/// The Allan variance of one term alone at tau [s] ((deg/h)^2).
+double term_allan_variance(const ErrorModel& model, ModelTerm term, double tau_s);
+
+/// The longest stretch [octaves] of [tau_min_s, tau_max_s] over which `term`
+/// carries at least half of the model's Allan variance (400-step log grid).
+/// At 2 or more the record shows the term: the condition under which issue 4
+/// sets its accuracy goals, and under which the lab's student can read the
+/// term off the Allan deviation.
+double term_dominance_octaves(const ErrorModel& model, ModelTerm term, double tau_min_s,
+                              double tau_max_s);
 
 /// The minimum of sqrt(model_allan_variance) over [tau_min_s, tau_max_s] on a
 /// log grid of `points_per_decade` (refined by golden-section search between
@@ -102,8 +133,8 @@ struct Lab2Run {
   std::string rate_name;         ///< "Y1" | "Y2"
   std::string temperature_name;  ///< "T1" | "T2"
   TemperatureProfile temperature;
-  GeneratorOptions generator;    ///< fs, duration, seed, stream
-  double t_ref_c = 0.0;          ///< [degC] reference of the temperature coefficients
+  GeneratorOptions generator;  ///< fs, duration, seed, stream
+  double t_ref_c = 0.0;        ///< [degC] reference of the temperature coefficients
 
   // answer key, from the model
   /// p of polyfit(T, Y, 2) in MATLAB order [p1 p2 p3] (deg/h per degC^2,
@@ -118,15 +149,19 @@ struct Lab2Run {
   double usable_tau_min_s = 0.0;  ///< [s] 1/fs
   double usable_tau_max_s = 0.0;  ///< [s] duration/10
   AdevMinimum bias_instability;   ///< min of the model ADEV in the usable range
+  /// [octaves] of the usable range over which the random bias (Wiener or
+  /// Gauss-Markov) carries at least half the Allan variance
+  /// (term_dominance_octaves); at least 2 in the design's duration.
+  double random_bias_octaves = 0.0;
 };
 
 /// One gyro of a variant (the file FOGg_k.mat).
 struct Lab2Gyro {
-  int gyro = 1;             ///< 1 | 2
-  std::string name;         ///< "FOG1" | "FOG2"
-  std::string file_name;    ///< "FOG1_3.mat"
-  std::string design;       ///< a sentence describing the gyro
-  ErrorModel model;         ///< the truth (SPEC units)
+  int gyro = 1;           ///< 1 | 2
+  std::string name;       ///< "FOG1" | "FOG2"
+  std::string file_name;  ///< "FOG1_3.mat"
+  std::string design;     ///< a sentence describing the gyro
+  ErrorModel model;       ///< the truth (SPEC units)
   RandomBiasProcess random_bias = RandomBiasProcess::wiener;
   double arw_deg_sqrt_h = 0.0;  ///< N / 60
   std::array<Lab2Run, 2> runs;  ///< constant temperature (Y1, T1), ramp (Y2, T2)
