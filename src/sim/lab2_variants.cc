@@ -199,34 +199,35 @@ struct GyroDesign {
   double c1_lo, c1_hi, c2_lo, c2_hi;  // magnitudes
 };
 
-constexpr GyroDesign kFog1{
-    "closed-loop FOG, intermediate grade (1550 nm source, km-long coil, phase-ramp feedback)",
-    10.0,
-    3.0 * 3600.0,
-    0.006,
-    0.02,
-    0.02,
-    0.06,
-    0.5,
-    3.0,
-    0.15,
-    0.4,
-    0.005,
-    0.02};
+constexpr GyroDesign kFog1{.description =
+                               "closed-loop FOG, intermediate grade (1550 nm source, km-long coil, "
+                               "phase-ramp feedback)",
+                           .sample_rate_hz = 10.0,
+                           .duration_s = 3.0 * 3600.0,
+                           .arw_lo = 0.006,
+                           .arw_hi = 0.02,
+                           .floor_lo = 0.02,
+                           .floor_hi = 0.06,
+                           .bias_lo = 0.5,
+                           .bias_hi = 3.0,
+                           .c1_lo = 0.15,
+                           .c1_hi = 0.4,
+                           .c2_lo = 0.005,
+                           .c2_hi = 0.02};
 constexpr GyroDesign kFog2{
-    "open-loop FOG, tactical grade (830 nm source, all-fibre, piezo modulator)",
-    20.0,
-    2.0 * 3600.0,
-    0.08,
-    0.25,
-    1.0,
-    2.5,
-    5.0,
-    25.0,
-    2.0,
-    4.0,
-    0.05,
-    0.2};
+    .description = "open-loop FOG, tactical grade (830 nm source, all-fibre, piezo modulator)",
+    .sample_rate_hz = 20.0,
+    .duration_s = 2.0 * 3600.0,
+    .arw_lo = 0.08,
+    .arw_hi = 0.25,
+    .floor_lo = 1.0,
+    .floor_hi = 2.5,
+    .bias_lo = 5.0,
+    .bias_hi = 25.0,
+    .c1_lo = 2.0,
+    .c1_hi = 4.0,
+    .c2_lo = 0.05,
+    .c2_hi = 0.2};
 
 const double kFlickerFloor = std::sqrt(2.0 * std::log(2.0) / 3.14159265358979324);
 constexpr double kJitterC = 0.02;
