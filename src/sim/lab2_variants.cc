@@ -269,7 +269,8 @@ Lab2Gyro make_gyro(int variant, int gyro, const Lab2Options& options) {
   // position counts back from the end of the design duration's usable range.
   const double usable_end_s = d.duration_s / 10.0;
   auto rest_avar = [&](double tau) {  // white noise and flicker at tau
-    return m.N * m.N / tau + kFlickerFloor * kFlickerFloor * m.B * m.B;
+    return term_allan_variance(m, ModelTerm::white, tau) +
+           term_allan_variance(m, ModelTerm::flicker, tau);
   };
   if (wiener) {
     // The random walk's Allan variance K^2 tau / 3 equals the rest's at
