@@ -28,13 +28,13 @@ double bench_samples() {
 
 foglab::sim::ErrorModel full_model() {
   foglab::sim::ErrorModel m;
-  m.N = 0.3;
-  m.B = 0.05;
-  m.K = 0.01;
-  m.R = 1e-5;
-  m.Q = 0.02;
-  m.gm_sigma = 0.1;
-  m.gm_tc = 300.0;
+  m.noise.N = 0.3;
+  m.noise.B = 0.05;
+  m.noise.K = 0.01;
+  m.noise.R = 1e-5;
+  m.noise.Q = 0.02;
+  m.noise.gm_sigma = 0.1;
+  m.noise.gm_tc = 300.0;
   m.bias = 1.5;
   m.input_rate = 9.7;
   m.temp_coefs = {0.02, -0.001};

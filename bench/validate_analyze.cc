@@ -34,7 +34,6 @@
 
 namespace {
 
-using foglab::model::NoiseTerm;
 using foglab::model::TermStatus;
 
 struct Scenario {
@@ -49,40 +48,24 @@ struct Scenario {
 constexpr int kParamCount = 7;
 
 double truth_of(const foglab::sim::ErrorModel& m, int p) {
-  switch (p) {
-    case 0:
-      return m.N;
-    case 1:
-      return m.B;
-    case 2:
-      return m.K;
-    case 3:
-      return m.R;
-    case 4:
-      return m.Q;
-    case 5:
-      return m.gm_sigma;
-    default:
-      return m.gm_sigma > 0 ? m.gm_tc : 0.0;
-  }
+  const foglab::NoiseParameter& parameter = foglab::kNoiseParameters[static_cast<std::size_t>(p)];
+  // A Tc without its sigma is no term.
+  if (parameter.term == foglab::NoiseTerm::gauss_markov && !(m.noise.gm_sigma > 0)) return 0.0;
+  return m.noise.*parameter.value;
 }
 
 const foglab::model::ParameterEstimate& estimate_of(const foglab::model::NoiseFitResult& r, int p) {
-  return r.*(foglab::model::reported_parameters()[static_cast<std::size_t>(p)].estimate);
+  return r.estimate(foglab::kNoiseParameters[static_cast<std::size_t>(p)]);
 }
 
 // The truth's term behind parameter p (Tc goes with the Gauss-Markov term).
-foglab::sim::ModelTerm term_of(int p) {
-  using foglab::sim::ModelTerm;
-  constexpr ModelTerm kTerms[kParamCount] = {
-      ModelTerm::white,        ModelTerm::flicker,      ModelTerm::random_walk, ModelTerm::ramp,
-      ModelTerm::quantisation, ModelTerm::gauss_markov, ModelTerm::gauss_markov};
-  return kTerms[p];
+foglab::NoiseTerm term_of(int p) {
+  return foglab::kNoiseParameters[static_cast<std::size_t>(p)].term;
 }
 
 std::string process_of(const foglab::sim::ErrorModel& m) {
-  if (m.gm_sigma > 0) return "gauss_markov";
-  if (m.K > 0) return "wiener";
+  if (m.noise.gm_sigma > 0) return "gauss_markov";
+  if (m.noise.K > 0) return "wiener";
   return "none";
 }
 
@@ -99,22 +82,23 @@ std::vector<Scenario> class_scenarios() {
         s.fs = 10.0;
         s.duration_s = 12 * 3600.0;
         s.model = preset.model;
-        s.model.bias = 5.0 * preset.model.B;
-        const double plateau = 2.0 * std::log(2.0) / M_PI * s.model.B * s.model.B;
+        foglab::NoiseModel& n = s.model.noise;
+        s.model.bias = 5.0 * n.B;
+        const double plateau = foglab::allan_variance(n, foglab::NoiseTerm::flicker, 1.0);
         const double t_usable = s.duration_s / 10.0;
         if (std::string(process) == "wiener") {
           // The random walk equals the flicker plateau at T/160, so it
           // carries most of the variance over the last four octaves.
-          s.model.K = std::sqrt(3.0 * plateau / (t_usable / 16.0));
+          n.K = std::sqrt(3.0 * plateau / (t_usable / 16.0));
         } else if (std::string(process) == "gauss_markov") {
           // Tc at T/100 of the usable range's end; its hump (0.433 sigma^2
           // at tau = 1.89 Tc) three times the flicker plateau.
-          s.model.gm_tc = t_usable / 20.0;
-          s.model.gm_sigma = std::sqrt(3.0 * plateau / 0.433);
+          n.gm_tc = t_usable / 20.0;
+          n.gm_sigma = std::sqrt(3.0 * plateau / 0.433);
         }
         if (std::string(temperature) == "ramp") {
           s.profile = foglab::sim::parse_temperature("ramp:10@20");
-          s.model.temp_coefs = {30.0 * s.model.B, 0.5 * s.model.B};
+          s.model.temp_coefs = {30.0 * n.B, 0.5 * n.B};
         } else {
           s.profile = foglab::sim::parse_temperature("const:25");
         }
@@ -181,10 +165,10 @@ Outcome run(const Scenario& s, std::uint64_t seed) {
   o.process = s.process;
   o.temperature = s.temperature;
   o.seed = seed;
-  o.found_process = std::string(foglab::model::to_string(a.noise.random_bias_process));
+  o.found_process = std::string(foglab::to_string(a.noise.random_bias_process));
   for (const auto& c : a.noise.candidates) {
     o.candidates +=
-        fmt::format("{}{}:{:.4f}:{}", o.candidates.empty() ? "" : ";", c.terms,
+        fmt::format("{}{}:{:.4f}:{}", o.candidates.empty() ? "" : ";", foglab::to_string(c.terms),
                     c.criterion - g_options.noise_fit.penalty * c.parameters, c.parameters);
   }
   const double tau_min = 1.0 / s.fs, tau_max = s.duration_s / 10.0;
@@ -196,7 +180,7 @@ Outcome run(const Scenario& s, std::uint64_t seed) {
     o.high[p] = e.ci95_high;
     o.status[p] = e.status;
     o.octaves[p] = o.truth[p] > 0
-                       ? foglab::sim::term_dominance_octaves(s.model, term_of(p), tau_min, tau_max)
+                       ? foglab::term_dominance_octaves(s.model.noise, term_of(p), tau_min, tau_max)
                        : 0.0;
   }
   if (a.systematic) {
@@ -300,7 +284,7 @@ void report(const std::vector<Outcome>& outcomes, const std::string& title) {
     const Tally& t = total[p];
     fmt::print(
         "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
-        foglab::model::reported_parameters()[static_cast<std::size_t>(p)].name, t.visible,
+        foglab::kNoiseParameters[static_cast<std::size_t>(p)].name, t.visible,
         t.visible ? fmt::format("{:.1f}", 100.0 * t.resolved / t.visible) : "-",
         t.visible ? fmt::format("{:.1f}", 100.0 * median(t.errors)) : "-",
         t.visible
@@ -355,7 +339,7 @@ int main(int argc, char** argv) {
   if (!csv_path.empty()) {
     std::ofstream csv(csv_path);
     csv << "scenario,seed,process,found_process,degree,c1,c1_se,c1_truth";
-    for (const auto& p : foglab::model::reported_parameters())
+    for (const foglab::NoiseParameter& p : foglab::kNoiseParameters)
       csv << fmt::format(",{0}_truth,{0},{0}_lo,{0}_hi,{0}_status,{0}_octaves", p.name);
     csv << ",candidates\n";
     for (const auto* list : {&class_outcomes, &lab_outcomes}) {

@@ -26,14 +26,6 @@ nlohmann::json parameter_json(const model::ParameterEstimate& p) {
           {"upper_95", number(p.upper_95)}};
 }
 
-nlohmann::json noise_model_values_json(const model::NoiseModel& m) {
-  nlohmann::json j;
-  for (const model::ReportedParameter& p : model::reported_parameters()) {
-    j[std::string(p.name)] = m.*p.value;
-  }
-  return j;
-}
-
 nlohmann::json optional_json(const std::optional<double>& v) {
   return v ? number(*v) : nlohmann::json(nullptr);
 }
@@ -89,7 +81,7 @@ std::vector<double> model_adev(const model::AnalysisResult& r) {
   std::vector<double> out;
   out.reserve(r.allan.tau_s.size());
   for (const double tau : r.allan.tau_s) {
-    out.push_back(std::sqrt(model::allan_variance(r.noise.model, tau)));
+    out.push_back(std::sqrt(allan_variance(r.noise.model, tau)));
   }
   return out;
 }
@@ -126,11 +118,13 @@ nlohmann::json psd_json(const model::AnalysisResult& r, double bins_per_decade) 
 }
 
 nlohmann::json candidate_json(const model::CandidateModel& c) {
-  return {{"terms", c.terms},
+  return {{"terms", to_string(c.terms)},
           {"deviance", number(c.deviance)},
           {"criterion", number(c.criterion)},
           {"parameters", c.parameters},
-          {"model", noise_model_values_json(c.model)}};
+          {"status", std::string(model::to_string(c.status))},
+          {"iterations", c.iterations},
+          {"model", noise_model_json(c.model)}};
 }
 
 nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOptions& o) {
@@ -138,13 +132,18 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
   for (std::size_t k = 0; k < f.candidates.size() && k < kCandidatesListed; ++k) {
     candidates.push_back(candidate_json(f.candidates[k]));
   }
-  return {{"terms", f.terms},
+  return {{"status", std::string(model::to_string(f.status))},
+          {"message", f.message},
+          {"iterations", f.iterations},
+          {"tolerance", o.tolerance},
+          {"max_iterations", o.max_iterations},
+          {"terms", to_string(f.terms)},
           {"deviance", number(f.deviance)},
           {"points", f.points},
           {"parameters", f.parameters},
           {"dispersion", number(f.dispersion)},
           {"penalty", o.penalty},
-          {"model", noise_model_values_json(f.model)},
+          {"model", noise_model_json(f.model)},
           {"candidates_total", f.candidates.size()},
           {"candidates", candidates}};
 }
@@ -201,12 +200,11 @@ nlohmann::json units_json() {
       {"random_bias_evidence.criterion_*", "-2 ln L + penalty x parameters (dimensionless)"},
       {"systematic.criterion", "Wald statistic + penalty x degree (dimensionless)"},
       {"fit.deviance", "gamma deviance (dimensionless)"},
+      {"fit.tolerance", "relative change of the fitted Allan variances (dimensionless)"},
       {"fit.model", "N, B, K, R, Q, gm_sigma, gm_tc in the units above"},
       {"random_bias_evidence.adev_end_slope", "log-log slope (dimensionless)"},
       {"random_bias_evidence.psd_low_frequency_slope", "log-log slope (dimensionless)"}};
-  for (const model::ReportedParameter& p : model::reported_parameters()) {
-    units[std::string(p.name)] = p.unit;
-  }
+  for (const NoiseParameter& p : kNoiseParameters) units[std::string(p.name)] = p.unit;
   return units;
 }
 
@@ -223,8 +221,8 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
                                      : nlohmann::json(in.temperature_channel);
 
   nlohmann::json noise;
-  for (const model::ReportedParameter& p : model::reported_parameters()) {
-    noise[std::string(p.name)] = parameter_json(r.noise.*p.estimate);
+  for (const NoiseParameter& p : kNoiseParameters) {
+    noise[std::string(p.name)] = parameter_json(r.noise.estimate(p));
   }
 
   nlohmann::json readings = {
@@ -248,7 +246,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"bias_instability_deg_h", number(r.bias_instability_deg_h)},
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},
           {"bias_instability_at_edge", r.bias_instability_at_edge},
-          {"random_bias_process", std::string(model::to_string(r.noise.random_bias_process))},
+          {"random_bias_process", std::string(to_string(r.noise.random_bias_process))},
           {"random_bias_evidence", evidence_json(r.evidence)},
           {"readings", readings},
           {"accuracy_class", std::string(to_string(r.verdict.accuracy_class))},
@@ -270,9 +268,6 @@ std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v)
 }  // namespace
 
 std::string analysis_csv(const model::AnalysisResult& r) {
-  using model::NoiseTerm;
-  constexpr NoiseTerm kTerms[] = {NoiseTerm::N, NoiseTerm::B, NoiseTerm::K,
-                                  NoiseTerm::R, NoiseTerm::Q, NoiseTerm::gm};
   // The model's deviation, then each term's part of it (sqrt of its variance).
   std::string out =
       "tau_s,m,n,adev_deg_h,edf,ci95_low_deg_h,ci95_high_deg_h,model_adev_deg_h,"
@@ -282,9 +277,9 @@ std::string analysis_csv(const model::AnalysisResult& r) {
   for (std::size_t k = 0; k < a.tau_s.size(); ++k) {
     out += fmt::format("{:.10g},{},{},{},{},{},{},{}", a.tau_s[k], a.m[k], a.n[k], cell(a.dev[k]),
                        cell(a.edf[k]), cell(a.ci95_low[k]), cell(a.ci95_high[k]), cell(fitted[k]));
-    for (const NoiseTerm t : kTerms) {
+    for (const NoiseTerm t : kNoiseTerms) {
       out += ',';
-      out += cell(std::sqrt(model::allan_variance(r.noise.model, t, a.tau_s[k])));
+      out += cell(std::sqrt(allan_variance(r.noise.model, t, a.tau_s[k])));
     }
     out += "\n";
   }

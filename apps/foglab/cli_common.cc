@@ -92,30 +92,26 @@ nlohmann::json numbers(const std::vector<double>& values) {
   return array;
 }
 
+nlohmann::json noise_model_json(const NoiseModel& m) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const NoiseParameter& p : kNoiseParameters) j[std::string(p.name)] = m.*p.value;
+  return j;
+}
+
 nlohmann::json model_json(const sim::ErrorModel& m) {
-  return {{"N", m.N},
-          {"B", m.B},
-          {"K", m.K},
-          {"R", m.R},
-          {"Q", m.Q},
-          {"gm_sigma", m.gm_sigma},
-          {"gm_tc", m.gm_tc},
-          {"bias", m.bias},
-          {"input_rate", m.input_rate},
-          {"temp_coefs", m.temp_coefs}};
+  nlohmann::json j = noise_model_json(m.noise);
+  j["bias"] = m.bias;
+  j["input_rate"] = m.input_rate;
+  j["temp_coefs"] = m.temp_coefs;
+  return j;
 }
 
 nlohmann::json model_units_json() {
-  return {{"N", "deg/h/sqrt(Hz)"},
-          {"B", "deg/h"},
-          {"K", "deg/h/sqrt(s)"},
-          {"R", "deg/h/s"},
-          {"Q", "deg/h*s"},
-          {"gm_sigma", "deg/h"},
-          {"gm_tc", "s"},
-          {"bias", "deg/h"},
-          {"input_rate", "deg/h"},
-          {"temp_coefs", "deg/h/degC^k, k = 1, 2, ... about temperature.reference_c"}};
+  nlohmann::json j = {{"bias", "deg/h"},
+                      {"input_rate", "deg/h"},
+                      {"temp_coefs", "deg/h/degC^k, k = 1, 2, ... about temperature.reference_c"}};
+  for (const NoiseParameter& p : kNoiseParameters) j[std::string(p.name)] = p.unit;
+  return j;
 }
 
 nlohmann::json input_json(const io::Series& series) {

@@ -63,6 +63,8 @@ nlohmann::json numbers(const std::vector<double>& values);
 
 /// An error model as JSON, in SPEC.md units (truth files, answer keys).
 nlohmann::json model_json(const sim::ErrorModel& model);
+/// N, B, K, R, Q, gm_sigma, gm_tc of a noise model (units: model_units_json()).
+nlohmann::json noise_model_json(const NoiseModel& model);
 /// The unit of every field of model_json().
 nlohmann::json model_units_json();
 

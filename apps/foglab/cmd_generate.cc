@@ -113,13 +113,13 @@ void run(const GenerateCommand& c) {
   auto apply = [](const std::optional<double>& v, double& field) {
     if (v) field = *v;
   };
-  apply(c.N, model.N);
-  apply(c.B, model.B);
-  apply(c.K, model.K);
-  apply(c.R, model.R);
-  apply(c.Q, model.Q);
-  apply(c.gm_sigma, model.gm_sigma);
-  apply(c.gm_tc, model.gm_tc);
+  apply(c.N, model.noise.N);
+  apply(c.B, model.noise.B);
+  apply(c.K, model.noise.K);
+  apply(c.R, model.noise.R);
+  apply(c.Q, model.noise.Q);
+  apply(c.gm_sigma, model.noise.gm_sigma);
+  apply(c.gm_tc, model.noise.gm_tc);
   apply(c.bias, model.bias);
   apply(c.input_rate, model.input_rate);
   if (!c.temp_coefs.empty()) model.temp_coefs = parse_coefs(c.temp_coefs);
@@ -182,10 +182,11 @@ void run(const GenerateCommand& c) {
     }
   }
 
-  const sim::AdevMinimum bi =
-      sim::model_adev_minimum(model, 1.0 / options.sample_rate_hz,
-                              std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
-  const sim::ClassVerdict verdict = sim::classify(bi.adev_deg_h, model.N / 60.0);
+  const AdevMinimum bi =
+      adev_minimum(model.noise, 1.0 / options.sample_rate_hz,
+                   std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
+  const double arw = arw_deg_sqrt_h(model.noise.N);
+  const ClassVerdict verdict = classify(bi.adev_deg_h, arw);
   if (!c.truth.empty()) {
     nlohmann::json temp = {{"spec", c.temperature},
                            {"kind", std::string(to_string(temperature.kind))},
@@ -199,7 +200,7 @@ void run(const GenerateCommand& c) {
         {"preset", c.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.preset)},
         {"model", model_json(model)},
         {"units", units_json()},
-        {"arw_deg_per_sqrt_h", model.N / 60.0},
+        {"arw_deg_per_sqrt_h", arw},
         {"temperature", temp},
         {"sample_rate_hz", options.sample_rate_hz},
         {"duration_s", options.duration_s},
@@ -213,7 +214,7 @@ void run(const GenerateCommand& c) {
           {"bias_instability_tau_s", bi.tau_s},
           {"bias_instability_at_range_edge", bi.at_range_edge},
           {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
-          {"accuracy_class", std::string(sim::to_string(verdict.accuracy_class))},
+          {"accuracy_class", std::string(to_string(verdict.accuracy_class))},
           {"class_decided_by", verdict.decided_by}}}};
     write_text_file(c.truth, truth.dump(2) + "\n");
   }
@@ -222,7 +223,7 @@ void run(const GenerateCommand& c) {
         "wrote '{}': {} samples at {} Hz ({} h), seed {}, stream {}; model ADEV minimum "
         "{:.4g} deg/h at {:.4g} s, ARW {:.4g} deg/sqrt(h), class {}\n",
         c.out, samples, options.sample_rate_hz, *c.hours, options.seed, options.stream,
-        bi.adev_deg_h, bi.tau_s, model.N / 60.0, sim::to_string(verdict.accuracy_class));
+        bi.adev_deg_h, bi.tau_s, arw, to_string(verdict.accuracy_class));
   }
 }
 

@@ -45,7 +45,8 @@ nlohmann::json lab2_units() {
 nlohmann::json gyro_truth(const sim::Lab2Gyro& g) { return model_json(g.model); }
 
 nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
-  const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
+  const bool wiener = g.random_bias == RandomBiasProcess::wiener;
+  const NoiseModel& n = g.model.noise;
   const auto samples =
       static_cast<std::int64_t>(std::llround(r.generator.duration_s * r.generator.sample_rate_hz));
   return {
@@ -71,14 +72,14 @@ nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const
         {"lab_constant_term_deg_h", r.lab_constant_term_deg_h},
         {"constant_term_well_conditioned", r.constant_term_well_conditioned},
         {"bias_at_t_ref_deg_h", r.bias_at_t_ref_deg_h},
-        {"N", g.model.N},
+        {"N", n.N},
         {"arw_deg_per_sqrt_h", g.arw_deg_sqrt_h},
-        {"random_bias_process", std::string(sim::to_string(g.random_bias))},
-        {"K", optional_number(wiener, g.model.K)},
-        {"gm_sigma", optional_number(!wiener, g.model.gm_sigma)},
-        {"gm_tc", optional_number(!wiener, g.model.gm_tc)},
+        {"random_bias_process", std::string(to_string(g.random_bias))},
+        {"K", optional_number(wiener, n.K)},
+        {"gm_sigma", optional_number(!wiener, n.gm_sigma)},
+        {"gm_tc", optional_number(!wiener, n.gm_tc)},
         {"random_bias_octaves", r.random_bias_octaves},
-        {"flicker_floor_deg_h", std::sqrt(2.0 * std::log(2.0) / M_PI) * g.model.B},
+        {"flicker_floor_deg_h", flicker_floor_deg_h(n.B)},
         {"bias_instability_deg_h", r.bias_instability.adev_deg_h},
         {"bias_instability_tau_s", r.bias_instability.tau_s},
         {"bias_instability_at_range_edge", r.bias_instability.at_range_edge},
@@ -178,13 +179,13 @@ void run(const Lab2DataCommand& c) {
                        {"gyro", g.name},
                        {"variant", v.variant},
                        {"design", g.design},
-                       {"random_bias_process", std::string(sim::to_string(g.random_bias))},
+                       {"random_bias_process", std::string(to_string(g.random_bias))},
                        {"accuracy_class", std::string(sim::to_string(g.verdict.accuracy_class))},
                        {"model", gyro_truth(g)}});
       const sim::Lab2Run& ramp = g.runs[1];
       table += fmt::format("{:<11} {:<12} {:<13} {:>9.4g} {:>9.4g} {:>10.4g} {:>9.4g} {:>9}\n",
                            g.file_name, sim::to_string(g.verdict.accuracy_class),
-                           sim::to_string(g.random_bias), g.model.N, g.arw_deg_sqrt_h,
+                           to_string(g.random_bias), g.model.noise.N, g.arw_deg_sqrt_h,
                            ramp.bias_instability.adev_deg_h, ramp.lab_constant_term_deg_h,
                            fmt::format("{}x{:.3g}", ramp.generator.sample_rate_hz,
                                        ramp.generator.duration_s / 3600.0));

@@ -3,36 +3,22 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 namespace foglab::model::detail {
 namespace {
 
-// Generalised phase structure function D(s) [(deg/h)^2 s^2] of the model's
-// terms, x the integrated rate, s >= 0 [s]: the covariance of two
-// combinations sum_a w_a x(t_a) and sum_b u_b x(s_b) whose weights cancel
-// constants and straight lines (second differences, the Allan variance's)
-// is -1/2 sum_ab w_a u_b D(|t_a - s_b|) (Yaglom's generalised covariance;
-// Greenhall, "A structure function representation theorem with
-// applications to frequency stability estimation", IEEE Trans. Instrum.
-// Meas. 32, 1983). Each term's constant follows from its Allan variance
-// (noise_fit.h), AVAR(tau) = (4 D(tau) - D(2 tau)) / (2 tau^2):
-//   white rate N:      N^2 s
-//   quantisation Q:    2 Q^2 for s > 0 (white angle of variance Q^2)
-//   flicker B:         -2 h s^2 ln s, h = B^2/(2 pi) (two-sided PSD h/|f|)
-//   Wiener K:          -K^2 s^3/6
-//   Gauss-Markov:      2 sigma^2 Tc^2 (s/Tc - 1 + e^(-s/Tc))
-// (polynomials of degree <= 1 in s, which any such pair cancels, left out).
+// Greenhall's generalised structure function D(s) of the model's angle
+// (core/noise_model.h): the covariance of two combinations sum_a w_a x(t_a)
+// and sum_b u_b x(s_b) whose weights cancel constants and straight lines
+// (second differences, the Allan variance's) is -1/2 sum_ab w_a u_b
+// D(|t_a - s_b|).
+// The rate ramp, deterministic, has none.
 double structure(const NoiseModel& m, double s) {
-  if (s <= 0) return 0.0;
-  const double h = m.B * m.B / (2.0 * std::numbers::pi);
-  double d =
-      m.N * m.N * s + 2.0 * m.Q * m.Q - 2.0 * h * s * s * std::log(s) - m.K * m.K * s * s * s / 6.0;
-  if (m.gm_sigma > 0 && m.gm_tc > 0) {
-    const double x = s / m.gm_tc;
-    const double e = x < 1e-4 ? x * x * (0.5 - x / 6.0) : x - 1.0 + std::exp(-x);
-    d += 2.0 * m.gm_sigma * m.gm_sigma * m.gm_tc * m.gm_tc * e;
+  double d = 0.0;
+  for (NoiseTerm t : {NoiseTerm::white, NoiseTerm::quantisation, NoiseTerm::flicker,
+                      NoiseTerm::random_walk, NoiseTerm::gauss_markov}) {
+    d += angle_structure_function(m, t, s);
   }
   return d;
 }

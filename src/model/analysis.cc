@@ -311,11 +311,18 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
                     r.bias_instability_tau_s == r.allan.tau_s.back() ? "end" : "start",
                     r.bias_instability_tau_s));
   }
-  r.arw_deg_sqrt_h = r.noise.model.N / 60.0;
-  if (r.noise.N.status != TermStatus::resolved) {
+  r.arw_deg_sqrt_h = arw_deg_sqrt_h(r.noise.model.N);
+  if (r.noise.status == FitStatus::degenerate) {
+    r.notes.push_back("noise-model fit: " + r.noise.message +
+                      "; there is no ARW, and the class verdict takes the worst ARW class");
+    r.arw_deg_sqrt_h = kNaN;
+  } else if (r.noise.N.status != TermStatus::resolved) {
     r.notes.push_back(
         "no white rate noise resolved: the ARW for the class verdict is its upper bound");
-    if (std::isfinite(r.noise.N.upper_95)) r.arw_deg_sqrt_h = r.noise.N.upper_95 / 60.0;
+    if (std::isfinite(r.noise.N.upper_95)) r.arw_deg_sqrt_h = arw_deg_sqrt_h(r.noise.N.upper_95);
+  }
+  if (r.noise.status == FitStatus::iteration_limit) {
+    r.notes.push_back("noise-model fit: " + r.noise.message);
   }
   r.verdict = classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h);
   return r;

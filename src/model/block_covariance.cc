@@ -1,31 +1,24 @@
 #include "block_covariance.h"
 
 #include <cmath>
-#include <numbers>
 
 namespace foglab::model::detail {
 namespace {
 
 // Phase structure functions D_x(s) = E[(x(t+s) - x(t))^2] of the noise
-// terms, x the integrated rate [(deg/h) s], s >= 0. Stationary terms (finite
-// variance): white N^2 s, Gauss-Markov 2 sigma^2 Tc^2 (s/Tc - 1 + e^(-s/Tc)),
-// quantisation 2 Q^2 (s > 0). Flicker: -2 h s^2 ln s with h = B^2/(2 pi)
-// (two-sided PSD h/|f|, up to an s^2 term that every second difference
-// cancels). The Wiener term K^2 s^3/3 is written out in block_covariance().
+// terms, x the integrated rate [(deg/h) s], s >= 0 (core/noise_model.h).
+// Stationary terms (finite variance): white, Gauss-Markov, quantisation.
+// Flicker: Greenhall's generalised form, up to an s^2 term that every second
+// difference cancels. The Wiener term K^2 s^3/3 is written out in
+// block_covariance().
 double stationary_structure(const NoiseModel& m, double s) {
-  if (s <= 0) return 0.0;
-  double d = m.N * m.N * s + 2.0 * m.Q * m.Q;
-  if (m.gm_sigma > 0 && m.gm_tc > 0) {
-    const double x = s / m.gm_tc;
-    const double e = x < 1e-4 ? x * x * (0.5 - x / 6.0) : x - 1.0 + std::exp(-x);
-    d += 2.0 * m.gm_sigma * m.gm_sigma * m.gm_tc * m.gm_tc * e;
-  }
-  return d;
+  return angle_structure_function(m, NoiseTerm::white, s) +
+         angle_structure_function(m, NoiseTerm::quantisation, s) +
+         angle_structure_function(m, NoiseTerm::gauss_markov, s);
 }
 
 double flicker_structure(const NoiseModel& m, double s) {
-  if (s <= 0) return 0.0;
-  return -2.0 * (m.B * m.B / (2.0 * std::numbers::pi)) * s * s * std::log(s);
+  return angle_structure_function(m, NoiseTerm::flicker, s);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "foglab/core/error.h"
@@ -102,7 +103,7 @@ PsdReadings read_psd(std::span<const double> frequency_hz, std::span<const doubl
     sy += y;
     sxx += x * x;
     sxy += x * y;
-    k_log += std::log(2.0 * kPi * frequency_hz[i]) + 0.5 * y;
+    k_log += std::log(2.0 * std::numbers::pi * frequency_hz[i]) + 0.5 * y;
     ++count;
   }
   if (count >= 3) {

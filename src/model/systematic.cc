@@ -400,12 +400,12 @@ DetrendFactors detrend_of(const Sums& s, int degree, std::span<const double> tau
     }
     return out;
   };
-  const std::pair<NoiseTerm, NoiseModel> units[] = {{NoiseTerm::N, {.N = 1.0}},
-                                                    {NoiseTerm::B, {.B = 1.0}},
-                                                    {NoiseTerm::K, {.K = 1.0}},
-                                                    {NoiseTerm::Q, {.Q = 1.0}}};
+  const std::pair<NoiseTerm, NoiseModel> units[] = {{NoiseTerm::white, {.N = 1.0}},
+                                                    {NoiseTerm::flicker, {.B = 1.0}},
+                                                    {NoiseTerm::random_walk, {.K = 1.0}},
+                                                    {NoiseTerm::quantisation, {.Q = 1.0}}};
   for (const auto& [term, unit] : units) {
-    const bool stationary = term == NoiseTerm::N || term == NoiseTerm::Q;
+    const bool stationary = term == NoiseTerm::white || term == NoiseTerm::quantisation;
     f.linear[static_cast<int>(term)] =
         factors_of(block_covariance(unit, tau_b, m_blocks, stationary));
   }
@@ -422,7 +422,7 @@ DetrendFactors detrend_of(const Sums& s, int degree, std::span<const double> tau
       double factor = std::clamp(before > 0 ? after / before : 1.0, 1e-3, 1.0);
       const double ratio = tau_s[i] / tau_b;
       if (ratio < 1.0) factor = 1.0 - (1.0 - factor) * ratio;
-      f.linear[static_cast<int>(NoiseTerm::R)][i] = factor;
+      f.linear[static_cast<int>(NoiseTerm::ramp)][i] = factor;
     }
   }
   // The Gauss-Markov grid: each Tc on its own (in parallel).

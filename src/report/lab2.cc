@@ -68,22 +68,16 @@ Lab2Cell bias_instability_cell(const model::AnalysisResult& r) {
   return {r.bias_instability_deg_h, lo, hi, text};
 }
 
-std::string process_name(model::RandomBiasProcess p) {
+std::string process_name(RandomBiasProcess p) {
   switch (p) {
-    case model::RandomBiasProcess::wiener:
+    case RandomBiasProcess::wiener:
       return "Wiener";
-    case model::RandomBiasProcess::gauss_markov:
+    case RandomBiasProcess::gauss_markov:
       return "Gauss-Markov";
-    case model::RandomBiasProcess::none:
+    case RandomBiasProcess::none:
       break;
   }
   return "not visible";
-}
-
-std::string truth_process_name(const std::string& p) {
-  if (p == "wiener") return "Wiener";
-  if (p == "gauss_markov") return "Gauss-Markov";
-  return "none";
 }
 
 // ---- rows --------------------------------------------------------------------------
@@ -169,15 +163,15 @@ void build_rows(Lab2Table& t) {
       [](const Lab2Run& r) {
         return Lab2Cell{kNaN, kNaN, kNaN, process_name(r.result.noise.random_bias_process)};
       },
-      [](const Lab2Truth& tr) { return truth_process_name(tr.random_bias_process); });
+      [](const Lab2Truth& tr) { return process_name(tr.random_bias_process); });
 
   const bool wiener = any_run(t, [](const Lab2Run& r) {
-    return r.result.noise.random_bias_process == model::RandomBiasProcess::wiener ||
-           (r.truth && r.truth->random_bias_process == "wiener");
+    return r.result.noise.random_bias_process == RandomBiasProcess::wiener ||
+           (r.truth && r.truth->random_bias_process == RandomBiasProcess::wiener);
   });
   const bool gauss_markov = any_run(t, [](const Lab2Run& r) {
-    return r.result.noise.random_bias_process == model::RandomBiasProcess::gauss_markov ||
-           (r.truth && r.truth->random_bias_process == "gauss_markov");
+    return r.result.noise.random_bias_process == RandomBiasProcess::gauss_markov ||
+           (r.truth && r.truth->random_bias_process == RandomBiasProcess::gauss_markov);
   });
   // The Wiener rows always: the lab asks for K "when present", and a reading
   // that finds no -2 slope is the answer that it is not.
@@ -213,7 +207,7 @@ void build_rows(Lab2Table& t) {
   add_row(
       t, "angle random walk", "fit: N/60", "deg/sqrt(h)",
       [](const Lab2Run& r) { return number_cell(r.result.arw_deg_sqrt_h); },
-      [](const Lab2Truth& tr) { return fmt::format("{:.4g}", tr.N / 60.0); });
+      [](const Lab2Truth& tr) { return fmt::format("{:.4g}", arw_deg_sqrt_h(tr.N)); });
   add_row(
       t, "bias instability", "Allan: minimum [95 %]", "deg/h",
       [](const Lab2Run& r) { return bias_instability_cell(r.result); },
@@ -297,7 +291,7 @@ std::vector<std::string> compare_runs(const Lab2Run& c, const Lab2Run& r) {
     // Allan deviation at half the record length is the rms difference of the
     // means of two adjacent half records (flicker and a random walk have no
     // finite mean, so no standard error of the intercept captures this).
-    const double wander = std::sqrt(model::allan_variance(b.noise.model, 0.5 * b.duration_s));
+    const double wander = std::sqrt(allan_variance(b.noise.model, 0.5 * b.duration_s));
     std::string bias = fmt::format(
         "Systematic bias at the mean temperature: {:.5g} deg/h (constant, {:.4g} degC) and "
         "{:.5g} deg/h (ramp, {:.4g} degC), {} deg/h apart",
@@ -336,17 +330,17 @@ std::vector<std::string> compare_runs(const Lab2Run& c, const Lab2Run& r) {
   }
 
   // The random bias.
-  const model::RandomBiasProcess pa = a.noise.random_bias_process;
-  const model::RandomBiasProcess pb = b.noise.random_bias_process;
+  const RandomBiasProcess pa = a.noise.random_bias_process;
+  const RandomBiasProcess pb = b.noise.random_bias_process;
   if (pa == pb) {
     std::string text = "Random bias: " + process_name(pa) + " in both runs";
-    if (pa == model::RandomBiasProcess::wiener) {
+    if (pa == RandomBiasProcess::wiener) {
       bool changed = false;
       text += "; " + change_text("K", "deg/h/sqrt(s)", a.noise.K.value, a.noise.K.ci95_low,
                                  a.noise.K.ci95_high, b.noise.K.value, b.noise.K.ci95_low,
                                  b.noise.K.ci95_high, changed);
       if (changed) changed_items.push_back("the Wiener intensity");
-    } else if (pa == model::RandomBiasProcess::gauss_markov) {
+    } else if (pa == RandomBiasProcess::gauss_markov) {
       text +=
           fmt::format("; sigma {} -> {} deg/h, Tc {} -> {} s.", g(a.noise.gm_sigma.value),
                       g(b.noise.gm_sigma.value), g(a.noise.gm_tc.value), g(b.noise.gm_tc.value));
@@ -365,17 +359,16 @@ std::vector<std::string> compare_runs(const Lab2Run& c, const Lab2Run& r) {
   }
 
   // Terms that only one run shows.
-  for (const model::NoiseTerm term : {model::NoiseTerm::R, model::NoiseTerm::Q}) {
-    const model::ReportedParameter& p =
-        model::reported_parameters()[static_cast<std::size_t>(term)];
-    const bool in_a = (a.noise.*p.estimate).status == model::TermStatus::resolved;
-    const bool in_b = (b.noise.*p.estimate).status == model::TermStatus::resolved;
+  for (const NoiseTerm term : {NoiseTerm::ramp, NoiseTerm::quantisation}) {
+    const NoiseParameter& p = kNoiseParameters[static_cast<std::size_t>(term)];
+    const bool in_a = a.noise.estimate(p).status == model::TermStatus::resolved;
+    const bool in_b = b.noise.estimate(p).status == model::TermStatus::resolved;
     if (in_a == in_b) continue;
     const model::AnalysisResult& with = in_b ? b : a;
     out.push_back(fmt::format(
         "Only the {} run resolves {} = {} {}{}.", in_b ? "ramp" : "constant", p.name,
-        g((with.noise.*p.estimate).value), p.unit,
-        term == model::NoiseTerm::R && in_b
+        g(with.noise.estimate(p).value), p.unit,
+        term == NoiseTerm::ramp && in_b
             ? ": a drift the temperature polynomial does not remove (e.g. a dependence on the "
               "rate of temperature change)"
             : ""));
@@ -450,13 +443,13 @@ std::string_view to_string(Lab2Condition condition) {
 }
 
 Lab2Truth lab2_truth(const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
-  const bool wiener = g.random_bias == sim::RandomBiasProcess::wiener;
+  const bool wiener = g.random_bias == RandomBiasProcess::wiener;
   Lab2Truth t;
-  t.random_bias_process = std::string(sim::to_string(g.random_bias));
-  t.N = g.model.N;
-  t.K = wiener ? g.model.K : kNaN;
-  t.gm_sigma = wiener ? kNaN : g.model.gm_sigma;
-  t.gm_tc = wiener ? kNaN : g.model.gm_tc;
+  t.random_bias_process = g.random_bias;
+  t.N = g.model.noise.N;
+  t.K = wiener ? g.model.noise.K : kNaN;
+  t.gm_sigma = wiener ? kNaN : g.model.noise.gm_sigma;
+  t.gm_tc = wiener ? kNaN : g.model.noise.gm_tc;
   t.bias_instability_deg_h = r.bias_instability.adev_deg_h;
   t.bias_at_t_ref_deg_h = r.bias_at_t_ref_deg_h;
   t.lab_constant_term_deg_h = r.lab_constant_term_deg_h;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <future>
 #include <limits>
+#include <numbers>
 #include <utility>
 
 #include "foglab/core/error.h"
@@ -47,14 +48,14 @@ ParameterText parameter_text(const model::ParameterEstimate& p) {
 
 std::string random_bias_answer(const model::AnalysisResult& r) {
   switch (r.noise.random_bias_process) {
-    case model::RandomBiasProcess::wiener:
+    case RandomBiasProcess::wiener:
       return fmt::format("a Wiener process (rate random walk), K = {} deg/h/sqrt(s)",
                          parameter_text(r.noise.K).value);
-    case model::RandomBiasProcess::gauss_markov:
+    case RandomBiasProcess::gauss_markov:
       return fmt::format("a first-order Gauss-Markov process, sigma = {} deg/h, Tc = {} s",
                          parameter_text(r.noise.gm_sigma).value,
                          parameter_text(r.noise.gm_tc).value);
-    case model::RandomBiasProcess::none:
+    case RandomBiasProcess::none:
       break;
   }
   return "not visible in this record (neither a Wiener nor a Gauss-Markov process is supported "
@@ -327,17 +328,20 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
         fmt::format("random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})", g(*k), k_source), kRed);
     // From the lowest frequency to 1 Hz (where the lab reads it), or to the
     // white level when that is crossed later.
-    double f_end = std::max(1.0, n ? *k / (2.0 * kPi * *n) : 1.0);
+    const NoiseModel walk_model{.K = *k};
+    double f_end = std::max(1.0, n ? *k / (2.0 * std::numbers::pi * *n) : 1.0);
     f_end = std::min(f_end, f_hi);
     walk.x = log_space(f_lo, std::max(f_end, f_lo * 1.01), 50);
-    for (double f : walk.x) walk.y.push_back(*k / (2.0 * kPi * f));
+    for (double f : walk.x) {
+      walk.y.push_back(std::sqrt(rate_psd(walk_model, NoiseTerm::random_walk, f, 0.0)));
+    }
     plot.series.push_back(std::move(walk));
   }
   return plot;
 }
 
 struct TermLine {
-  model::NoiseTerm term;
+  NoiseTerm term;
   const char* label;
   const char* color;
   int dash;
@@ -375,24 +379,18 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
   plot.series.push_back(std::move(dev));
   if (a.tau_s.empty()) return plot;
 
-  const model::NoiseModel& m = r.noise.model;
+  const NoiseModel& m = r.noise.model;
   const std::vector<double> taus = log_space(a.tau_s.front(), a.tau_s.back(), 80);
   static const TermLine kTerms[] = {
-      {model::NoiseTerm::Q, "quantisation Q (-1)", kPurple, 4},
-      {model::NoiseTerm::N, "white noise N (-1/2)", kGreen, 2},
-      {model::NoiseTerm::B, "flicker B (0)", kOrange, 2},
-      {model::NoiseTerm::K, "random walk K (+1/2)", kRed, 2},
-      {model::NoiseTerm::R, "rate ramp R (+1)", kYellow, 4},
-      {model::NoiseTerm::gm, "Gauss-Markov sigma, Tc", kGrey, 5},
+      {NoiseTerm::quantisation, "quantisation Q (-1)", kPurple, 4},
+      {NoiseTerm::white, "white noise N (-1/2)", kGreen, 2},
+      {NoiseTerm::flicker, "flicker B (0)", kOrange, 2},
+      {NoiseTerm::random_walk, "random walk K (+1/2)", kRed, 2},
+      {NoiseTerm::ramp, "rate ramp R (+1)", kYellow, 4},
+      {NoiseTerm::gauss_markov, "Gauss-Markov sigma, Tc", kGrey, 5},
   };
   for (const TermLine& t : kTerms) {
-    const double value = t.term == model::NoiseTerm::N   ? m.N
-                         : t.term == model::NoiseTerm::B ? m.B
-                         : t.term == model::NoiseTerm::K ? m.K
-                         : t.term == model::NoiseTerm::R ? m.R
-                         : t.term == model::NoiseTerm::Q ? m.Q
-                                                         : m.gm_sigma;
-    if (!(value > 0.0)) continue;
+    if (!(m.coefficient(t.term) > 0.0)) continue;
     Series line;
     line.title = t.label;
     line.color = t.color;
@@ -400,16 +398,16 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
     line.line_width = 1.5;
     line.sets_range = false;
     line.x = taus;
-    for (double tau : taus) line.y.push_back(std::sqrt(model::allan_variance(m, t.term, tau)));
+    for (double tau : taus) line.y.push_back(std::sqrt(allan_variance(m, t.term, tau)));
     plot.series.push_back(std::move(line));
   }
   Series fit;
-  fit.title = fmt::format("fit {}", r.noise.terms.empty() ? "none" : r.noise.terms);
+  fit.title = fmt::format("fit {}", to_string(r.noise.terms));
   fit.color = kBlack;
   fit.line_width = 2.0;
   fit.sets_range = false;
   fit.x = taus;
-  for (double tau : taus) fit.y.push_back(std::sqrt(model::allan_variance(m, tau)));
+  for (double tau : taus) fit.y.push_back(std::sqrt(allan_variance(m, tau)));
   plot.series.push_back(std::move(fit));
   if (r.bias_instability_tau_s > 0.0 && r.bias_instability_deg_h > 0.0) {
     Series min;
@@ -427,17 +425,6 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
 }
 
 // ---- text helpers --------------------------------------------------------------
-
-std::string_view parameter_meaning(std::string_view name) {
-  if (name == "N") return "white rate noise (angle random walk = N/60 deg/sqrt(h))";
-  if (name == "B") return "flicker, bias instability coefficient (plateau 0.664 B)";
-  if (name == "K") return "rate random walk (Wiener process intensity)";
-  if (name == "R") return "rate ramp";
-  if (name == "Q") return "angle quantisation";
-  if (name == "gm_sigma") return "Gauss-Markov random bias, standard deviation";
-  if (name == "gm_tc") return "Gauss-Markov random bias, correlation time";
-  return "";
-}
 
 std::string coefficient_unit(std::size_t j) {
   return j == 0 ? "deg/h" : j == 1 ? "deg/h/degC" : fmt::format("deg/h/degC^{}", j);
@@ -511,17 +498,17 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   h += fmt::format(
       "<h3>Noise model (IEEE Std 952, fitted to the Allan variance)</h3>\n"
       "<p>Terms chosen: {}; {} tau points, dispersion {:.3g}. Intervals are 95 %; a term the "
-      "record cannot resolve gets a one-sided 95 % upper bound.</p>\n",
-      html_escape(r.noise.terms.empty() ? "none" : r.noise.terms), r.noise.points,
-      r.noise.dispersion);
+      "record cannot resolve gets a one-sided 95 % upper bound.</p>\n"
+      "<p class=\"fit-{}\">Fit: {}.</p>\n",
+      html_escape(to_string(r.noise.terms)), r.noise.points, r.noise.dispersion,
+      model::to_string(r.noise.status), html_escape(r.noise.message));
   h += "<table>\n<tr>" + th("parameter") + th("meaning") + th("value") + th("95 % interval") +
        th("status") + th("unit") + "</tr>\n";
-  for (const model::ReportedParameter& p : model::reported_parameters()) {
-    const model::ParameterEstimate& e = r.noise.*p.estimate;
+  for (const NoiseParameter& p : kNoiseParameters) {
+    const model::ParameterEstimate& e = r.noise.estimate(p);
     const ParameterText t = parameter_text(e);
-    h += fmt::format("<tr class=\"{}\">", model::to_string(e.status)) + td(p.name) +
-         td(parameter_meaning(p.name)) + td(t.value) + td(t.interval) +
-         td(model::to_string(e.status)) + td(p.unit) + "</tr>\n";
+    h += fmt::format("<tr class=\"{}\">", model::to_string(e.status)) + td(p.name) + td(p.meaning) +
+         td(t.value) + td(t.interval) + td(model::to_string(e.status)) + td(p.unit) + "</tr>\n";
   }
   h += "</table>\n<table class=\"meta\">\n";
   row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
@@ -707,11 +694,11 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
               : std::string("No temperature: only the record mean was removed.\n\n");
   }
 
-  md += fmt::format("### Noise model (terms {}, 95 % intervals)\n\n",
-                    r.noise.terms.empty() ? "none" : r.noise.terms);
+  md += fmt::format("### Noise model (terms {}, 95 % intervals)\n\nFit: {}.\n\n",
+                    to_string(r.noise.terms), r.noise.message);
   md += "| parameter | value | 95 % interval | status | unit |\n|---|---:|---|---|---|\n";
-  for (const model::ReportedParameter& p : model::reported_parameters()) {
-    const model::ParameterEstimate& e = r.noise.*p.estimate;
+  for (const NoiseParameter& p : kNoiseParameters) {
+    const model::ParameterEstimate& e = r.noise.estimate(p);
     const ParameterText t = parameter_text(e);
     md += fmt::format("| {} | {} | {} | {} | {} |\n", p.name, t.value, t.interval,
                       model::to_string(e.status), p.unit);
@@ -793,7 +780,7 @@ std::string kalibr_imu_yaml(const model::AnalysisResult& r, const ReportInput& i
   } else {
     k_comment = "K could not be bounded by this record: 0 written, set it by hand";
   }
-  if (r.noise.random_bias_process == model::RandomBiasProcess::gauss_markov) {
+  if (r.noise.random_bias_process == RandomBiasProcess::gauss_markov) {
     k_comment += fmt::format(
         "; the random bias is Gauss-Markov (sigma {} deg/h, Tc {} s), "
         "which Kalibr cannot represent",

@@ -29,8 +29,9 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <thread>
+#include <numbers>
 #include <string_view>
+#include <thread>
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
@@ -50,7 +51,7 @@ const Ziggurat& ziggurat() {
     Ziggurat z{};
     const double r = 3.6541528853610088;
     const double fr = std::exp(-0.5 * r * r);
-    const double v = r * fr + std::sqrt(0.5 * 3.14159265358979323846) * std::erfc(r / std::sqrt(2.0));
+    const double v = r * fr + std::sqrt(0.5 * std::numbers::pi) * std::erfc(r / std::sqrt(2.0));
     z.r = r;
     z.x[0] = v / fr;
     z.x[1] = r;
@@ -131,14 +132,6 @@ double ou_c(double x) {
   return (-std::expm1(-x) + 0.5 * std::expm1(-2.0 * x)) / (x * x);
 }
 
-// f(x) = (2x - 3 + 4 e^-x - e^-2x) / x^2
-double ou_f(double x) {
-  if (x < kSeriesBelow) {
-    return series(x, 3, 2, [](int n) { return 4.0 - std::ldexp(1.0, n); });
-  }
-  return (2.0 * x + 4.0 * std::expm1(-x) - std::expm1(-2.0 * x)) / (x * x);
-}
-
 }  // namespace
 
 OuStep ou_step(double tc_s, double h_s) {
@@ -153,11 +146,6 @@ OuStep ou_step(double tc_s, double h_s) {
   s.s_avg_state = c / s.s_state;
   s.s_avg = std::sqrt(std::max(0.0, v2 - c * c / v1));
   return s;
-}
-
-double ou_allan_variance(double tc_s, double tau_s) {
-  const double x = tau_s / tc_s;
-  return ou_f(x);
 }
 
 FlickerDesign design_flicker(double sample_rate_hz, double duration_s) {
@@ -191,7 +179,7 @@ FlickerDesign design_flicker(double sample_rate_hz, double duration_s) {
   // log-uniform Tc = B^2/(2 pi f)). Least squares on the relative error of
   // the plateau, plus a small ridge towards z = 1 that fixes the poorly
   // determined components far outside the fit range.
-  const double w0 = std::log(10.0) / kFlickerPerDecade / 3.14159265358979323846;
+  const double w0 = std::log(10.0) / kFlickerPerDecade / std::numbers::pi;
   const double ridge = 1e-6;
   Eigen::MatrixXd a(static_cast<Eigen::Index>(taus.size()) + count, count);
   Eigen::VectorXd b(a.rows());
@@ -199,8 +187,9 @@ FlickerDesign design_flicker(double sample_rate_hz, double duration_s) {
   for (std::size_t i = 0; i < taus.size(); ++i) {
     const auto row = static_cast<Eigen::Index>(i);
     for (Eigen::Index j = 0; j < count; ++j) {
-      a(row, j) = w0 * ou_allan_variance(d.components[static_cast<std::size_t>(j)].tc_s, taus[i]) /
-                  kFlickerPlateau;
+      a(row, j) =
+          w0 * gauss_markov_allan_shape(taus[i], d.components[static_cast<std::size_t>(j)].tc_s) /
+          kFlickerAllanFactor;
     }
     b(row) = 1.0;
   }
@@ -234,7 +223,8 @@ FlickerDesign design_flicker(double sample_rate_hz, double duration_s) {
   }
   double worst = 0.0;
   for (const double tau : taus) {
-    worst = std::max(worst, std::fabs(flicker_bank_allan_variance(d, tau) / kFlickerPlateau - 1.0));
+    worst =
+        std::max(worst, std::fabs(flicker_bank_allan_variance(d, tau) / kFlickerAllanFactor - 1.0));
   }
   d.max_relative_error = worst;
   return d;
@@ -242,7 +232,8 @@ FlickerDesign design_flicker(double sample_rate_hz, double duration_s) {
 
 double flicker_bank_allan_variance(const FlickerDesign& design, double tau_s) {
   double sum = 0.0;
-  for (const auto& c : design.components) sum += c.variance * ou_allan_variance(c.tc_s, tau_s);
+  for (const auto& c : design.components)
+    sum += c.variance * gauss_markov_allan_shape(tau_s, c.tc_s);
   return sum;
 }
 
@@ -305,16 +296,12 @@ std::int64_t validate(const ErrorModel& m, const TemperatureProfile& t, const Ge
     throw UsageError(fmt::format("too many samples: duration_s = {} s at {} Hz", o.duration_s,
                                  o.sample_rate_hz));
   }
-  check_nonnegative("N", m.N, "[deg/h/sqrt(Hz)]");
-  check_nonnegative("B", m.B, "[deg/h]");
-  check_nonnegative("K", m.K, "[deg/h/sqrt(s)]");
-  check_nonnegative("R", m.R, "[deg/h/s]");
-  check_nonnegative("Q", m.Q, "[deg/h*s]");
-  check_nonnegative("gm_sigma", m.gm_sigma, "[deg/h]");
-  check_nonnegative("gm_tc", m.gm_tc, "[s]");
-  if (m.gm_sigma > 0.0 && !(m.gm_tc > 0.0)) {
+  for (const NoiseParameter& p : kNoiseParameters) {
+    check_nonnegative(p.name, m.noise.*p.value, fmt::format("[{}]", p.unit));
+  }
+  if (m.noise.gm_sigma > 0.0 && !(m.noise.gm_tc > 0.0)) {
     throw UsageError(fmt::format("gm_tc must be > 0 [s] when gm_sigma > 0 (gm_sigma = {}), got {}",
-                                 m.gm_sigma, m.gm_tc));
+                                 m.noise.gm_sigma, m.noise.gm_tc));
   }
   check_finite("bias", m.bias);
   check_finite("input_rate", m.input_rate);
@@ -370,28 +357,28 @@ class Engine {
       return detail::process_key(options.seed, options.stream, process);
     };
     // Variance of the merged per-sample innovation (see pass_one).
-    double innovation_var = model.N * model.N * fs_;
+    double innovation_var = model.noise.N * model.noise.N * fs_;
     key_white_ = key(kWhite);
-    rw_scale_ = model.K * std::sqrt(h_);
+    rw_scale_ = model.noise.K * std::sqrt(h_);
     key_rw_step_ = key(kRandomWalkStep);
     innovation_var += rw_scale_ * rw_scale_ / 12.0;
-    if (model.gm_sigma > 0.0) {
-      gm_ = detail::ou_step(model.gm_tc, h_);
+    if (model.noise.gm_sigma > 0.0) {
+      gm_ = detail::ou_step(model.noise.gm_tc, h_);
       key_gm_step_ = key(kMarkovStep);
-      innovation_var += model.gm_sigma * model.gm_sigma * gm_.s_avg * gm_.s_avg;
-      gm_state_ = model.gm_sigma * normal_at(zig_, key(kMarkovStart), 0);
+      innovation_var += model.noise.gm_sigma * model.noise.gm_sigma * gm_.s_avg * gm_.s_avg;
+      gm_state_ = model.noise.gm_sigma * normal_at(zig_, key(kMarkovStart), 0);
     }
-    quant_step_ = model.Q * std::sqrt(12.0);
+    quant_step_ = model.noise.Q * std::sqrt(12.0);
     key_quant_ = key(kQuantisation);
     key_jitter_ = key(kJitter);
-    if (model.B > 0.0) {
+    if (model.noise.B > 0.0) {
       const detail::FlickerDesign design =
           detail::design_flicker(fs_, static_cast<double>(samples_) * h_);
       double avg_var = 0.0;
       for (std::size_t j = 0; j < design.components.size(); ++j) {
         const auto& c = design.components[j];
         if (c.variance <= 0.0) continue;
-        const double sd = model.B * std::sqrt(c.variance);
+        const double sd = model.noise.B * std::sqrt(c.variance);
         const double start = sd * normal_at(zig_, key(kFlickerStart + j), 0);
         if (c.level == 0) {
           const detail::OuStep s = detail::ou_step(c.tc_s, h_);
@@ -538,9 +525,10 @@ void Engine::pass_one(std::size_t chunk, std::int64_t first, std::size_t len, do
       rate[k] = constant + p;
     }
   }
-  if (model_.R != 0.0) {
+  if (model_.noise.R != 0.0) {
     for (std::size_t k = 0; k < len; ++k) {
-      rate[k] += model_.R * ((static_cast<double>(first + static_cast<std::int64_t>(k)) + 0.5) / fs_);
+      rate[k] += model_.noise.R *
+                 ((static_cast<double>(first + static_cast<std::int64_t>(k)) + 0.5) / fs_);
     }
   }
   // The per-sample innovations independent of every state and of each
@@ -572,8 +560,8 @@ void Engine::pass_one(std::size_t chunk, std::int64_t first, std::size_t len, do
     rw_end_[chunk] = w;
   }
   // Gauss-Markov from zero state.
-  if (model_.gm_sigma > 0.0) {
-    const double s = model_.gm_sigma;
+  if (model_.noise.gm_sigma > 0.0) {
+    const double s = model_.noise.gm_sigma;
     const double a1 = s * gm_.s_state, a21 = s * gm_.s_avg_state;
     double x = 0.0;
     for (std::size_t k = 0; k < len; ++k) {
@@ -618,7 +606,7 @@ void Engine::carry(std::size_t count) {
     rw_start_[c] = rw_state_;
     rw_state_ += rw_end_[c];
     gm_start_[c] = gm_state_;
-    if (model_.gm_sigma > 0.0) gm_state_ = std::pow(gm_.rho, len) * gm_state_ + gm_end_[c];
+    if (model_.noise.gm_sigma > 0.0) gm_state_ = std::pow(gm_.rho, len) * gm_state_ + gm_end_[c];
     for (std::size_t j = 0; j < nf; ++j) {
       fast_start_[c * nf + j] = fast_state_[j];
       fast_state_[j] = std::pow(fast_[j].rho, len) * fast_state_[j] + fast_end_[c * nf + j];
@@ -631,7 +619,7 @@ void Engine::pass_two(std::size_t chunk, std::size_t len, double* rate) const {
   // random-walk state adds s to every sample. One pass over the chunk for
   // both; the powers rho^k run in four interleaved chains (rho^4 steps).
   const double rw = rw_scale_ > 0.0 ? rw_start_[chunk] : 0.0;
-  const bool gm = model_.gm_sigma > 0.0;
+  const bool gm = model_.noise.gm_sigma > 0.0;
   if (rw != 0.0 || gm) {
     std::array<double, 4> term{};
     double rho4 = 0.0;

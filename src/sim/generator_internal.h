@@ -13,7 +13,7 @@
 //   rejections (about 1 %) draw further words by re-hashing, still a pure
 //   function of the same counter. Uniforms use the top 53 bits.
 // * Exact steps of a first-order Gauss-Markov (Ornstein-Uhlenbeck) process
-//   together with its average over the step, and its Allan variance.
+//   together with its average over the step.
 // * The flicker-noise bank (docs/theory/flicker.md).
 #pragma once
 
@@ -103,9 +103,8 @@ struct OuStep {
 
 OuStep ou_step(double tc_s, double h_s);
 
-/// Allan variance of a unit-variance OU process at tau (exact for averaged
-/// samples at every tau = m tau0): (Tc/tau)^2 (2 tau/Tc - 3 + 4 e^-tau/Tc - e^-2tau/Tc).
-double ou_allan_variance(double tc_s, double tau_s);
+// The Allan variance of a unit-variance OU process is
+// foglab::gauss_markov_allan_shape() (core/noise_model.h).
 
 // --- Flicker bank ------------------------------------------------------------
 
@@ -135,8 +134,5 @@ FlickerDesign design_flicker(double sample_rate_hz, double duration_s);
 
 /// Allan variance of the bank (every component exact, no decimation).
 double flicker_bank_allan_variance(const FlickerDesign& design, double tau_s);
-
-/// The flicker plateau (2 ln2 / pi) B^2 for B = 1.
-inline constexpr double kFlickerPlateau = 2.0 * 0.69314718055994530942 / 3.14159265358979323846;
 
 }  // namespace foglab::sim::detail

@@ -10,132 +10,6 @@
 
 namespace foglab::sim {
 
-// --- Table 1 ------------------------------------------------------------------
-
-// --- theory ---------------------------------------------------------------------
-
-double model_allan_variance(const ErrorModel& m, double tau_s) {
-  const double t = tau_s;
-  constexpr double kFlicker = 2.0 * 0.69314718055994531 / 3.14159265358979324;
-  double avar = m.R * m.R * t * t / 2.0 + m.K * m.K * t / 3.0 + kFlicker * m.B * m.B +
-                m.N * m.N / t + 3.0 * m.Q * m.Q / (t * t);
-  if (m.gm_sigma > 0.0 && m.gm_tc > 0.0) {
-    const double x = t / m.gm_tc;
-    // For small x the bracket loses digits; its series is 2x^3/3 - x^4/2 + ...
-    const double bracket = x < 1e-3 ? x * x * x * (2.0 / 3.0 - x / 2.0 + 7.0 * x * x / 30.0)
-                                    : 2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x);
-    avar += m.gm_sigma * m.gm_sigma * bracket / (x * x);
-  }
-  return avar;
-}
-
-double term_allan_variance(const ErrorModel& m, ModelTerm term, double tau_s) {
-  ErrorModel only;
-  switch (term) {
-    case ModelTerm::white:
-      only.N = m.N;
-      break;
-    case ModelTerm::flicker:
-      only.B = m.B;
-      break;
-    case ModelTerm::random_walk:
-      only.K = m.K;
-      break;
-    case ModelTerm::ramp:
-      only.R = m.R;
-      break;
-    case ModelTerm::quantisation:
-      only.Q = m.Q;
-      break;
-    case ModelTerm::gauss_markov:
-      only.gm_sigma = m.gm_sigma;
-      only.gm_tc = m.gm_tc;
-      break;
-  }
-  return model_allan_variance(only, tau_s);
-}
-
-double term_dominance_octaves(const ErrorModel& model, ModelTerm term, double tau_min_s,
-                              double tau_max_s) {
-  if (!(tau_min_s > 0.0) || !(tau_max_s >= tau_min_s)) {
-    throw UsageError(
-        fmt::format("term_dominance_octaves: invalid tau range [{}, {}] s", tau_min_s, tau_max_s));
-  }
-  constexpr int kSteps = 400;
-  const double step = std::log2(tau_max_s / tau_min_s) / kSteps;
-  double best = 0.0;
-  int first = -1;  // the grid point where the current stretch began
-  for (int s = 0; s <= kSteps; ++s) {
-    const double tau = tau_min_s * std::exp2(s * step);
-    const double total = model_allan_variance(model, tau);
-    if (total > 0.0 && term_allan_variance(model, term, tau) >= 0.5 * total) {
-      if (first < 0) first = s;
-      best = std::max(best, (s - first) * step);
-    } else {
-      first = -1;
-    }
-  }
-  return best;
-}
-
-AdevMinimum model_adev_minimum(const ErrorModel& model, double tau_min_s, double tau_max_s,
-                               int points_per_decade) {
-  if (!(tau_min_s > 0.0) || !(tau_max_s >= tau_min_s) || points_per_decade < 1) {
-    throw UsageError(
-        fmt::format("model_adev_minimum: invalid tau range [{}, {}] s", tau_min_s, tau_max_s));
-  }
-  const double lo = std::log10(tau_min_s);
-  const double hi = std::log10(tau_max_s);
-  const int steps = std::max(1, static_cast<int>(std::ceil((hi - lo) * points_per_decade)));
-  auto log_tau = [&](int i) { return lo + (hi - lo) * i / steps; };
-  auto f = [&](double lt) { return model_allan_variance(model, std::pow(10.0, lt)); };
-  int best = 0;
-  double best_value = std::numeric_limits<double>::infinity();
-  for (int i = 0; i <= steps; ++i) {
-    const double v = f(log_tau(i));
-    if (v < best_value) {
-      best_value = v;
-      best = i;
-    }
-  }
-  double best_lt = log_tau(best);
-  if (best > 0 && best < steps) {
-    // golden-section refinement between the neighbours
-    double a = log_tau(best - 1);
-    double b = log_tau(best + 1);
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    double c = b - g * (b - a);
-    double d = a + g * (b - a);
-    double fc = f(c);
-    double fd = f(d);
-    for (int it = 0; it < 60; ++it) {
-      if (fc < fd) {
-        b = d;
-        d = c;
-        fd = fc;
-        c = b - g * (b - a);
-        fc = f(c);
-      } else {
-        a = c;
-        c = d;
-        fc = fd;
-        d = a + g * (b - a);
-        fd = f(d);
-      }
-    }
-    const double lt = (a + b) / 2.0;
-    if (f(lt) <= best_value) {
-      best_lt = lt;
-      best_value = f(lt);
-    }
-  }
-  AdevMinimum out;
-  out.adev_deg_h = std::sqrt(best_value);
-  out.tau_s = std::clamp(std::pow(10.0, best_lt), tau_min_s, tau_max_s);
-  out.at_range_edge = best == 0 || best == steps;
-  return out;
-}
-
 std::vector<double> raw_temperature_polynomial(const ErrorModel& model, double t_ref_c) {
   // sum_k c_k (T - r)^k = sum_k c_k sum_j C(k, j) T^j (-r)^(k-j), c_0 = bias + input
   std::vector<double> c = {model.bias + model.input_rate};
@@ -149,10 +23,6 @@ std::vector<double> raw_temperature_polynomial(const ErrorModel& model, double t
     }
   }
   return a;
-}
-
-std::string_view to_string(RandomBiasProcess p) {
-  return p == RandomBiasProcess::wiener ? "wiener" : "gauss_markov";
 }
 
 // --- variants ---------------------------------------------------------------------
@@ -229,7 +99,6 @@ constexpr GyroDesign kFog2{
     .c2_lo = 0.05,
     .c2_hi = 0.2};
 
-const double kFlickerFloor = std::sqrt(2.0 * std::log(2.0) / 3.14159265358979324);
 constexpr double kJitterC = 0.02;
 constexpr double kRampSpanC = 10.0;
 
@@ -245,9 +114,9 @@ void fill_answers(Lab2Run& run, const ErrorModel& model) {
   run.constant_term_well_conditioned = run.temperature.kind == TemperatureKind::ramp;
   run.usable_tau_min_s = 1.0 / fs;
   run.usable_tau_max_s = std::max(run.usable_tau_min_s, duration / 10.0);
-  run.bias_instability = model_adev_minimum(model, run.usable_tau_min_s, run.usable_tau_max_s);
+  run.bias_instability = adev_minimum(model.noise, run.usable_tau_min_s, run.usable_tau_max_s);
   run.random_bias_octaves = term_dominance_octaves(
-      model, model.gm_sigma > 0.0 ? ModelTerm::gauss_markov : ModelTerm::random_walk,
+      model.noise, model.noise.gm_sigma > 0.0 ? NoiseTerm::gauss_markov : NoiseTerm::random_walk,
       run.usable_tau_min_s, run.usable_tau_max_s);
 }
 
@@ -262,35 +131,34 @@ Lab2Gyro make_gyro(int variant, int gyro, const Lab2Options& options) {
   g.random_bias = wiener ? RandomBiasProcess::wiener : RandomBiasProcess::gauss_markov;
 
   ErrorModel& m = g.model;
+  NoiseModel& n = m.noise;
   g.arw_deg_sqrt_h = draw.log_uniform(0, d.arw_lo, d.arw_hi);
-  m.N = 60.0 * g.arw_deg_sqrt_h;
-  m.B = draw.log_uniform(1, d.floor_lo, d.floor_hi) / kFlickerFloor;
+  n.N = white_noise_of_arw(g.arw_deg_sqrt_h);
+  n.B = flicker_coefficient_deg_h(draw.log_uniform(1, d.floor_lo, d.floor_hi));
   // The random bias is placed so that the record shows it (header): its
   // position counts back from the end of the design duration's usable range.
   const double usable_end_s = d.duration_s / 10.0;
   auto rest_avar = [&](double tau) {  // white noise and flicker at tau
-    return term_allan_variance(m, ModelTerm::white, tau) +
-           term_allan_variance(m, ModelTerm::flicker, tau);
+    return allan_variance(n, NoiseTerm::white, tau) + allan_variance(n, NoiseTerm::flicker, tau);
   };
   if (wiener) {
     // The random walk's Allan variance K^2 tau / 3 equals the rest's at
     // tau_w and grows past it, so it carries more than half from there on.
     const double tau_w = usable_end_s / std::exp2(draw.linear(2, 2.5, 4.0));
-    m.K = std::sqrt(3.0 * rest_avar(tau_w) / tau_w);
+    n.K = std::sqrt(3.0 * rest_avar(tau_w) / tau_w);
   } else {
     // The hump of the Gauss-Markov ADEV (0.62 sigma at 1.89 Tc) well inside
     // the usable range and well above the rest there.
     const double hump_s = usable_end_s / std::exp2(draw.linear(2, 2.0, 3.5));
-    m.gm_tc = hump_s / 1.89;
-    m.gm_sigma = draw.linear(3, 2.0, 4.0) * std::sqrt(rest_avar(hump_s)) / 0.62;
+    n.gm_tc = hump_s / 1.89;
+    n.gm_sigma = draw.linear(3, 2.0, 4.0) * std::sqrt(rest_avar(hump_s)) / 0.62;
   }
   m.bias = draw.sign(4) * draw.log_uniform(5, d.bias_lo, d.bias_hi);
   // What the noise wanders over the run (the random bias, the flicker floor
   // three times, the white noise's mean): the ramp's temperature law must
   // stand out of it, so the coefficients are scaled up together if needed.
-  const double floor_deg_h = kFlickerFloor * m.B;
-  const double wander = m.K * std::sqrt(d.duration_s) + m.gm_sigma + 3.0 * floor_deg_h +
-                        m.N / std::sqrt(d.duration_s);
+  const double wander = n.K * std::sqrt(d.duration_s) + n.gm_sigma +
+                        3.0 * flicker_floor_deg_h(n.B) + n.N / std::sqrt(d.duration_s);
   const double scale = std::max(1.0, 0.75 * wander / (d.c1_lo * kRampSpanC / 2.0));
   m.temp_coefs = {draw.sign(6) * scale * draw.linear(7, d.c1_lo, d.c1_hi),
                   draw.sign(8) * scale * draw.linear(9, d.c2_lo, d.c2_hi)};

@@ -7,6 +7,7 @@
 #include <array>
 #include <boost/math/special_functions/bessel.hpp>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "foglab/core/error.h"
@@ -16,6 +17,7 @@
 namespace foglab::sim {
 namespace {
 
+constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2.0 * kPi;
 // Edges computed in floating point land within ~1e-12 of an integer; this
 // keeps a sample exactly on an edge on the edge's far side.

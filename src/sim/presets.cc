@@ -11,9 +11,6 @@
 namespace foglab::sim {
 namespace {
 
-// ADEV plateau of flicker noise = sqrt(2 ln2 / pi) B = 0.664 B
-const double kFlickerFloor = std::sqrt(2.0 * std::log(2.0) / 3.14159265358979324);
-
 /// A preset from datasheet figures: ARW [deg/sqrt(h)] (or N directly) and
 /// the bias instability [deg/h]. The class follows Table 1 from those two
 /// numbers (the worse of the two criteria).
@@ -21,19 +18,19 @@ Preset from_datasheet(std::string name, std::string description, double n_deg_h_
                       double bi_deg_h, double sample_rate_hz) {
   Preset p;
   p.name = std::move(name);
-  p.model.N = n_deg_h_sqrt_hz;
-  p.model.B = bi_deg_h / kFlickerFloor;
+  p.model.noise.N = n_deg_h_sqrt_hz;
+  p.model.noise.B = flicker_coefficient_deg_h(bi_deg_h);
   p.sample_rate_hz = sample_rate_hz;
-  const ClassVerdict verdict = classify(bi_deg_h, n_deg_h_sqrt_hz / 60.0);
+  const double arw = arw_deg_sqrt_h(n_deg_h_sqrt_hz);
+  const ClassVerdict verdict = classify(bi_deg_h, arw);
   p.accuracy_class = std::string(to_string(verdict.accuracy_class));
-  p.description =
-      fmt::format("{} Model: N = {:.4g} deg/h/sqrt(Hz) (ARW {:.4g} deg/sqrt(h)), B = BI/0.664 = "
-                  "{:.4g} deg/h (BI {:.4g} deg/h); no rate random walk, Gauss-Markov, ramp, "
-                  "quantisation, bias or temperature terms (not on the datasheet; add them with "
-                  "options). Table 1 class: {} (by BI {}, by ARW {}).",
-                  description, p.model.N, n_deg_h_sqrt_hz / 60.0, p.model.B, bi_deg_h,
-                  p.accuracy_class, to_string(verdict.by_bias_instability),
-                  to_string(verdict.by_arw));
+  p.description = fmt::format(
+      "{} Model: N = {:.4g} deg/h/sqrt(Hz) (ARW {:.4g} deg/sqrt(h)), B = BI/0.664 = "
+      "{:.4g} deg/h (BI {:.4g} deg/h); no rate random walk, Gauss-Markov, ramp, "
+      "quantisation, bias or temperature terms (not on the datasheet; add them with "
+      "options). Table 1 class: {} (by BI {}, by ARW {}).",
+      description, p.model.noise.N, arw, p.model.noise.B, bi_deg_h, p.accuracy_class,
+      to_string(verdict.by_bias_instability), to_string(verdict.by_arw));
   return p;
 }
 
@@ -43,16 +40,17 @@ std::vector<Preset> make_presets() {
   out.push_back(from_datasheet("kvh-dsp-3000",
                                "KVH DSP-3000 open-loop FOG (lab manual Fig. 15): ARW <= 0.067 "
                                "deg/sqrt(h), bias instability <= 1 deg/h; limits taken as values.",
-                               60.0 * 0.067, 1.0, 100.0));
-  out.push_back(from_datasheet("kvh-dsp-1750",
-                               "KVH DSP-1750 open-loop FOG (lab manual Fig. 15): ARW <= 0.013 "
-                               "deg/sqrt(h), bias instability <= 0.1 deg/h; limits taken as values.",
-                               60.0 * 0.013, 0.1, 100.0));
+                               white_noise_of_arw(0.067), 1.0, 100.0));
+  out.push_back(
+      from_datasheet("kvh-dsp-1750",
+                     "KVH DSP-1750 open-loop FOG (lab manual Fig. 15): ARW <= 0.013 "
+                     "deg/sqrt(h), bias instability <= 0.1 deg/h; limits taken as values.",
+                     white_noise_of_arw(0.013), 0.1, 100.0));
   out.push_back(from_datasheet("kvh-dsp-1760",
                                "KVH DSP-1760 open-loop FOG (lab manual Fig. 15): ARW <= 0.012 "
                                "deg/sqrt(h), bias instability <= 0.05 deg/h; limits taken as "
                                "values.",
-                               60.0 * 0.012, 0.05, 100.0));
+                               white_noise_of_arw(0.012), 0.05, 100.0));
   // Closed-loop FOGs of the manual's Table 3: "noise of the output signal"
   // in (deg/h)/sqrt(Hz) is N; "random bias drift at fixed temperature (1 sigma)"
   // is taken as the bias instability. KIND 11-222 (no noise figure) is left out.
@@ -113,7 +111,7 @@ std::vector<Preset> make_presets() {
                     "and ARW {} deg/sqrt(h), the geometric middle of each range (an open range "
                     "takes half its upper or three times its lower bound).",
                     a.cls, a.ranges, a.bi, a.arw),
-        60.0 * a.arw, a.bi, 100.0));
+        white_noise_of_arw(a.arw), a.bi, 100.0));
   }
   return out;
 }

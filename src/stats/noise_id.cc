@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "foglab/core/numeric.h"
@@ -279,7 +280,7 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
   const double md = static_cast<double>(m);
   const double rn_white_pm = 1.0 / md;
   const double rn_flicker_pm =
-      3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(kPi * md)));
+      3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
   const double rn_white_fm = 0.5;
   id.method = "b1_rn";
   if (rn < std::sqrt(rn_white_pm * rn_flicker_pm)) {

@@ -203,6 +203,15 @@ TEST_F(CliAnalyze, JsonHoldsEveryContractFieldWithItsType) {
   EXPECT_FALSE(ev["summary"].get<std::string>().empty());
 
   const json& f = j["fit"];
+  // The reweighting loop's outcome, as NoiseFitResult states it.
+  EXPECT_EQ(f["status"], "converged");
+  EXPECT_THAT(
+      f["message"].get<std::string>(),
+      ::testing::StartsWith("converged: the chosen model " + f["terms"].get<std::string>()));
+  EXPECT_GE(f["iterations"].get<int>(), 1);
+  EXPECT_LE(f["iterations"].get<int>(), f["max_iterations"].get<int>());
+  EXPECT_EQ(f["max_iterations"], 200);
+  EXPECT_EQ(f["tolerance"], 1e-10);
   EXPECT_TRUE(f["terms"].is_string());
   EXPECT_TRUE(f["deviance"].is_number());
   EXPECT_TRUE(f["points"].is_number_integer());
@@ -216,6 +225,8 @@ TEST_F(CliAnalyze, JsonHoldsEveryContractFieldWithItsType) {
     EXPECT_TRUE(c["deviance"].is_number());
     EXPECT_TRUE(c["criterion"].is_number());
     EXPECT_TRUE(c["parameters"].is_number_integer());
+    EXPECT_THAT(c["status"].get<std::string>(), ::testing::AnyOf("converged", "iteration_limit"));
+    EXPECT_TRUE(c["iterations"].is_number_integer());
   }
 
   EXPECT_TRUE(j["notes"].is_array());

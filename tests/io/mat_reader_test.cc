@@ -318,8 +318,8 @@ TEST_P(MatVersionTest, UnitsAreConvertedToDegPerHour) {
   EXPECT_THAT(read_series(path, options).values, ElementsAre(3600.0, -1800.0));
   options.unit = RateUnit::rad_per_second;
   const Series series = read_series(path, options);
-  EXPECT_DOUBLE_EQ(series.values[0], 180.0 / kPi * 3600.0);
-  EXPECT_DOUBLE_EQ(series.values[1], -0.5 * 180.0 / kPi * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[0], kDegPerRad * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[1], -0.5 * kDegPerRad * 3600.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllVersions, MatVersionTest,

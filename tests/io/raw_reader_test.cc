@@ -144,8 +144,8 @@ TEST_F(RawReaderTest, UnitsAreConvertedToDegPerHour) {
   EXPECT_THAT(read_series(path, options).values, ElementsAre(3600.0, -7200.0));
   options.unit = RateUnit::rad_per_second;
   const Series series = read_series(path, options);
-  EXPECT_DOUBLE_EQ(series.values[0], 180.0 / kPi * 3600.0);
-  EXPECT_DOUBLE_EQ(series.values[1], -2.0 * 180.0 / kPi * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[0], kDegPerRad * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[1], -2.0 * kDegPerRad * 3600.0);
 }
 
 TEST_F(RawReaderTest, OverflowOnConversionIsADataError) {

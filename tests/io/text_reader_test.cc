@@ -323,8 +323,8 @@ TEST_F(TextReaderTest, UnitsAreConvertedToDegPerHour) {
   EXPECT_THAT(read_series(path, options).values, ElementsAre(3600.0, -1800.0));
   options.unit = rate_unit_from_string("rad/s");
   const Series series = read_series(path, options);
-  EXPECT_DOUBLE_EQ(series.values[0], 180.0 / kPi * 3600.0);
-  EXPECT_DOUBLE_EQ(series.values[1], -0.5 * 180.0 / kPi * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[0], kDegPerRad * 3600.0);
+  EXPECT_DOUBLE_EQ(series.values[1], -0.5 * kDegPerRad * 3600.0);
 }
 
 TEST_F(TextReaderTest, UnknownUnitAndFormatNamesAreUsageErrors) {

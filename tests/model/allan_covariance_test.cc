@@ -75,11 +75,11 @@ TEST(AllanCovariance, ScatterAcrossTauMatchesMonteCarlo) {
     NoiseModel model;
   };
   sim::ErrorModel walk, hump;
-  walk.N = 1.0;
-  walk.K = 0.02;
-  hump.N = 1.0;
-  hump.gm_sigma = 1.0;
-  hump.gm_tc = 30.0;
+  walk.noise.N = 1.0;
+  walk.noise.K = 0.02;
+  hump.noise.N = 1.0;
+  hump.noise.gm_sigma = 1.0;
+  hump.noise.gm_tc = 30.0;
   const Case cases[] = {{walk, {.N = 1.0, .K = 0.02}},
                         {hump, {.N = 1.0, .gm_sigma = 1.0, .gm_tc = 30.0}}};
   const double fs = 10.0;

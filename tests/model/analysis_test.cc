@@ -62,9 +62,13 @@ TEST(Analysis, Lab2RampRunRoundTrips) {
     // true noise model, and the reported errors (from the estimated model)
     // against those.
     const sim::ErrorModel& g = c.gyro.model;
-    const std::vector<double> cov = coefficient_covariance(
-        c.result_temperature, c.run.generator.sample_rate_hz, s.t_ref_c, 2,
-        {.N = g.N, .B = g.B, .K = g.K, .gm_sigma = g.gm_sigma, .gm_tc = g.gm_tc});
+    const std::vector<double> cov =
+        coefficient_covariance(c.result_temperature, c.run.generator.sample_rate_hz, s.t_ref_c, 2,
+                               {.N = g.noise.N,
+                                .B = g.noise.B,
+                                .K = g.noise.K,
+                                .gm_sigma = g.noise.gm_sigma,
+                                .gm_tc = g.noise.gm_tc});
     for (int j = 1; j <= 2; ++j) {
       const double se = std::sqrt(cov[static_cast<std::size_t>(j * 3 + j)]);
       EXPECT_NEAR(s.coefficients[static_cast<std::size_t>(j)],
@@ -77,7 +81,8 @@ TEST(Analysis, Lab2RampRunRoundTrips) {
       EXPECT_LT(s.standard_errors[static_cast<std::size_t>(j)] / se, 2.5)
           << "c" << j << " seed " << seed;
     }
-    EXPECT_NEAR(r.noise.model.N, c.gyro.model.N, 0.03 * c.gyro.model.N) << "seed " << seed;
+    EXPECT_NEAR(r.noise.model.N, c.gyro.model.noise.N, 0.03 * c.gyro.model.noise.N)
+        << "seed " << seed;
     EXPECT_EQ(r.noise.N.status, TermStatus::resolved);
     // The ADEV-minimum bias instability against the key's theoretical one.
     EXPECT_NEAR(r.bias_instability_deg_h / c.run.bias_instability.adev_deg_h, 1.0, 0.3)
@@ -94,8 +99,8 @@ TEST(Analysis, WienerRandomBiasIsNamedWithEvidence) {
   // meets the flicker plateau at a sixteenth of the usable tau range's end.
   sim::ErrorModel m = sim::find_preset("class-tactical").model;
   const double duration = 12 * 3600.0;
-  const double plateau = 2.0 * std::log(2.0) / M_PI * m.B * m.B;
-  m.K = std::sqrt(3.0 * plateau / (duration / 10.0 / 16.0));
+  const double plateau = 2.0 * std::log(2.0) / M_PI * m.noise.B * m.noise.B;
+  m.noise.K = std::sqrt(3.0 * plateau / (duration / 10.0 / 16.0));
   int wiener = 0, covered = 0;
   for (std::uint64_t seed : {21u, 22u, 23u, 24u, 25u, 26u}) {
     sim::GeneratorOptions o;
@@ -104,7 +109,7 @@ TEST(Analysis, WienerRandomBiasIsNamedWithEvidence) {
     o.seed = seed;
     sim::Recording rec = sim::generate(m, sim::parse_temperature("const:25"), o);
     const AnalysisResult r = analyze(rec.rate_deg_h, rec.temperature_c, 10.0);
-    covered += r.noise.K.ci95_low <= m.K && m.K <= r.noise.K.ci95_high;
+    covered += r.noise.K.ci95_low <= m.noise.K && m.noise.K <= r.noise.K.ci95_high;
     if (r.noise.random_bias_process == RandomBiasProcess::wiener) {
       ++wiener;
       EXPECT_LT(r.evidence.criterion_wiener, r.evidence.criterion_none);
@@ -122,8 +127,8 @@ TEST(Analysis, WienerRandomBiasIsNamedWithEvidence) {
 TEST(Analysis, GaussMarkovRandomBiasIsNamedWithItsCorrelationTime) {
   sim::ErrorModel m = sim::find_preset("class-intermediate").model;
   const double duration = 12 * 3600.0;
-  m.gm_tc = duration / 200.0;
-  m.gm_sigma = std::sqrt(3.0 * 2.0 * std::log(2.0) / M_PI * m.B * m.B / 0.433);
+  m.noise.gm_tc = duration / 200.0;
+  m.noise.gm_sigma = std::sqrt(3.0 * 2.0 * std::log(2.0) / M_PI * m.noise.B * m.noise.B / 0.433);
   int named = 0, covered = 0;
   for (std::uint64_t seed : {31u, 32u, 33u, 34u}) {
     sim::GeneratorOptions o;
@@ -134,7 +139,7 @@ TEST(Analysis, GaussMarkovRandomBiasIsNamedWithItsCorrelationTime) {
     const AnalysisResult r = analyze(rec.rate_deg_h, rec.temperature_c, 10.0);
     if (r.noise.random_bias_process != RandomBiasProcess::gauss_markov) continue;
     ++named;
-    covered += r.noise.gm_tc.ci95_low <= m.gm_tc && m.gm_tc <= r.noise.gm_tc.ci95_high;
+    covered += r.noise.gm_tc.ci95_low <= m.noise.gm_tc && m.noise.gm_tc <= r.noise.gm_tc.ci95_high;
     EXPECT_LT(r.evidence.adev_end_slope, 0.5);
   }
   EXPECT_GE(named, 3);
@@ -143,8 +148,8 @@ TEST(Analysis, GaussMarkovRandomBiasIsNamedWithItsCorrelationTime) {
 
 TEST(Analysis, WithoutTemperatureTheSystematicStepIsSkippedWithANote) {
   sim::ErrorModel m;
-  m.N = 0.3;
-  m.B = 0.02;
+  m.noise.N = 0.3;
+  m.noise.B = 0.02;
   sim::GeneratorOptions o;
   o.sample_rate_hz = 10.0;
   o.duration_s = 3600.0;

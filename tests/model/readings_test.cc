@@ -35,7 +35,7 @@ Curves curves(const sim::ErrorModel& m, double fs_hz, double hours, std::uint64_
 TEST(Readings, WhiteNoiseGivesNAtOneSecondAndNoRandomWalk) {
   for (const std::uint64_t seed : {1, 2, 3}) {
     sim::ErrorModel m;
-    m.N = 0.3;
+    m.noise.N = 0.3;
     const Curves c = curves(m, 100.0, 2.0, seed);
     const AdevReadings a = read_adev(c.adev.tau_s, c.adev.dev);
     ASSERT_TRUE(a.N.has_value());
@@ -51,8 +51,8 @@ TEST(Readings, WhiteNoiseGivesNAtOneSecondAndNoRandomWalk) {
 TEST(Readings, WienerProcessGivesKAtThreeSecondsAndOnThePsdAtOneHertz) {
   for (const std::uint64_t seed : {4, 5, 6}) {
     sim::ErrorModel m;
-    m.N = 0.3;
-    m.K = 0.05;
+    m.noise.N = 0.3;
+    m.noise.K = 0.05;
     const Curves c = curves(m, 10.0, 6.0, seed);
     const AdevReadings a = read_adev(c.adev.tau_s, c.adev.dev);
     ASSERT_TRUE(a.N.has_value() && a.K.has_value()) << seed;
@@ -70,15 +70,14 @@ TEST(Readings, WienerProcessGivesKAtThreeSecondsAndOnThePsdAtOneHertz) {
 
 TEST(Readings, BiasInstabilityIsTheMinimumOfTheDeviation) {
   sim::ErrorModel m;
-  m.N = 0.05;
-  m.B = 0.1;
-  m.K = 0.002;
+  m.noise.N = 0.05;
+  m.noise.B = 0.1;
+  m.noise.K = 0.002;
   const Curves c = curves(m, 10.0, 8.0, 7);
   const AdevReadings a = read_adev(c.adev.tau_s, c.adev.dev);
-  const double theory = sim::model_adev_minimum(m, c.adev.tau_s.front(), c.adev.tau_s.back())
-                            .adev_deg_h;
+  const double theory = adev_minimum(m.noise, c.adev.tau_s.front(), c.adev.tau_s.back()).adev_deg_h;
   EXPECT_NEAR(a.bias_instability_deg_h / theory, 1.0, 0.1);
-  EXPECT_NEAR(a.bias_instability_deg_h / (0.6643 * m.B), 1.0, 0.25);
+  EXPECT_NEAR(a.bias_instability_deg_h / (0.6643 * m.noise.B), 1.0, 0.25);
 }
 
 TEST(Readings, BadCurvesAreUsageErrors) {

@@ -62,7 +62,7 @@ TEST(Systematic, NoiselessPolynomialIsRecoveredAndTheLabConstantMatchesPolyfit) 
 TEST(Systematic, CriterionChoosesTheDegreeTheDataShow) {
   // A clear quadratic under white noise: degree 2, not 1 (too little) or 3.
   sim::ErrorModel m;
-  m.N = 1.0;
+  m.noise.N = 1.0;
   m.temp_coefs = {0.5, 0.05};
   int right = 0;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
@@ -81,7 +81,7 @@ TEST(Systematic, CriterionChoosesTheDegreeTheDataShow) {
 
 TEST(Systematic, ThermostatRunFallsBackToAConstantAndSaysSo) {
   sim::ErrorModel m;
-  m.N = 0.5;
+  m.noise.N = 0.5;
   m.bias = 2.0;
   m.temp_coefs = {0.3};
   const sim::Recording r = record(m, "const:25", 1.0, 2);
@@ -131,23 +131,23 @@ void expect_errors_match_scatter(const sim::ErrorModel& m, const NoiseModel& noi
 
 TEST(Systematic, StandardErrorsMatchTheScatterUnderWhiteNoise) {
   sim::ErrorModel m;
-  m.N = 1.0;
+  m.noise.N = 1.0;
   expect_errors_match_scatter(m, {.N = 1.0});
 }
 
 TEST(Systematic, StandardErrorsMatchTheScatterUnderARandomWalkBias) {
   // The case where residual-scatter errors are ~20x too small.
   sim::ErrorModel m;
-  m.N = 0.1;
-  m.K = 0.01;
+  m.noise.N = 0.1;
+  m.noise.K = 0.01;
   expect_errors_match_scatter(m, {.N = 0.1, .K = 0.01});
 }
 
 TEST(Systematic, StandardErrorsMatchTheScatterUnderFlickerAndGaussMarkov) {
   sim::ErrorModel m;
-  m.B = 0.5;
-  m.gm_sigma = 0.5;
-  m.gm_tc = 200.0;
+  m.noise.B = 0.5;
+  m.noise.gm_sigma = 0.5;
+  m.noise.gm_tc = 200.0;
   expect_errors_match_scatter(m, {.B = 0.5, .gm_sigma = 0.5, .gm_tc = 200.0});
 }
 
@@ -155,7 +155,7 @@ TEST(Systematic, DetrendFactorsPredictTheResidualAllanVariance) {
   // A random walk with a quadratic in temperature removed over a ramp: the
   // mean residual Allan variance at the long taus against K^2 tau/3 x factor.
   sim::ErrorModel m;
-  m.K = 0.01;
+  m.noise.K = 0.01;
   const int records = 60;
   std::vector<double> tau, sum;
   DetrendFactors f;
@@ -179,15 +179,15 @@ TEST(Systematic, DetrendFactorsPredictTheResidualAllanVariance) {
   }
   const std::size_t last = tau.size() - 1;
   // The factor matters at the long end (well below 1) ...
-  EXPECT_LT(f.factor(NoiseTerm::K, last, 0.0), 0.6);
+  EXPECT_LT(f.factor(NoiseTerm::random_walk, last, 0.0), 0.6);
   // ... and predicts the mean: 60 records at tau = T/4 (edf ~ 3 each, ~180
   // in all) scatter by sqrt(2/180) = 11 %: 3.5 sigma.
   for (std::size_t i = last - 2; i <= last; ++i) {
-    const double expected = 0.01 * 0.01 * tau[i] / 3.0 * f.factor(NoiseTerm::K, i, 0.0);
+    const double expected = 0.01 * 0.01 * tau[i] / 3.0 * f.factor(NoiseTerm::random_walk, i, 0.0);
     EXPECT_NEAR(sum[i] / records / expected, 1.0, 0.35) << "tau " << tau[i];
   }
   // Short taus are untouched.
-  EXPECT_NEAR(f.factor(NoiseTerm::K, 0, 0.0), 1.0, 1e-3);
+  EXPECT_NEAR(f.factor(NoiseTerm::random_walk, 0, 0.0), 1.0, 1e-3);
 }
 
 TEST(Systematic, MismatchedLengthsAreAUsageErrorNamingBothCounts) {

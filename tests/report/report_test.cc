@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <regex>
 #include <set>
 #include <string>
@@ -37,9 +38,9 @@ struct Analysed {
 const Analysed& analysed() {
   static const Analysed a = [] {
     sim::ErrorModel m;
-    m.N = 0.5;
-    m.B = 0.05;
-    m.K = 0.005;
+    m.noise.N = 0.5;
+    m.noise.B = 0.05;
+    m.noise.K = 0.005;
     m.bias = 3.0;
     m.temp_coefs = {0.8};
     sim::TemperatureProfile t;
@@ -86,12 +87,13 @@ TEST(Kalibr, ImuYamlCarriesTheConvertedFit) {
   const model::NoiseFitResult& n = a.result.noise;
   const std::string yaml = kalibr_imu_yaml(a.result, a.input, "/fog");
   ASSERT_EQ(n.N.status, model::TermStatus::resolved);
-  EXPECT_NEAR(yaml_number(yaml, "gyroscope_noise_density"), n.N.value * kPi / 180.0 / 3600.0,
-              1e-8 * n.N.value * kPi / 180.0 / 3600.0);
+  EXPECT_NEAR(yaml_number(yaml, "gyroscope_noise_density"),
+              n.N.value * std::numbers::pi / 180.0 / 3600.0,
+              1e-8 * n.N.value * std::numbers::pi / 180.0 / 3600.0);
   const double k = n.K.status == model::TermStatus::resolved ? n.K.value : n.K.upper_95;
   ASSERT_TRUE(std::isfinite(k) && k > 0.0) << yaml;
-  EXPECT_NEAR(yaml_number(yaml, "gyroscope_random_walk"), k * kPi / 180.0 / 3600.0,
-              1e-8 * k * kPi / 180.0 / 3600.0);
+  EXPECT_NEAR(yaml_number(yaml, "gyroscope_random_walk"), k * std::numbers::pi / 180.0 / 3600.0,
+              1e-8 * k * std::numbers::pi / 180.0 / 3600.0);
   if (n.K.status != model::TermStatus::resolved) {
     EXPECT_NE(yaml.find("upper bound"), std::string::npos) << yaml;
   }
@@ -155,7 +157,7 @@ TEST(Report, HtmlNamesEveryParameterWithItsUnit) {
   o.plots = false;
   const Report rep = make_report(a.result, a.input, o);
   const std::string html = html_document(rep);
-  for (const model::ReportedParameter& p : model::reported_parameters()) {
+  for (const NoiseParameter& p : kNoiseParameters) {
     EXPECT_NE(html.find("<td>" + std::string(p.name) + "</td>"), std::string::npos) << p.name;
     EXPECT_NE(html.find("<td>" + std::string(p.unit) + "</td>"), std::string::npos) << p.unit;
     EXPECT_NE(rep.markdown.find("| " + std::string(p.name) + " |"), std::string::npos) << p.name;
@@ -167,6 +169,11 @@ TEST(Report, HtmlNamesEveryParameterWithItsUnit) {
     EXPECT_NE(html.find(text), std::string::npos) << text;
   }
   EXPECT_EQ(html.find("sim <ramp>"), std::string::npos);
+  // The fit's status, in both.
+  const std::string fit = "Fit: " + a.result.noise.message + ".";
+  EXPECT_NE(html.find("<p class=\"fit-converged\">" + html_escape(fit) + "</p>"),
+            std::string::npos);
+  EXPECT_NE(rep.markdown.find(fit), std::string::npos);
   EXPECT_NE(html.find(std::string(to_string(a.result.verdict.accuracy_class))), std::string::npos);
   EXPECT_NE(rep.markdown.find("plots were skipped"), std::string::npos);
   EXPECT_NE(html.find("plotting was turned off"), std::string::npos);

@@ -26,13 +26,13 @@ using ::testing::HasSubstr;
 
 ErrorModel full_model() {
   ErrorModel m;
-  m.N = 0.3;
-  m.B = 0.05;
-  m.K = 0.01;
-  m.R = 1e-4;
-  m.Q = 0.02;
-  m.gm_sigma = 0.1;
-  m.gm_tc = 30.0;
+  m.noise.N = 0.3;
+  m.noise.B = 0.05;
+  m.noise.K = 0.01;
+  m.noise.R = 1e-4;
+  m.noise.Q = 0.02;
+  m.noise.gm_sigma = 0.1;
+  m.noise.gm_tc = 30.0;
   m.bias = 1.5;
   m.input_rate = 9.7;
   m.temp_coefs = {0.02, -0.001};
@@ -109,12 +109,12 @@ TEST(Generator, SingleProcessesAreThreadIndependentToo) {
   // is compared.
   for (int which = 0; which < 3; ++which) {
     ErrorModel m;
-    if (which == 0) m.K = 1.0;
+    if (which == 0) m.noise.K = 1.0;
     if (which == 1) {
-      m.gm_sigma = 1.0;
-      m.gm_tc = 0.5;
+      m.noise.gm_sigma = 1.0;
+      m.noise.gm_tc = 0.5;
     }
-    if (which == 2) m.B = 1.0;
+    if (which == 2) m.noise.B = 1.0;
     const GeneratorOptions o = options(10.0, 1.5e6);
     const Recording a = with_threads(1, [&] { return generate(m, TemperatureProfile{}, o); });
     const Recording b = with_threads(2, [&] { return generate(m, TemperatureProfile{}, o); });
@@ -124,7 +124,7 @@ TEST(Generator, SingleProcessesAreThreadIndependentToo) {
 
 TEST(Generator, AnExceptionFromTheSinkStopsGenerationAndReachesTheCaller) {
   ErrorModel m;
-  m.N = 1.0;
+  m.noise.N = 1.0;
   int calls = 0;
   try {
     generate(m, TemperatureProfile{}, options(10.0, 5e6), [&](const Block& b) {
@@ -179,7 +179,7 @@ TEST(Generator, NoNoiseGivesTheSystematicPartExactly) {
   ErrorModel m;
   m.bias = 2.0;
   m.input_rate = 15.0;
-  m.R = 0.5;
+  m.noise.R = 0.5;
   const Recording r = generate(m, TemperatureProfile{}, options(4.0, 100));
   for (std::size_t k = 0; k < r.rate_deg_h.size(); ++k) {
     // The interval average of R t over [t_k, t_k + tau0].
@@ -213,14 +213,18 @@ TEST(Generator, ValidatesOptionsAndModelNamingParameterAndValue) {
     set(m);
     return error_message(m, t, o);
   };
-  EXPECT_THAT(bad([](ErrorModel& m) { m.N = -1.0; }), HasSubstr("N must be a finite number >= 0"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.N = -1.0; }), HasSubstr("got -1"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.B = -0.5; }), HasSubstr("B must be a finite number >= 0 [deg/h], got -0.5"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.K = std::nan(""); }), HasSubstr("K must be a finite number >= 0"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.R = -3.0; }), HasSubstr("R must be"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.Q = INFINITY; }), HasSubstr("Q must be a finite number >= 0 [deg/h*s], got inf"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.gm_sigma = -1.0; }), HasSubstr("gm_sigma must be"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.gm_sigma = 1.0; }),
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.N = -1.0; }),
+              HasSubstr("N must be a finite number >= 0"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.N = -1.0; }), HasSubstr("got -1"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.B = -0.5; }),
+              HasSubstr("B must be a finite number >= 0 [deg/h], got -0.5"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.K = std::nan(""); }),
+              HasSubstr("K must be a finite number >= 0"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.R = -3.0; }), HasSubstr("R must be"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.Q = INFINITY; }),
+              HasSubstr("Q must be a finite number >= 0 [deg/h*s], got inf"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.gm_sigma = -1.0; }), HasSubstr("gm_sigma must be"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.gm_sigma = 1.0; }),
               HasSubstr("gm_tc must be > 0 [s] when gm_sigma > 0 (gm_sigma = 1), got 0"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.bias = NAN; }), HasSubstr("bias must be finite"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.temp_coefs = {1.0, INFINITY}; }),
@@ -237,7 +241,7 @@ TEST(Generator, ValidatesOptionsAndModelNamingParameterAndValue) {
   EXPECT_THAT(error_message({}, file, o), HasSubstr("equally many"));
   // The in-memory overload validates too.
   ErrorModel m;
-  m.N = -1.0;
+  m.noise.N = -1.0;
   EXPECT_THROW(generate(m, t, o), UsageError);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <string>
 
@@ -25,9 +26,9 @@ TEST(Lab2Variants, SixVariantsWithDistinctParameters) {
   std::set<double> n1, n2, b1, bias2;
   std::set<std::uint64_t> streams;
   for (const Lab2Variant& v : all) {
-    n1.insert(v.gyros[0].model.N);
-    n2.insert(v.gyros[1].model.N);
-    b1.insert(v.gyros[0].model.B);
+    n1.insert(v.gyros[0].model.noise.N);
+    n2.insert(v.gyros[1].model.noise.N);
+    b1.insert(v.gyros[0].model.noise.B);
     bias2.insert(v.gyros[1].model.bias);
     for (const Lab2Gyro& g : v.gyros) {
       EXPECT_EQ(g.file_name,
@@ -44,11 +45,11 @@ TEST(Lab2Variants, SixVariantsWithDistinctParameters) {
 TEST(Lab2Variants, DeterministicInSeedAndDifferentAcrossSeeds) {
   const Lab2Variant a = lab2_variant(3);
   const Lab2Variant b = lab2_variant(3);
-  EXPECT_EQ(a.gyros[0].model.N, b.gyros[0].model.N);
+  EXPECT_EQ(a.gyros[0].model.noise.N, b.gyros[0].model.noise.N);
   EXPECT_EQ(a.gyros[1].model.temp_coefs, b.gyros[1].model.temp_coefs);
   Lab2Options other;
   other.seed = 7;
-  EXPECT_NE(lab2_variant(3, other).gyros[0].model.N, a.gyros[0].model.N);
+  EXPECT_NE(lab2_variant(3, other).gyros[0].model.noise.N, a.gyros[0].model.noise.N);
   EXPECT_EQ(lab2_variant(3, other).gyros[0].runs[0].generator.seed, 7u);
 }
 
@@ -57,12 +58,12 @@ TEST(Lab2Variants, EachVariantHasOneWienerAndOneGaussMarkovGyro) {
     EXPECT_NE(v.gyros[0].random_bias, v.gyros[1].random_bias) << v.variant;
     for (const Lab2Gyro& g : v.gyros) {
       if (g.random_bias == RandomBiasProcess::wiener) {
-        EXPECT_GT(g.model.K, 0.0);
-        EXPECT_EQ(g.model.gm_sigma, 0.0);
+        EXPECT_GT(g.model.noise.K, 0.0);
+        EXPECT_EQ(g.model.noise.gm_sigma, 0.0);
       } else {
-        EXPECT_EQ(g.model.K, 0.0);
-        EXPECT_GT(g.model.gm_sigma, 0.0);
-        EXPECT_GT(g.model.gm_tc, 0.0);
+        EXPECT_EQ(g.model.noise.K, 0.0);
+        EXPECT_GT(g.model.noise.gm_sigma, 0.0);
+        EXPECT_GT(g.model.noise.gm_tc, 0.0);
       }
     }
   }
@@ -80,12 +81,13 @@ TEST(Lab2Variants, EveryRandomBiasShowsOverTwoOctavesForManySeeds) {
         const bool wiener = g.random_bias == RandomBiasProcess::wiener;
         for (const Lab2Run& r : g.runs) {
           EXPECT_GE(r.random_bias_octaves, 2.0) << "seed " << seed << ' ' << g.file_name;
-          EXPECT_DOUBLE_EQ(r.random_bias_octaves,
-                           term_dominance_octaves(
-                               g.model, wiener ? ModelTerm::random_walk : ModelTerm::gauss_markov,
-                               r.usable_tau_min_s, r.usable_tau_max_s));
+          EXPECT_DOUBLE_EQ(
+              r.random_bias_octaves,
+              term_dominance_octaves(g.model.noise,
+                                     wiener ? NoiseTerm::random_walk : NoiseTerm::gauss_markov,
+                                     r.usable_tau_min_s, r.usable_tau_max_s));
           if (!wiener) {
-            EXPECT_LE(1.89 * g.model.gm_tc, r.usable_tau_max_s / 4.0 * (1 + 1e-12))
+            EXPECT_LE(1.89 * g.model.noise.gm_tc, r.usable_tau_max_s / 4.0 * (1 + 1e-12))
                 << "seed " << seed << ' ' << g.file_name;
           }
         }
@@ -106,9 +108,9 @@ TEST(Lab2Variants, TheRampShowsTheTemperatureLawOverTheWanderForManySeeds) {
       for (const Lab2Gyro& g : v.gyros) {
         const ErrorModel& m = g.model;
         const double d = g.runs[1].generator.duration_s;
-        const double wander = m.K * std::sqrt(d) + m.gm_sigma +
-                              3.0 * std::sqrt(2.0 * std::log(2.0) / M_PI) * m.B +
-                              m.N / std::sqrt(d);
+        const double wander = m.noise.K * std::sqrt(d) + m.noise.gm_sigma +
+                              3.0 * std::sqrt(2.0 * std::log(2.0) / std::numbers::pi) * m.noise.B +
+                              m.noise.N / std::sqrt(d);
         EXPECT_GE(std::abs(m.temp_coefs[0]) * 5.0, 0.75 * wander * (1 - 1e-12))
             << "seed " << seed << ' ' << g.file_name;
         scaled += std::abs(m.temp_coefs[0]) > (g.gyro == 1 ? 0.4 : 4.0);
@@ -149,7 +151,7 @@ TEST(Lab2Variants, RealisticLengthsAndRates) {
       ASSERT_EQ(g.model.temp_coefs.size(), 2u);
       // the ramp moves the bias by more than the white noise over a minute
       const double swing = std::abs(g.model.temp_coefs[0]) * 5.0;
-      EXPECT_GT(swing, g.model.N / std::sqrt(60.0)) << g.file_name;
+      EXPECT_GT(swing, g.model.noise.N / std::sqrt(60.0)) << g.file_name;
     }
   }
 }
@@ -181,7 +183,7 @@ TEST(Lab2Answers, BiasInstabilityIsTheModelAdevMinimumAboveTheFlickerFloor) {
     for (const Lab2Gyro& g : v.gyros) {
       for (const Lab2Run& r : g.runs) {
         const AdevMinimum& bi = r.bias_instability;
-        EXPECT_GE(bi.adev_deg_h, 0.664 * g.model.B);
+        EXPECT_GE(bi.adev_deg_h, 0.664 * g.model.noise.B);
         EXPECT_GE(bi.tau_s, r.usable_tau_min_s);
         EXPECT_LE(bi.tau_s, r.usable_tau_max_s);
         EXPECT_DOUBLE_EQ(r.usable_tau_max_s, r.generator.duration_s / 10.0);
@@ -193,60 +195,13 @@ TEST(Lab2Answers, BiasInstabilityIsTheModelAdevMinimumAboveTheFlickerFloor) {
         }
         // a minimum: no point on a coarse grid is lower
         for (double tau = r.usable_tau_min_s; tau <= r.usable_tau_max_s; tau *= 1.05) {
-          EXPECT_GE(std::sqrt(model_allan_variance(g.model, tau)), bi.adev_deg_h * (1 - 1e-12));
+          EXPECT_GE(std::sqrt(allan_variance(g.model.noise, tau)), bi.adev_deg_h * (1 - 1e-12));
         }
         EXPECT_EQ(g.verdict.accuracy_class,
-                  classify(bi.adev_deg_h, g.model.N / 60.0).accuracy_class);
+                  classify(bi.adev_deg_h, g.model.noise.N / 60.0).accuracy_class);
       }
     }
   }
-}
-
-TEST(ModelTheory, AllanVarianceTermsHaveTheirIeee952Values) {
-  ErrorModel white;
-  white.N = 2.0;
-  EXPECT_DOUBLE_EQ(std::sqrt(model_allan_variance(white, 1.0)), 2.0);
-  ErrorModel rw;
-  rw.K = 0.3;
-  EXPECT_NEAR(model_allan_variance(rw, 3.0), 0.09, 1e-15);
-  ErrorModel gm;
-  gm.gm_sigma = 1.0;
-  gm.gm_tc = 100.0;
-  // short tau: like a random walk with K^2 = 2 sigma^2 / Tc; long tau: white, N^2 = 2 sigma^2 Tc
-  EXPECT_NEAR(model_allan_variance(gm, 0.01) / (2.0 / 100.0 * 0.01 / 3.0), 1.0, 1e-3);
-  EXPECT_NEAR(model_allan_variance(gm, 1e6) / (2.0 * 100.0 / 1e6), 1.0, 1e-3);
-  ErrorModel nk;
-  nk.N = 1.0;
-  nk.K = 0.01;
-  const AdevMinimum m = model_adev_minimum(nk, 0.1, 1e5);
-  EXPECT_NEAR(m.tau_s, std::sqrt(3.0) * 1.0 / 0.01, 1e-3);
-  EXPECT_NEAR(m.adev_deg_h, std::sqrt(2 * 1.0 * 0.01 / std::sqrt(3.0)), 1e-9);
-}
-
-TEST(ModelTheory, DominanceOctavesEndWhereTheLinesCross) {
-  // White noise and a random walk cross at tau = sqrt(3) N / K = 100 s:
-  // white carries the Allan variance below, the random walk above.
-  ErrorModel nk;
-  nk.N = 1.0;
-  nk.K = std::sqrt(3.0) / 100.0;
-  // within a step of the 400-step grid either way (the crossing is a grid point)
-  const double grid = 1.5 * std::log2(1e4 / 1.0) / 400;
-  EXPECT_NEAR(term_dominance_octaves(nk, ModelTerm::white, 1.0, 1e4), std::log2(100.0), grid);
-  EXPECT_NEAR(term_dominance_octaves(nk, ModelTerm::random_walk, 1.0, 1e4), std::log2(100.0), grid);
-  EXPECT_EQ(term_dominance_octaves(nk, ModelTerm::flicker, 1.0, 1e4), 0.0);
-  // A term alone carries all of it, over the whole range.
-  EXPECT_NEAR(term_dominance_octaves(nk, ModelTerm::white, 1.0, 10.0), std::log2(10.0), 1e-9);
-  // Each term's Allan variance adds up to the model's.
-  nk.B = 0.05;
-  nk.gm_sigma = 0.2;
-  nk.gm_tc = 30.0;
-  double sum = 0.0;
-  for (ModelTerm t : {ModelTerm::white, ModelTerm::flicker, ModelTerm::random_walk, ModelTerm::ramp,
-                      ModelTerm::quantisation, ModelTerm::gauss_markov}) {
-    sum += term_allan_variance(nk, t, 40.0);
-  }
-  EXPECT_NEAR(sum, model_allan_variance(nk, 40.0), 1e-12 * sum);
-  EXPECT_THROW(term_dominance_octaves(nk, ModelTerm::white, 0.0, 10.0), UsageError);
 }
 
 TEST(ModelTheory, RawPolynomialExpandsAboutTheReference) {

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include "foglab/core/error.h"
@@ -21,6 +22,8 @@
 
 namespace foglab::sim {
 namespace {
+
+constexpr double kPi = std::numbers::pi;
 
 constexpr double kC = 299792458.0;
 

@@ -22,14 +22,14 @@ using test::message_of;
 TEST(Presets, EveryClassAgreesWithTable1FromThePresetsOwnNumbers) {
   for (const Preset& p : presets()) {
     // the ADEV floor of the flicker term, the preset's bias instability
-    const double bi = std::sqrt(2.0 * std::log(2.0) / M_PI) * p.model.B;
-    const double arw = p.model.N / 60.0;
+    const double bi = std::sqrt(2.0 * std::log(2.0) / M_PI) * p.model.noise.B;
+    const double arw = p.model.noise.N / 60.0;
     // (1 + 1e-12): a datasheet value on a class boundary (0.01 deg/h) must
     // not drop below it by rounding in BI -> B -> BI
     EXPECT_EQ(p.accuracy_class, to_string(classify(bi * (1 + 1e-12), arw).accuracy_class))
         << p.name;
     // the model's ADEV minimum over a long range approaches the same floor
-    const AdevMinimum m = model_adev_minimum(p.model, 0.01, 1e7);
+    const AdevMinimum m = adev_minimum(p.model.noise, 0.01, 1e7);
     EXPECT_NEAR(m.adev_deg_h, bi, 0.01 * bi) << p.name;
   }
 }
@@ -44,20 +44,20 @@ TEST(Presets, KvhDatasheetFiguresMapToNAndB) {
                        Row{"kvh-dsp-1750", 0.013, 0.1, "intermediate"},
                        Row{"kvh-dsp-1760", 0.012, 0.05, "intermediate"}}) {
     const Preset& p = find_preset(r.name);
-    EXPECT_DOUBLE_EQ(p.model.N, 60.0 * r.arw) << r.name;
-    EXPECT_NEAR(p.model.B, r.bi / 0.664, 1e-3 * r.bi) << r.name;
+    EXPECT_DOUBLE_EQ(p.model.noise.N, 60.0 * r.arw) << r.name;
+    EXPECT_NEAR(p.model.noise.B, r.bi / 0.664, 1e-3 * r.bi) << r.name;
     EXPECT_EQ(p.accuracy_class, r.cls) << r.name;
   }
 }
 
 TEST(Presets, Table3NoiseDensityIsNItself) {
-  EXPECT_DOUBLE_EQ(find_preset("fog-600s").model.N, 0.7);
-  EXPECT_DOUBLE_EQ(find_preset("oius-2000").model.N, 0.03);
-  EXPECT_DOUBLE_EQ(find_preset("oius-1000").model.N, 0.07);
-  EXPECT_DOUBLE_EQ(find_preset("vog-120").model.N, 0.18);
-  EXPECT_DOUBLE_EQ(find_preset("fog-120").model.N, 0.072);
-  EXPECT_DOUBLE_EQ(find_preset("fog-1000").model.N, 0.04);
-  EXPECT_DOUBLE_EQ(find_preset("elektropribor-fog").model.N, 0.04);
+  EXPECT_DOUBLE_EQ(find_preset("fog-600s").model.noise.N, 0.7);
+  EXPECT_DOUBLE_EQ(find_preset("oius-2000").model.noise.N, 0.03);
+  EXPECT_DOUBLE_EQ(find_preset("oius-1000").model.noise.N, 0.07);
+  EXPECT_DOUBLE_EQ(find_preset("vog-120").model.noise.N, 0.18);
+  EXPECT_DOUBLE_EQ(find_preset("fog-120").model.noise.N, 0.072);
+  EXPECT_DOUBLE_EQ(find_preset("fog-1000").model.noise.N, 0.04);
+  EXPECT_DOUBLE_EQ(find_preset("elektropribor-fog").model.noise.N, 0.04);
   EXPECT_EQ(find_preset("oius-2000").accuracy_class, "navigation");
   EXPECT_EQ(find_preset("fog-600s").accuracy_class, "intermediate");  // ARW 0.0117 decides
 }
@@ -66,7 +66,7 @@ TEST(Presets, OneArchetypePerClassInsideItsOwnClass) {
   for (const char* cls : {"strategic", "navigation", "intermediate", "tactical", "consumer"}) {
     const Preset& p = find_preset(std::string("class-") + cls);
     EXPECT_EQ(p.accuracy_class, cls);
-    const ClassVerdict v = classify(0.6643 * p.model.B, p.model.N / 60.0);
+    const ClassVerdict v = classify(0.6643 * p.model.noise.B, p.model.noise.N / 60.0);
     EXPECT_EQ(to_string(v.by_bias_instability), cls);
     EXPECT_EQ(to_string(v.by_arw), cls);
   }

@@ -120,9 +120,9 @@ TEST(OuStep, IsStationaryAndTendsToBrownianMotion) {
   EXPECT_NEAR(s.s_avg * s.s_avg / (2e-6 / 12.0), 1.0, 1e-4);
   // Series and closed forms of the Allan variance meet smoothly.
   for (const double x : {0.2499999, 0.2500001}) {
-    EXPECT_NEAR(detail::ou_allan_variance(1.0, x), gm_avar(1.0, 1.0, x), 1e-12);
+    EXPECT_NEAR(gauss_markov_allan_shape(x, 1.0), gm_avar(1.0, 1.0, x), 1e-12);
   }
-  EXPECT_NEAR(detail::ou_allan_variance(1.0, 1e-6) / (2e-6 / 3.0), 1.0, 1e-5);
+  EXPECT_NEAR(gauss_markov_allan_shape(1e-6, 1.0) / (2e-6 / 3.0), 1.0, 1e-5);
 }
 
 TEST(FlickerBank, CalibratedPlateauIsFlatToOnePercentOverTheRecord) {
@@ -161,7 +161,7 @@ TEST(ProcessTheory, WhiteRateNoiseFollowsNSquaredOverTau) {
   };
   for (const Case c : {Case{100.0, 0.5, 1e6}, Case{10.0, 2.0, 3e5}}) {
     ErrorModel m;
-    m.N = c.n;
+    m.noise.N = c.n;
     expect_allan_matches(rate_of(m, c.fs, c.samples, 12), c.fs,
                          [&](double tau) { return c.n * c.n / tau; }, "white N " + std::to_string(c.n));
   }
@@ -173,7 +173,7 @@ TEST(ProcessTheory, RateRandomWalkFollowsKSquaredTauOverThreeFromTau0) {
   };
   for (const Case c : {Case{100.0, 0.02, 1e6}, Case{1.0, 0.5, 3e5}}) {
     ErrorModel m;
-    m.K = c.k;
+    m.noise.K = c.k;
     expect_allan_matches(rate_of(m, c.fs, c.samples, 12), c.fs,
                          [&](double tau) { return c.k * c.k * tau / 3.0; }, "random walk K " + std::to_string(c.k));
   }
@@ -186,8 +186,8 @@ TEST(ProcessTheory, GaussMarkovFollowsItsAllanFormula) {
   for (const Case c : {Case{100.0, 0.2, 0.02, 1e6},  // Tc = 2 tau0: the averaging matters
                        Case{10.0, 1.0, 3.0, 1e6}, Case{1.0, 0.5, 300.0, 1e6}}) {
     ErrorModel m;
-    m.gm_sigma = c.sigma;
-    m.gm_tc = c.tc;
+    m.noise.gm_sigma = c.sigma;
+    m.noise.gm_tc = c.tc;
     expect_allan_matches(rate_of(m, c.fs, c.samples, 13), c.fs,
                          [&](double tau) { return gm_avar(c.sigma, c.tc, tau); },
                          "Gauss-Markov Tc " + std::to_string(c.tc));
@@ -200,7 +200,7 @@ TEST(ProcessTheory, QuantisationFollowsThreeQSquaredOverTauSquared) {
   };
   for (const Case c : {Case{100.0, 0.1, 1e6}, Case{1000.0, 0.005, 1e6}}) {
     ErrorModel m;
-    m.Q = c.q;
+    m.noise.Q = c.q;
     expect_allan_matches(rate_of(m, c.fs, c.samples, 14), c.fs,
                          [&](double tau) { return 3.0 * c.q * c.q / (tau * tau); },
                          "quantisation Q " + std::to_string(c.q));
@@ -209,7 +209,7 @@ TEST(ProcessTheory, QuantisationFollowsThreeQSquaredOverTauSquared) {
 
 TEST(ProcessTheory, RateRampGivesRTauOverSqrtTwoExactly) {
   ErrorModel m;
-  m.R = 0.01;
+  m.noise.R = 0.01;
   const std::vector<double> rate = rate_of(m, 10.0, 1e5, 15);
   stats::AllanOptions o;
   o.confidence = false;
@@ -226,7 +226,7 @@ TEST(ProcessTheory, FlickerPlateauIsFlatWithinFivePercentOverFourDecades) {
   // independent records of 4e6 samples at 100 Hz): tau = 0.01 .. 163.84 s,
   // 4.2 decades, at least 244 clusters.
   ErrorModel m;
-  m.B = 0.7;
+  m.noise.B = 0.7;
   const double fs = 100.0;
   const int seeds = 6;
   std::vector<double> tau, mean_avar;
@@ -243,14 +243,15 @@ TEST(ProcessTheory, FlickerPlateauIsFlatWithinFivePercentOverFourDecades) {
   }
   ASSERT_GE(tau.size(), 15u);
   EXPECT_GE(tau.back() / tau.front(), 1e4);
-  const double plateau_dev = std::sqrt(kPlateau) * m.B;  // 0.664 B
+  const double plateau_dev = std::sqrt(kPlateau) * m.noise.B;  // 0.664 B
   for (std::size_t i = 0; i < tau.size(); ++i) {
     EXPECT_NEAR(std::sqrt(mean_avar[i]) / plateau_dev, 1.0, 0.05) << "tau " << tau[i] << " s";
     // Where the average is precise (up to 10 s), it also shows that the
     // decimated slow components (linear interpolation between their exact
     // steps) lose no more than 2 % of the Allan variance.
     if (tau[i] <= 10.0) {
-      EXPECT_NEAR(mean_avar[i] / (m.B * m.B * kPlateau), 1.0, 0.02) << "tau " << tau[i] << " s";
+      EXPECT_NEAR(mean_avar[i] / (m.noise.B * m.noise.B * kPlateau), 1.0, 0.02)
+          << "tau " << tau[i] << " s";
     }
   }
 }
@@ -292,7 +293,7 @@ PsdFit fit_psd(const std::vector<double>& rate, double fs, std::size_t segment, 
 
 TEST(ProcessPsd, WhiteNoiseIsFlatAtNSquared) {
   ErrorModel m;
-  m.N = 0.5;
+  m.noise.N = 0.5;
   const std::vector<double> rate = rate_of(m, 100.0, 1e6, 21);
   stats::WelchOptions w;
   w.segment_length = 4096;
@@ -309,10 +310,11 @@ TEST(ProcessPsd, WhiteNoiseIsFlatAtNSquared) {
 
 TEST(ProcessPsd, RandomWalkHasSlopeMinusTwoAndLevelKSquaredOverTwoPiFSquared) {
   ErrorModel m;
-  m.K = 0.5;
+  m.noise.K = 0.5;
   const double fs = 10.0;
-  const PsdFit fit = fit_psd(rate_of(m, fs, 1e6, 22), fs, 8192, 0.01, 0.5,
-                             [&](double f) { return m.K * m.K / std::pow(2.0 * kPi * f, 2.0); });
+  const PsdFit fit = fit_psd(rate_of(m, fs, 1e6, 22), fs, 8192, 0.01, 0.5, [&](double f) {
+    return m.noise.K * m.noise.K / std::pow(2.0 * kPi * f, 2.0);
+  });
   EXPECT_GE(fit.points, 15);
   EXPECT_NEAR(fit.slope, -2.0, 0.15);
   EXPECT_GT(fit.min_ratio, 0.8);
@@ -324,10 +326,10 @@ TEST(ProcessPsd, FlickerHasSlopeMinusOneAndLevelBSquaredOverTwoPiF) {
   // (pi f tau)^2 df and int_0^inf sin^4(x)/x^3 dx = ln 2 it gives the
   // plateau (2 ln2 / pi) B^2 (IEEE Std 952 Annex C).
   ErrorModel m;
-  m.B = 1.0;
+  m.noise.B = 1.0;
   const double fs = 100.0;
   const PsdFit fit = fit_psd(rate_of(m, fs, 4e6, 23), fs, 65536, 0.01, 5.0,
-                             [&](double f) { return m.B * m.B / (2.0 * kPi * f); });
+                             [&](double f) { return m.noise.B * m.noise.B / (2.0 * kPi * f); });
   EXPECT_GE(fit.points, 25);
   EXPECT_NEAR(fit.slope, -1.0, 0.15);
   EXPECT_GT(fit.min_ratio, 0.8);
@@ -336,12 +338,12 @@ TEST(ProcessPsd, FlickerHasSlopeMinusOneAndLevelBSquaredOverTwoPiF) {
 
 TEST(ProcessPsd, GaussMarkovIsLorentzian) {
   ErrorModel m;
-  m.gm_sigma = 1.0;
-  m.gm_tc = 30.0;
+  m.noise.gm_sigma = 1.0;
+  m.noise.gm_tc = 30.0;
   const double fs = 10.0;
   const PsdFit fit = fit_psd(rate_of(m, fs, 1e6, 24), fs, 16384, 2e-3, 0.5, [&](double f) {
-    const double w = 2.0 * kPi * f * m.gm_tc;
-    return 2.0 * m.gm_sigma * m.gm_sigma * m.gm_tc / (1.0 + w * w);
+    const double w = 2.0 * kPi * f * m.noise.gm_tc;
+    return 2.0 * m.noise.gm_sigma * m.noise.gm_sigma * m.noise.gm_tc / (1.0 + w * w);
   });
   EXPECT_GE(fit.points, 15);
   EXPECT_GT(fit.min_ratio, 0.8);

@@ -7,6 +7,7 @@
 // rate is the angle's increment divided by the sample interval.
 #pragma once
 
+#include <numbers>
 #include <string>
 #include <string_view>
 
@@ -38,8 +39,7 @@ std::string_view to_string(InputKind kind);
 /// Parses "rate" or "phase" (also "angle"); throws UsageError otherwise.
 InputKind input_kind_from_string(std::string_view text);
 
-inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kSecondsPerHour = 3600.0;
-inline constexpr double kDegPerRad = 180.0 / kPi;
+inline constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 }  // namespace foglab

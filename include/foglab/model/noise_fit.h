@@ -1,6 +1,7 @@
 // foglab — identifying the random error model from the Allan variance.
 //
-// The model (IEEE Std 952-1997 Annex C; SPEC.md), tau [s], rate [deg/h]:
+// The model (IEEE Std 952-1997 Annex C; core/noise_model.h, which is its
+// one home), tau [s], rate [deg/h]:
 //
 //   AVAR(tau) = R^2 tau^2/2 + K^2 tau/3 + (2 ln2/pi) B^2 + N^2/tau + 3 Q^2/tau^2
 //             + sigma^2 (Tc/tau)^2 (2 tau/Tc - 3 + 4 e^(-tau/Tc) - e^(-2 tau/Tc))
@@ -22,8 +23,10 @@
 // stochastic processes", JASA 2013), with the gamma deviance
 //   D = sum_i edf_i (y_i/mu_i - 1 - ln(y_i/mu_i))
 // as the measure of fit. The coefficients enter squared and linearly, so for
-// a fixed Tc the fit is a positive weighted linear least-squares problem;
-// Tc is profiled on a log grid and refined (several starts).
+// a fixed Tc the fit is a positive weighted linear least-squares problem,
+// solved by iterative reweighting until the fitted means change by less
+// than `NoiseFitOptions::tolerance` (or `max_iterations` is reached: the
+// result's status says which); Tc is profiled on a log grid and refined.
 //
 // The edf of each point is Greenhall's for the noise type that dominates the
 // candidate model there (white N: alpha 0, flicker B: -1, random walk K and
@@ -85,38 +88,19 @@
 #include <string_view>
 #include <vector>
 
+#include "foglab/core/noise_model.h"
 #include "foglab/stats/allan.h"
 
 namespace foglab::model {
 
-/// The estimator's error model, SPEC.md units. A term not present is 0.
-struct NoiseModel {
-  double N = 0.0;         ///< [deg/h/sqrt(Hz)]
-  double B = 0.0;         ///< [deg/h]
-  double K = 0.0;         ///< [deg/h/sqrt(s)]
-  double R = 0.0;         ///< [deg/h/s]
-  double Q = 0.0;         ///< [deg/h*s]
-  double gm_sigma = 0.0;  ///< [deg/h]
-  double gm_tc = 0.0;     ///< [s], > 0 when gm_sigma > 0
-};
-
-/// One term of the model; gm stands for the pair (sigma, Tc).
-enum class NoiseTerm { N, B, K, R, Q, gm };
-inline constexpr int kNoiseTerms = 6;
-std::string_view to_string(NoiseTerm term);
-
-/// The model's Allan variance [(deg/h)^2] at tau [s].
-double allan_variance(const NoiseModel& model, double tau_s);
-/// The contribution of one term [(deg/h)^2] at tau [s].
-double allan_variance(const NoiseModel& model, NoiseTerm term, double tau_s);
-
 enum class TermStatus { resolved, upper_bound, absent };
+/// "resolved", "upper_bound", "absent".
 std::string_view to_string(TermStatus status);
 
 /// One reported parameter.
 struct ParameterEstimate {
-  double value =
-      0.0;  ///< the estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent
+  /// The estimate (resolved) or the 95 % upper bound (upper_bound); NaN when absent.
+  double value = 0.0;
   /// The 95 % interval; for a term left out, the one-sided [0, upper_95]
   /// (NaN when no bound could be set), except the Gauss-Markov Tc's: the
   /// union of its intervals under the candidates that hold the term (NaN
@@ -129,10 +113,6 @@ struct ParameterEstimate {
   double upper_95 = 0.0;
   TermStatus status = TermStatus::absent;
 };
-
-/// The lab's question: what is the random part of the bias?
-enum class RandomBiasProcess { none, wiener, gauss_markov };
-std::string_view to_string(RandomBiasProcess process);
 
 struct NoiseFitOptions {
   /// Cost of one parameter in the selection criterion D + penalty * p.
@@ -151,6 +131,13 @@ struct NoiseFitOptions {
   bool allow_wiener_with_gauss_markov = false;
   /// Points whose edf is below this are left out of the fit.
   double min_edf = 1.0;
+  /// The reweighting loop of each candidate has converged when no fitted
+  /// mean changes by more than this, relative, from one iteration to the
+  /// next (or the deviance by less than 1e-12 of itself).
+  double tolerance = 1e-10;
+  /// It stops after this many iterations whether or not it has converged
+  /// (the status then says `iteration_limit`).
+  int max_iterations = 200;
 };
 
 /// How removing a fitted polynomial (the temperature dependence) from the
@@ -168,46 +155,58 @@ struct DetrendFactors {
   double factor(NoiseTerm term, std::size_t index, double tc_s) const;
 };
 
+/// How the fit ended (after Ceres Solver's Solver::Summary).
+enum class FitStatus {
+  converged,        ///< the chosen model's reweighting loop met the tolerance
+  iteration_limit,  ///< it stopped at max_iterations without meeting it
+  degenerate,       ///< no candidate model could be fitted: the result holds none
+};
+/// "converged", "iteration_limit", "degenerate".
+std::string_view to_string(FitStatus status);
+
 /// One fitted candidate model (for the evidence in the output).
 struct CandidateModel {
-  std::string terms;  ///< e.g. "N+B+K"
+  NoiseTermSet terms;  ///< e.g. N+B+K
   NoiseModel model;
   double deviance = 0.0;  ///< gamma deviance D
   int parameters = 0;
-  double criterion = 0.0;  ///< D + penalty * parameters
+  double criterion = 0.0;  ///< -2 ln L + penalty * parameters
+  FitStatus status = FitStatus::converged;
+  int iterations = 0;  ///< of its final reweighting loop
 };
 
 struct NoiseFitResult {
+  FitStatus status = FitStatus::converged;
+  /// One sentence: how the fit ended, with the iterations and the tolerance,
+  /// and how many candidates stopped at the iteration limit.
+  std::string message;
+  int iterations = 0;  ///< of the chosen model's final reweighting loop
+
   NoiseModel model;  ///< the chosen model (terms left out are 0)
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
   RandomBiasProcess random_bias_process = RandomBiasProcess::none;
-  std::string terms;  ///< the chosen terms, e.g. "N+B+K"
+  NoiseTermSet terms;  ///< the chosen terms, e.g. N+B+K
   double deviance = 0.0;
   int points = 0;  ///< tau points used
   int parameters = 0;
   double dispersion = 1.0;  ///< max(1, D / (points - parameters))
-  /// The best candidate of each random-bias hypothesis (terms "none",
-  /// "wiener", "gauss_markov" in `random_bias`), the evidence for the answer.
+  /// The best candidate of each random-bias hypothesis (no random bias, a
+  /// Wiener term, a Gauss-Markov term), the evidence for the answer.
   CandidateModel best_without_random_bias, best_wiener, best_gauss_markov;
   bool has_candidate_without_random_bias = false;
   bool has_wiener_candidate = false, has_gauss_markov_candidate = false;
   std::vector<CandidateModel> candidates;  ///< every admissible subset, best first
-};
 
-/// The seven reported parameters in SPEC.md order, with their JSON names
-/// and units: N, B, K, R, Q, gm_sigma, gm_tc.
-struct ReportedParameter {
-  std::string_view name;  ///< "N", ..., "gm_sigma", "gm_tc"
-  std::string_view unit;  ///< e.g. "deg/h/sqrt(Hz)"
-  ParameterEstimate NoiseFitResult::*estimate;
-  double NoiseModel::*value;
+  /// The estimate of one of kNoiseParameters (core/noise_model.h).
+  const ParameterEstimate& estimate(const NoiseParameter& parameter) const;
+  ParameterEstimate& estimate(const NoiseParameter& parameter);
 };
-std::span<const ReportedParameter> reported_parameters();
 
 /// Fits the model to Allan deviations `adev_deg_h` at `tau_s` with their
 /// equivalent degrees of freedom `edf` (stats::AllanResult's fields).
 /// Throws UsageError for mismatched sizes, fewer than 3 usable points or
-/// non-positive values.
+/// non-positive values; a fit that cannot be done is the status
+/// `degenerate`.
 /// `detrend`, when given, holds the factors for the same tau points.
 NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                                std::span<const double> edf, const NoiseFitOptions& options = {},

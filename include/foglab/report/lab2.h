@@ -40,7 +40,7 @@ std::string_view to_string(Lab2Condition condition);
 /// What a run should show, when the data were generated (sim/lab2_variants:
 /// computed from the model, not estimated). NaN: not part of the truth.
 struct Lab2Truth {
-  std::string random_bias_process;       ///< "wiener" | "gauss_markov" | "none"
+  RandomBiasProcess random_bias_process = RandomBiasProcess::none;
   double N = 0.0;                        ///< [deg/h/sqrt(Hz)]
   double K = 0.0;                        ///< [deg/h/sqrt(s)], NaN without a Wiener process
   double gm_sigma = 0.0;                 ///< [deg/h], NaN without a Gauss-Markov process

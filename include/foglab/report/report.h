@@ -44,6 +44,7 @@
 #include <string_view>
 #include <vector>
 
+#include "foglab/core/units.h"
 #include "foglab/model/analysis.h"
 #include "foglab/report/plot.h"
 
@@ -135,11 +136,11 @@ std::string kalibr_imu_yaml(const model::AnalysisResult& result, const ReportInp
 
 /// N [deg/h/sqrt(Hz)] -> [rad/s/sqrt(Hz)].
 constexpr double noise_density_rad_s_sqrt_hz(double n_deg_h_sqrt_hz) {
-  return n_deg_h_sqrt_hz * (3.14159265358979323846 / 180.0) / 3600.0;
+  return n_deg_h_sqrt_hz / kDegPerRad / kSecondsPerHour;
 }
 /// K [deg/h/sqrt(s)] -> [rad/s^2/sqrt(Hz)].
 constexpr double random_walk_rad_s2_sqrt_hz(double k_deg_h_sqrt_s) {
-  return k_deg_h_sqrt_s * (3.14159265358979323846 / 180.0) / 3600.0;
+  return k_deg_h_sqrt_s / kDegPerRad / kSecondsPerHour;
 }
 
 /// `text` with &, <, >, " and ' escaped for HTML.

@@ -4,35 +4,32 @@
 // every estimator can be tested against the truth. It never depends on the
 // estimation code (`model`).
 //
-// The rate a static gyro outputs (SPEC.md conventions, rate in deg/h):
+// The rate a static gyro outputs (conventions in docs/conventions.md, rate
+// in deg/h):
 //
 //   y(t) = input_rate + bias + sum_k c_k (T(t) - T_ref)^k      systematic part
 //        + white (N) + flicker (B) + random walk (K)
 //        + Gauss-Markov (sigma, Tc) + ramp R t + quantisation (Q)
 //
-// Each sample is the AVERAGE of the continuous process over its sample
-// interval tau0 = 1/fs (what an integrating gyro outputs), generated exactly
-// in distribution, so that the Allan variance follows IEEE Std 952-1997
-// Annex C at every tau = m tau0:
-//   AVAR(tau) = R^2 tau^2/2 + K^2 tau/3 + (2 ln2/pi) B^2 + N^2/tau + 3 Q^2/tau^2
-//             + sigma^2 (Tc/tau)^2 (2 tau/Tc - 3 + 4 e^(-tau/Tc) - e^(-2 tau/Tc)).
+// The random part is foglab::NoiseModel (core/noise_model.h, which also
+// states its Allan variance and PSD). Each sample is the AVERAGE of the
+// continuous process over its sample interval tau0 = 1/fs (what an
+// integrating gyro outputs), generated exactly in distribution, so that the
+// Allan variance of the record follows the model's at every tau = m tau0.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "foglab/core/noise_model.h"
+
 namespace foglab::sim {
 
-/// IEEE Std 952 noise terms plus the systematic part, in SPEC.md units.
+/// The error model of a static gyro: the random part (IEEE Std 952 terms
+/// and a Gauss-Markov random bias) and the systematic part.
 struct ErrorModel {
-  double N = 0.0;         ///< white rate noise density [deg/h/sqrt(Hz)] (ARW = N/60 deg/sqrt(h))
-  double B = 0.0;         ///< flicker (bias instability) coefficient [deg/h]; plateau 0.664 B
-  double K = 0.0;         ///< rate random walk [deg/h/sqrt(s)]
-  double R = 0.0;         ///< rate ramp [deg/h/s]
-  double Q = 0.0;         ///< angle quantisation [deg/h*s] = quantisation step / sqrt(12)
-  double gm_sigma = 0.0;  ///< first-order Gauss-Markov standard deviation [deg/h]
-  double gm_tc = 0.0;     ///< its correlation time [s] (> 0 when gm_sigma > 0)
+  NoiseModel noise;         ///< the random part
   double bias = 0.0;        ///< constant bias [deg/h]
   double input_rate = 0.0;  ///< constant input rate, e.g. the local Earth-rate component [deg/h]
   /// Temperature sensitivity c_1, c_2, ... [deg/h/degC^k] of the bias, as a

@@ -31,9 +31,6 @@
 //         tau_u / 2^g, g in 2..3.5 octaves (FOG1: Tc 51..143 s, FOG2
 //         34..95 s), and 2..4 times the ADEV of white noise and flicker
 //         there.
-//     (Before 2026-11-22 the process sat at the end of the range, where in
-//     four Wiener records out of five it did not show at all;
-//     docs/validation.md.)
 //   * c1 and c2 are scaled up together where needed so that the ramp moves
 //     the bias (|c1| x 5 degC at the ends) by at least 0.75 of what the noise
 //     wanders over the run, K sqrt(duration) or sigma plus three flicker
@@ -51,7 +48,7 @@
 // Answer key: computed from the model, never estimated from data — the
 // polynomial the lab's polyfit should approach, N/ARW/K/GM, and the bias
 // instability = the minimum of the model's theoretical ADEV (IEEE 952, see
-// error_model.h) over the record's usable tau range [1/fs, duration/10]
+// core/noise_model.h) over the record's usable tau range [1/fs, duration/10]
 // (at least 10 clusters, the manual's L_m >= 10), with its tau, and the
 // Table 1 class (the worse of the bias-instability and ARW classes).
 #pragma once
@@ -64,6 +61,7 @@
 #include <vector>
 
 #include "foglab/core/accuracy_class.h"
+#include "foglab/core/noise_model.h"
 #include "foglab/sim/error_model.h"
 #include "foglab/sim/generator.h"
 
@@ -76,47 +74,18 @@ using foglab::class_by_bias_instability;
 using foglab::classify;
 using foglab::ClassVerdict;
 using foglab::to_string;
+// The model's theory (Allan variance, ADEV minimum, term dominance) and the
+// random-bias processes live in core (shared with the estimators).
+using foglab::AdevMinimum;
+using foglab::RandomBiasProcess;
 
-// --- the model's theory ---------------------------------------------------
-
-/// The model's Allan variance at tau [s] ((deg/h)^2), IEEE 952 plus the
-/// Gauss-Markov term (error_model.h).
-double model_allan_variance(const ErrorModel& model, double tau_s);
-
-struct AdevMinimum {
-  double adev_deg_h = 0.0;     ///< [deg/h] the minimum
-  double tau_s = 0.0;          ///< [s] where it occurs
-  bool at_range_edge = false;  ///< the minimum is at tau_min_s or tau_max_s
-};
-
-/// One term of the model (the Gauss-Markov sigma and Tc together).
-enum class ModelTerm { white, flicker, random_walk, ramp, quantisation, gauss_markov };
-
-/// The Allan variance of one term alone at tau [s] ((deg/h)^2).
-double term_allan_variance(const ErrorModel& model, ModelTerm term, double tau_s);
-
-/// The longest stretch [octaves] of [tau_min_s, tau_max_s] over which `term`
-/// carries at least half of the model's Allan variance (400-step log grid).
-/// At 2 or more the record shows the term: the condition under which issue 4
-/// sets its accuracy goals, and under which the lab's student can read the
-/// term off the Allan deviation.
-double term_dominance_octaves(const ErrorModel& model, ModelTerm term, double tau_min_s,
-                              double tau_max_s);
-
-/// The minimum of sqrt(model_allan_variance) over [tau_min_s, tau_max_s] on a
-/// log grid of `points_per_decade` (refined by golden-section search between
-/// the neighbours of the best grid point).
-AdevMinimum model_adev_minimum(const ErrorModel& model, double tau_min_s, double tau_max_s,
-                               int points_per_decade = 1000);
+// --- the answer key's theory --------------------------------------------------
 
 /// The systematic part bias + input_rate + sum_k c_k (T - t_ref_c)^k as a
 /// polynomial in raw T [degC]: ascending coefficients a_0, a_1, ... [deg/h/degC^j].
 std::vector<double> raw_temperature_polynomial(const ErrorModel& model, double t_ref_c);
 
 // --- the variants -----------------------------------------------------------
-
-enum class RandomBiasProcess { wiener, gauss_markov };
-std::string_view to_string(RandomBiasProcess p);
 
 /// The seed used when none is given (the manual's year).
 inline constexpr std::uint64_t kLab2DefaultSeed = 2021;
@@ -162,8 +131,8 @@ struct Lab2Gyro {
   std::string file_name;  ///< "FOG1_3.mat"
   std::string design;     ///< a sentence describing the gyro
   ErrorModel model;       ///< the truth (SPEC units)
-  RandomBiasProcess random_bias = RandomBiasProcess::wiener;
-  double arw_deg_sqrt_h = 0.0;  ///< N / 60
+  RandomBiasProcess random_bias = RandomBiasProcess::wiener;  ///< wiener | gauss_markov
+  double arw_deg_sqrt_h = 0.0;                                ///< arw_deg_sqrt_h(N): N / 60
   std::array<Lab2Run, 2> runs;  ///< constant temperature (Y1, T1), ramp (Y2, T2)
   ClassVerdict verdict;         ///< from the (shared) bias instability and ARW
 };

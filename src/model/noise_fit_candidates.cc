@@ -1,0 +1,294 @@
+// foglab — noise-model fit, step 2: every admissible subset of terms, fitted
+// by maximum gamma likelihood and ranked by the criterion
+// (noise_fit_internal.h).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "noise_fit_internal.h"
+
+namespace foglab::model::detail {
+namespace {
+
+// The noise type that dominates the fitted model at each point decides its
+// edf (the Allan variance's uncertainty at the model, not at the noisy
+// data's apparent type): white N -> alpha 0, flicker B -> -1, random walk K
+// and ramp R -> -2, quantisation Q -> +2, Gauss-Markov -> -2 below Tc, 0 above.
+// The index is into Points::edf_by_alpha (alpha -2, -1, 0, +2).
+std::size_t edf_alpha_index(NoiseTerm t, double tau_s, double tc_s) {
+  switch (t) {
+    case NoiseTerm::white:
+      return 2;
+    case NoiseTerm::flicker:
+      return 1;
+    case NoiseTerm::random_walk:
+    case NoiseTerm::ramp:
+      return 0;
+    case NoiseTerm::quantisation:
+      return 3;
+    case NoiseTerm::gauss_markov:
+      return tau_s < tc_s ? 0 : 2;
+  }
+  return 2;
+}
+
+std::vector<double> model_edf(const Points& p, const SubsetFit& f) {
+  std::vector<double> v = p.v;
+  for (std::size_t i = 0; i < p.y.size(); ++i) {
+    double best = -1.0;
+    std::size_t alpha_index = 2;
+    for (NoiseTerm t : kNoiseTerms) {
+      if (!f.terms.contains(t)) continue;
+      const double share = f.squared(t) * p.basis_at(t, i, f.tc);
+      if (share <= best) continue;
+      best = share;
+      alpha_index = edf_alpha_index(t, p.tau[i], f.tc);
+    }
+    const double e = p.edf_by_alpha[i][alpha_index];
+    if (std::isfinite(e) && e > 0) v[i] = e;
+  }
+  return v;
+}
+
+double neg2_loglik(const Points& p, const std::vector<double>& v, const std::vector<double>& mu) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.y.size(); ++i) {
+    const double k = 0.5 * v[i];
+    sum += -2.0 * (k * std::log(k) - std::lgamma(k) + (k - 1.0) * std::log(p.y[i]) -
+                   k * std::log(mu[i]) - k * p.y[i] / mu[i]);
+  }
+  return sum;
+}
+
+// The profiled fit of a subset with the edf of its own model (a few
+// alternations of fit and edf), and its likelihood.
+SubsetFit fit_subset_final(const Points& p, NoiseTermSet terms) {
+  SubsetFit f = fit_subset_profiled(p, terms);
+  f.v = p.v;
+  if (!p.edf_by_alpha.empty()) {
+    for (int round = 0; round < 3 && f.feasible; ++round) {
+      Points q = p;
+      q.v = model_edf(p, f);
+      if (q.v == f.v) break;
+      SubsetFit g = fit_subset_profiled(q, terms);
+      if (!g.feasible) break;
+      g.v = std::move(q.v);
+      f = std::move(g);
+    }
+  }
+  if (f.feasible) f.neg2_loglik = neg2_loglik(p, f.v, f.mu);
+  return f;
+}
+
+}  // namespace
+
+double deviance(const Points& p, const std::vector<double>& mu) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < p.y.size(); ++i) {
+    const double r = p.y[i] / mu[i];
+    d += p.v[i] * (r - 1.0 - std::log(r));
+  }
+  return d;
+}
+
+// Iteratively reweighted least squares with the weights edf / mu^2 (the
+// score equations of the gamma likelihood with identity link); column
+// scaling and a pivoted QR keep tau^2 and 1/tau^2 columns apart. It stops
+// when no mean changes by more than the tolerance (relative) or the
+// deviance by less than 1e-12 of itself, or after max_iterations (the
+// status says which).
+SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::optional<FixedTerm> fixed,
+                     NonPositive non_positive) {
+  SubsetFit fit;
+  fit.tc = tc;
+  const std::size_t n = p.y.size();
+  std::vector<NoiseTerm> fitted;
+  for (NoiseTerm t : kNoiseTerms) {
+    if (terms.contains(t)) fitted.push_back(t);
+  }
+  std::vector<double> offset(n, 0.0);
+  if (fixed) {
+    for (std::size_t i = 0; i < n; ++i) {
+      offset[i] = fixed->squared_coefficient * p.basis_at(fixed->term, i, tc);
+    }
+  }
+  std::vector<double> mu = p.y;  // first weights from the data themselves
+  std::vector<double> c(fitted.size(), 0.0);
+  double previous = kInf;
+  fit.status = FitStatus::iteration_limit;
+  for (int iteration = 0; iteration < p.control.max_iterations; ++iteration) {
+    fit.iterations = iteration + 1;
+    if (fitted.empty()) {
+      mu = offset;
+      fit.status = FitStatus::converged;
+      break;
+    }
+    const Eigen::Index k = static_cast<Eigen::Index>(fitted.size());
+    Eigen::MatrixXd a(static_cast<Eigen::Index>(n), k);
+    Eigen::VectorXd b(static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w = std::sqrt(p.v[i]) / std::max(mu[i], 1e-12 * p.y[i]);
+      for (Eigen::Index j = 0; j < k; ++j) {
+        a(static_cast<Eigen::Index>(i), j) = w * p.basis_at(fitted[j], i, tc);
+      }
+      b(static_cast<Eigen::Index>(i)) = w * (p.y[i] - offset[i]);
+    }
+    Eigen::VectorXd scale = a.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < k; ++j) {
+      if (!(scale(j) > 0)) scale(j) = 1.0;
+      a.col(j) /= scale(j);
+    }
+    Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
+    for (Eigen::Index j = 0; j < k; ++j) c[j] = x(j) / scale(j);
+    if (non_positive == NonPositive::drop_term) {
+      bool dropped = false;
+      for (std::size_t j = 0; j < fitted.size();) {
+        if (!(c[j] > 0)) {
+          fitted.erase(fitted.begin() + static_cast<std::ptrdiff_t>(j));
+          c.erase(c.begin() + static_cast<std::ptrdiff_t>(j));
+          dropped = true;
+        } else {
+          ++j;
+        }
+      }
+      if (dropped) {
+        mu = p.y;
+        previous = kInf;
+        continue;
+      }
+    }
+    double change = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double m = offset[i];
+      for (std::size_t j = 0; j < fitted.size(); ++j) m += c[j] * p.basis_at(fitted[j], i, tc);
+      change = std::max(change, std::fabs(m - mu[i]) / std::max(std::fabs(mu[i]), 1e-300));
+      mu[i] = m;
+    }
+    const double d = [&] {
+      for (double m : mu) {
+        if (!(m > 0)) return kInf;
+      }
+      return deviance(p, mu);
+    }();
+    if (change < p.control.tolerance || std::fabs(previous - d) < 1e-12 * std::max(1.0, d)) {
+      fit.status = FitStatus::converged;
+      break;
+    }
+    previous = d;
+  }
+  fit.feasible = true;
+  for (double value : c) {
+    if (!(value > 0)) fit.feasible = false;
+  }
+  for (double m : mu) {
+    if (!(m > 0)) fit.feasible = false;
+  }
+  for (std::size_t j = 0; j < fitted.size(); ++j) {
+    fit.c[static_cast<std::size_t>(fitted[j])] = c[j];
+    fit.terms = fit.terms.with(fitted[j]);
+  }
+  if (fixed) fit.c[static_cast<std::size_t>(fixed->term)] = fixed->squared_coefficient;
+  fit.mu = std::move(mu);
+  fit.deviance = fit.feasible ? deviance(p, fit.mu) : kInf;
+  return fit;
+}
+
+// The correlation times tried for a Gauss-Markov term: from the shortest tau
+// to well beyond the longest (where the process looks like a random walk),
+// six per decade, then golden-section refinement around the best.
+SubsetFit fit_subset_profiled(const Points& p, NoiseTermSet terms) {
+  if (!terms.contains(NoiseTerm::gauss_markov)) return fit_subset(p, terms, 1.0);
+  const double lo = std::log(p.tau.front() * 0.5);
+  const double hi = std::log(p.tau.back() * 30.0);
+  const int steps = std::max(8, static_cast<int>(std::ceil((hi - lo) / std::log(10.0) * 6.0)));
+  std::vector<SubsetFit> grid;
+  grid.reserve(static_cast<std::size_t>(steps) + 1);
+  for (int s = 0; s <= steps; ++s) {
+    grid.push_back(fit_subset(p, terms, std::exp(lo + (hi - lo) * s / steps)));
+  }
+  std::size_t best = 0;
+  for (std::size_t s = 1; s < grid.size(); ++s) {
+    if (grid[s].deviance < grid[best].deviance) best = s;
+  }
+  if (!grid[best].feasible) return grid[best];
+  // Golden section on ln Tc between the neighbours of the best grid point.
+  double a = std::log(grid[best > 0 ? best - 1 : 0].tc);
+  double b = std::log(grid[std::min(best + 1, grid.size() - 1)].tc);
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  SubsetFit result = grid[best];
+  double x1 = b - g * (b - a), x2 = a + g * (b - a);
+  SubsetFit f1 = fit_subset(p, terms, std::exp(x1)), f2 = fit_subset(p, terms, std::exp(x2));
+  for (int it = 0; it < 40 && b - a > 1e-6; ++it) {
+    if (f1.deviance < f2.deviance) {
+      b = x2;
+      x2 = x1;
+      f2 = std::move(f1);
+      x1 = b - g * (b - a);
+      f1 = fit_subset(p, terms, std::exp(x1));
+    } else {
+      a = x1;
+      x1 = x2;
+      f1 = std::move(f2);
+      x2 = a + g * (b - a);
+      f2 = fit_subset(p, terms, std::exp(x2));
+    }
+  }
+  for (SubsetFit* f : {&f1, &f2}) {
+    if (f->deviance < result.deviance) result = *f;
+  }
+  return result;
+}
+
+bool admissible(NoiseTermSet terms, const NoiseFitOptions& options) {
+  if (terms.empty()) return false;
+  const bool gm = terms.contains(NoiseTerm::gauss_markov);
+  if (gm && !options.allow_gauss_markov) return false;
+  if (gm && terms.contains(NoiseTerm::random_walk) && !options.allow_wiener_with_gauss_markov) {
+    return false;
+  }
+  return true;
+}
+
+std::vector<SubsetFit> fit_candidates(const Points& p, const NoiseFitOptions& options) {
+  std::vector<SubsetFit> fits;
+  for (unsigned mask = 1; mask < (1u << kNoiseTerms.size()); ++mask) {
+    const NoiseTermSet terms = NoiseTermSet::from_mask(mask);
+    if (!admissible(terms, options)) continue;
+    // A subset with more parameters than points minus one cannot be judged.
+    if (terms.parameter_count() >= static_cast<int>(p.y.size())) continue;
+    SubsetFit f = fit_subset_final(p, terms);
+    if (f.feasible) fits.push_back(std::move(f));
+  }
+  std::sort(fits.begin(), fits.end(), [&](const SubsetFit& a, const SubsetFit& b) {
+    return criterion(a, options.penalty) < criterion(b, options.penalty);
+  });
+  return fits;
+}
+
+double criterion(const SubsetFit& f, double penalty) {
+  return f.neg2_loglik + penalty * f.terms.parameter_count();
+}
+
+NoiseModel to_model(const SubsetFit& f) {
+  NoiseModel m;
+  for (NoiseTerm t : kNoiseTerms) {
+    if (f.terms.contains(t)) m.set_coefficient(t, std::sqrt(f.squared(t)));
+  }
+  if (f.terms.contains(NoiseTerm::gauss_markov)) m.gm_tc = f.tc;
+  return m;
+}
+
+CandidateModel candidate(const SubsetFit& f, double penalty) {
+  CandidateModel c;
+  c.terms = f.terms;
+  c.model = to_model(f);
+  c.deviance = f.deviance;
+  c.parameters = f.terms.parameter_count();
+  c.criterion = criterion(f, penalty);
+  c.status = f.status;
+  c.iterations = f.iterations;
+  return c;
+}
+
+}  // namespace foglab::model::detail
