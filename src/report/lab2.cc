@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "foglab/model/run_comparison.h"
 #include "report_internal.h"
 
 namespace foglab::report {
@@ -42,25 +43,8 @@ Lab2Cell estimate_cell(const model::ParameterEstimate& p) {
   return {kNaN, kNaN, kNaN, "absent"};
 }
 
-/// The 95 % interval of the Allan deviation at the point nearest `tau_s`.
-std::pair<double, double> adev_interval_at(const stats::AllanResult& a, double tau_s) {
-  std::size_t best = a.tau_s.size();
-  double best_distance = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < a.tau_s.size(); ++i) {
-    const double d = std::abs(std::log(a.tau_s[i] / tau_s));
-    if (d < best_distance) {
-      best_distance = d;
-      best = i;
-    }
-  }
-  if (best == a.tau_s.size() || best >= a.ci95_low.size() || best >= a.ci95_high.size()) {
-    return {kNaN, kNaN};
-  }
-  return {a.ci95_low[best], a.ci95_high[best]};
-}
-
 Lab2Cell bias_instability_cell(const model::AnalysisResult& r) {
-  const auto [lo, hi] = adev_interval_at(r.allan, r.bias_instability_tau_s);
+  const auto [lo, hi] = model::adev_interval_at(r.allan, r.bias_instability_tau_s);
   std::string text =
       fmt::format("{} at {} s", g(r.bias_instability_deg_h), g(r.bias_instability_tau_s));
   if (std::isfinite(lo) && std::isfinite(hi)) text += fmt::format(" [{}, {}]", g(lo), g(hi));
@@ -226,171 +210,120 @@ void build_rows(Lab2Table& t) {
 
 // ---- the written comparison ----------------------------------------------------------
 
-/// The polynomial's range [deg/h] over the temperatures it was fitted on.
-double polynomial_range(const model::SystematicFit& s) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  constexpr int kSteps = 200;
-  for (int k = 0; k <= kSteps; ++k) {
-    const double t = s.temperature_min_c + (s.temperature_max_c - s.temperature_min_c) * k / kSteps;
-    double v = 0.0, p = 1.0;
-    for (std::size_t j = 1; j < s.coefficients.size(); ++j) {
-      p *= t - s.t_ref_c;
-      v += s.coefficients[j] * p;
-    }
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
+/// "what: a -> b unit (+x %)" and the verdict on the 95 % intervals.
+std::string change_text(std::string_view what, std::string_view unit, const model::ValueChange& c) {
+  std::string text = fmt::format("{}: {} -> {} {} ({:+.1f} %)", what, g(c.before), g(c.after),
+                                 unit, 100.0 * c.relative);
+  switch (c.verdict) {
+    case model::Change::changed:
+      return text + "; the 95 % intervals do not overlap: the ramp changed it.";
+    case model::Change::unchanged:
+      return text + "; the 95 % intervals overlap: unchanged within the uncertainty.";
+    case model::Change::not_comparable:
+      break;
   }
-  return hi - lo;
+  return text + ".";
 }
 
-bool intervals_overlap(double lo1, double hi1, double lo2, double hi2) {
-  return std::max(lo1, lo2) <= std::min(hi1, hi2);
-}
-
-/// "a -> b unit (+x %): the 95 % intervals overlap, ..." for two values
-/// with intervals; `changed` is set when they do not overlap.
-std::string change_text(std::string_view what, std::string_view unit, double a, double alo,
-                        double ahi, double b, double blo, double bhi, bool& changed) {
+std::vector<std::string> systematic_sentences(const model::SystematicChange& s) {
   std::string text =
-      fmt::format("{}: {} -> {} {} ({:+.1f} %)", what, g(a), g(b), unit, 100.0 * (b / a - 1.0));
-  if (std::isfinite(alo) && std::isfinite(ahi) && std::isfinite(blo) && std::isfinite(bhi)) {
-    changed = !intervals_overlap(alo, ahi, blo, bhi);
-    text += changed ? "; the 95 % intervals do not overlap: the ramp changed it."
-                    : "; the 95 % intervals overlap: unchanged within the uncertainty.";
+      fmt::format("Temperature: the ramp run spans {:.3g} degC (the constant run {:.2g} degC). ",
+                  s.span_after_c, s.span_before_c);
+  if (s.degree_after > 0) {
+    text += fmt::format(
+        "Its fitted polynomial (degree {}) moves the bias by {} deg/h over the ramp, {:.3g} "
+        "times the bias instability: without removing it the ramp would pass for a large "
+        "drift and spoil the Allan deviation at long tau.",
+        s.degree_after, g(s.polynomial_range_deg_h), s.range_over_bias_instability);
   } else {
-    text += ".";
+    text += "The criterion found no temperature dependence in it.";
   }
-  return text;
+  std::string bias = fmt::format(
+      "Systematic bias at the mean temperature: {:.5g} deg/h (constant, {:.4g} degC) and "
+      "{:.5g} deg/h (ramp, {:.4g} degC), {} deg/h apart",
+      s.bias_before_deg_h, s.t_ref_before_c, s.bias_after_deg_h, s.t_ref_after_c,
+      g(s.bias_difference_deg_h));
+  if (std::isfinite(s.wander_deg_h) && s.wander_deg_h > 0.0) {
+    bias += fmt::format(
+        " — {:.2g} times the fitted model's Allan deviation at half the record ({} deg/h), "
+        "the scale on which the random bias moves the mean of a record",
+        s.bias_difference_deg_h / s.wander_deg_h, g(s.wander_deg_h));
+  }
+  bias += s.lab_constant_meaningful_before
+              ? "."
+              : "; at constant temperature the lab's polyfit constant term is not meaningful "
+                "(the temperature moves too little to extrapolate to 0 degC), so compare these.";
+  return {text, bias};
 }
 
-std::vector<std::string> compare_runs(const Lab2Run& c, const Lab2Run& r) {
-  std::vector<std::string> out;
-  const model::AnalysisResult& a = c.result;
-  const model::AnalysisResult& b = r.result;
-  std::vector<std::string> changed_items;
-
-  // The systematic part.
-  if (a.systematic && b.systematic) {
-    const model::SystematicFit& sa = *a.systematic;
-    const model::SystematicFit& sb = *b.systematic;
-    std::string text =
-        fmt::format("Temperature: the ramp run spans {:.3g} degC (the constant run {:.2g} degC). ",
-                    sb.temperature_span_c, sa.temperature_span_c);
-    if (sb.coefficients.size() > 1) {
-      const double range = polynomial_range(sb);
-      text += fmt::format(
-          "Its fitted polynomial (degree {}) moves the bias by {} deg/h over the ramp, {:.3g} "
-          "times the bias instability: without removing it the ramp would pass for a large "
-          "drift and spoil the Allan deviation at long tau.",
-          sb.degree, g(range), range / b.bias_instability_deg_h);
-    } else {
-      text += "The criterion found no temperature dependence in it.";
-    }
-    out.push_back(text);
-    // How far the bias of one record wanders from another's: the model's
-    // Allan deviation at half the record length is the rms difference of the
-    // means of two adjacent half records (flicker and a random walk have no
-    // finite mean, so no standard error of the intercept captures this).
-    const double wander = std::sqrt(allan_variance(b.noise.model, 0.5 * b.duration_s));
-    std::string bias = fmt::format(
-        "Systematic bias at the mean temperature: {:.5g} deg/h (constant, {:.4g} degC) and "
-        "{:.5g} deg/h (ramp, {:.4g} degC), {} deg/h apart",
-        sa.bias_deg_h, sa.t_ref_c, sb.bias_deg_h, sb.t_ref_c,
-        g(std::abs(sb.bias_deg_h - sa.bias_deg_h)));
-    if (std::isfinite(wander) && wander > 0.0) {
-      bias += fmt::format(
-          " — {:.2g} times the fitted model's Allan deviation at half the record ({} deg/h), "
-          "the scale on which the random bias moves the mean of a record",
-          std::abs(sb.bias_deg_h - sa.bias_deg_h) / wander, g(wander));
-    }
-    bias += sa.lab_constant_meaningful
-                ? "."
-                : "; at constant temperature the lab's polyfit constant term is not meaningful "
-                  "(the temperature moves too little to extrapolate to 0 degC), so compare these.";
-    out.push_back(bias);
-  }
-
-  // White noise.
-  if (a.noise.N.status == model::TermStatus::resolved &&
-      b.noise.N.status == model::TermStatus::resolved) {
-    bool changed = false;
-    out.push_back(change_text("White noise N (fit)", "deg/h/sqrt(Hz)", a.noise.N.value,
-                              a.noise.N.ci95_low, a.noise.N.ci95_high, b.noise.N.value,
-                              b.noise.N.ci95_low, b.noise.N.ci95_high, changed));
-    if (changed) changed_items.push_back("the white noise");
-  }
-
-  // Bias instability.
-  {
-    const Lab2Cell ca = bias_instability_cell(a), cb = bias_instability_cell(b);
-    bool changed = false;
-    out.push_back(change_text("Bias instability (ADEV minimum)", "deg/h", ca.value, ca.ci95_low,
-                              ca.ci95_high, cb.value, cb.ci95_low, cb.ci95_high, changed));
-    if (changed) changed_items.push_back("the bias instability");
-  }
-
-  // The random bias.
-  const RandomBiasProcess pa = a.noise.random_bias_process;
-  const RandomBiasProcess pb = b.noise.random_bias_process;
-  if (pa == pb) {
-    std::string text = "Random bias: " + process_name(pa) + " in both runs";
-    if (pa == RandomBiasProcess::wiener) {
-      bool changed = false;
-      text += "; " + change_text("K", "deg/h/sqrt(s)", a.noise.K.value, a.noise.K.ci95_low,
-                                 a.noise.K.ci95_high, b.noise.K.value, b.noise.K.ci95_low,
-                                 b.noise.K.ci95_high, changed);
-      if (changed) changed_items.push_back("the Wiener intensity");
-    } else if (pa == RandomBiasProcess::gauss_markov) {
-      text +=
-          fmt::format("; sigma {} -> {} deg/h, Tc {} -> {} s.", g(a.noise.gm_sigma.value),
-                      g(b.noise.gm_sigma.value), g(a.noise.gm_tc.value), g(b.noise.gm_tc.value));
-    } else {
-      text += ".";
-    }
-    out.push_back(text);
-  } else {
-    out.push_back(fmt::format(
+std::string random_bias_sentence(const model::RunComparison& c) {
+  if (c.process_before != c.process_after) {
+    return fmt::format(
         "Random bias: {} at constant temperature, {} during the ramp. Over a record this short "
         "a Gauss-Markov process whose correlation time is near the end of the tau range looks "
         "like a random walk, so the two answers can differ on the same gyro; the run whose "
         "Allan deviation reaches further past the hump decides.",
-        process_name(pa), process_name(pb)));
-    changed_items.push_back("the random-bias answer");
+        process_name(c.process_before), process_name(c.process_after));
   }
+  std::string text = "Random bias: " + process_name(c.process_before) + " in both runs";
+  if (c.random_walk) return text + "; " + change_text("K", "deg/h/sqrt(s)", *c.random_walk);
+  if (c.gm_sigma && c.gm_tc) {
+    return text + fmt::format("; sigma {} -> {} deg/h, Tc {} -> {} s.", g(c.gm_sigma->before),
+                              g(c.gm_sigma->after), g(c.gm_tc->before), g(c.gm_tc->after));
+  }
+  return text + ".";
+}
 
-  // Terms that only one run shows.
-  for (const NoiseTerm term : {NoiseTerm::ramp, NoiseTerm::quantisation}) {
-    const NoiseParameter& p = kNoiseParameters[static_cast<std::size_t>(term)];
-    const bool in_a = a.noise.estimate(p).status == model::TermStatus::resolved;
-    const bool in_b = b.noise.estimate(p).status == model::TermStatus::resolved;
-    if (in_a == in_b) continue;
-    const model::AnalysisResult& with = in_b ? b : a;
+std::string changed_item_name(model::ChangedItem item, const model::RunComparison& c,
+                              std::size_t& term) {
+  switch (item) {
+    case model::ChangedItem::white_noise:
+      return "the white noise";
+    case model::ChangedItem::bias_instability:
+      return "the bias instability";
+    case model::ChangedItem::random_walk:
+      return "the Wiener intensity";
+    case model::ChangedItem::random_bias_process:
+      return "the random-bias answer";
+    case model::ChangedItem::term:
+      return fmt::format("the {} term", to_string(c.terms_in_one_run[term++].term));
+  }
+  return "";
+}
+
+std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ramp) {
+  const model::RunComparison c = model::compare_runs(constant.result, ramp.result);
+  std::vector<std::string> out;
+  if (c.systematic) out = systematic_sentences(*c.systematic);
+  if (c.white_noise) out.push_back(change_text("White noise N (fit)", "deg/h/sqrt(Hz)", *c.white_noise));
+  out.push_back(change_text("Bias instability (ADEV minimum)", "deg/h", c.bias_instability));
+  out.push_back(random_bias_sentence(c));
+  for (const model::TermInOneRun& t : c.terms_in_one_run) {
+    const NoiseParameter& p = kNoiseParameters[static_cast<std::size_t>(t.term)];
     out.push_back(fmt::format(
-        "Only the {} run resolves {} = {} {}{}.", in_b ? "ramp" : "constant", p.name,
-        g(with.noise.estimate(p).value), p.unit,
-        term == NoiseTerm::ramp && in_b
+        "Only the {} run resolves {} = {} {}{}.", t.in_after ? "ramp" : "constant", p.name,
+        g(t.value), p.unit,
+        t.term == NoiseTerm::ramp && t.in_after
             ? ": a drift the temperature polynomial does not remove (e.g. a dependence on the "
               "rate of temperature change)"
             : ""));
-    changed_items.push_back(std::string("the ") + std::string(p.name) + " term");
   }
-
-  // The class.
-  const AccuracyClass ka = a.verdict.accuracy_class, kb = b.verdict.accuracy_class;
-  out.push_back(ka == kb ? fmt::format("Accuracy class: {} in both runs.", to_string(ka))
-                         : fmt::format("Accuracy class: {} at constant temperature, {} during "
-                                       "the ramp.",
-                                       to_string(ka), to_string(kb)));
-
-  if (changed_items.empty()) {
+  out.push_back(c.class_before == c.class_after
+                    ? fmt::format("Accuracy class: {} in both runs.", to_string(c.class_before))
+                    : fmt::format("Accuracy class: {} at constant temperature, {} during "
+                                  "the ramp.",
+                                  to_string(c.class_before), to_string(c.class_after)));
+  if (c.changed.empty()) {
     out.push_back(
         "Conclusion: once the temperature polynomial is removed, the ramp leaves the random "
         "error unchanged within the 95 % intervals: the temperature acts on the systematic "
         "part, which the polynomial captures.");
   } else {
     std::string list;
-    for (std::size_t k = 0; k < changed_items.size(); ++k) {
-      list += (k == 0 ? "" : k + 1 == changed_items.size() ? " and " : ", ") + changed_items[k];
+    std::size_t term = 0;
+    for (std::size_t k = 0; k < c.changed.size(); ++k) {
+      list += (k == 0 ? "" : k + 1 == c.changed.size() ? " and " : ", ") +
+              changed_item_name(c.changed[k], c, term);
     }
     out.push_back("Conclusion: the ramp changed " + list +
                   ", beyond what the polynomial removes; check the residual's Allan deviation at "
