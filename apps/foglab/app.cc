@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
 #include "foglab/core/version.h"
@@ -63,13 +64,13 @@ int run_command_line(int argc, char** argv) {
     }
     return kExitOk;
   } catch (const UsageError& e) {
-    std::cerr << "foglab: error: " << e.what() << "\n";
+    std::cerr << "foglab: error: " << in_cli_terms(e.what()) << "\n";
     return kExitUsage;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "foglab: error: " << e.what() << "\n";
+    std::cerr << "foglab: error: " << in_cli_terms(e.what()) << "\n";
     return kExitUsage;
   } catch (const DataError& e) {
-    std::cerr << "foglab: error: " << e.what() << "\n";
+    std::cerr << "foglab: error: " << in_cli_terms(e.what()) << "\n";
     return kExitData;
   } catch (const std::bad_alloc&) {
     // Nothing was written (outputs are rendered before any is written).

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <regex>
 
 #include "foglab/core/error.h"
 #include "foglab/io/sample.h"
@@ -114,12 +115,56 @@ nlohmann::json model_units_json() {
   return j;
 }
 
+std::string sample_rate_source_text(const io::Series& series) {
+  switch (series.sample_rate_source) {
+    case io::SampleRateSource::option:
+      return "option --fs";
+    case io::SampleRateSource::variable_f:
+      return "variable f";
+    case io::SampleRateSource::time_channel:
+      return "time column " + series.sample_rate_channel;
+    case io::SampleRateSource::builtin:
+      return "built-in";
+  }
+  return "";
+}
+
 nlohmann::json input_json(const io::Series& series) {
   return {{"path", series.path},
           {"channel", series.channel},
           {"sample_rate_hz", series.sample_rate_hz},
-          {"sample_rate_source", series.sample_rate_source},
+          {"sample_rate_source", sample_rate_source_text(series)},
           {"samples", series.values.size()}};
+}
+
+namespace {
+
+// The library's API names in its messages and the flags that set them.
+struct FlagOfField {
+  const char* field;  // as the library's messages write it (a regex)
+  const char* flag;   // the replacement
+};
+constexpr FlagOfField kFlagsOfFields[] = {
+    {R"(ReadOptions::sample_rate_hz)", "--fs"},
+    {R"(ReadOptions::channel)", "--channel"},
+    {R"(ReadOptions::time_channel)", "--time"},
+    {R"(ReadOptions::unit)", "--units"},
+    {R"(ReadOptions::format)", "--format"},
+    {R"(TauGrid::min_clusters)", "--min-clusters"},
+    {R"(TauGrid::taus_s)", "--taus"},
+    {R"re(parse_tau_grid\("([^"]*)"\))re", "--taus '$1'"},
+};
+
+}  // namespace
+
+std::string in_cli_terms(std::string message) {
+  static const std::vector<std::pair<std::regex, std::string>> rules = [] {
+    std::vector<std::pair<std::regex, std::string>> r;
+    for (const FlagOfField& f : kFlagsOfFields) r.emplace_back(std::regex(f.field), f.flag);
+    return r;
+  }();
+  for (const auto& [field, flag] : rules) message = std::regex_replace(message, field, flag);
+  return message;
 }
 
 std::filesystem::path output_directory(const std::string& out) {
@@ -144,7 +189,7 @@ sim::Lab2Options lab2_options(std::uint64_t seed, const std::optional<double>& h
   return options;
 }
 
-void note(const std::string& text) { std::cerr << "foglab: note: " << text << "\n"; }
+void note(const std::string& text) { std::cerr << "foglab: note: " << in_cli_terms(text) << "\n"; }
 
 void progress(const std::string& step) {
   static const bool terminal = isatty(STDERR_FILENO) != 0;

@@ -70,6 +70,16 @@ nlohmann::json model_units_json();
 
 /// Describes where the data came from, for every JSON output.
 nlohmann::json input_json(const io::Series& series);
+/// Where the sample rate came from, in the CLI's words: "option --fs",
+/// "variable f", "time column t", "built-in".
+std::string sample_rate_source_text(const io::Series& series);
+
+/// A library message in the CLI's terms: the API fields it names
+/// (ReadOptions::sample_rate_hz, TauGrid::min_clusters, parse_tau_grid("x"),
+/// ...) become the flags that set them (--fs, --min-clusters, --taus 'x').
+/// The one place where the library's vocabulary meets the command line's;
+/// run_command_line() applies it to every error and note.
+std::string in_cli_terms(std::string message);
 
 /// Creates the output directory `out` (and its parents) when needed and
 /// returns it; UsageError naming --out when it cannot be a directory.

@@ -21,6 +21,7 @@
 #include "foglab/core/numeric.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
+#include "foglab/io/channels.h"
 #include "foglab/model/analysis.h"
 #include "foglab/report/report.h"
 #include "foglab/stats/tau_grid.h"
@@ -47,46 +48,6 @@ int parse_temp_degree(const std::string& text) {
       fmt::format("--temp-degree '{}': expected auto, 0, 1, 2 or 3 (the degree of the "
                   "temperature polynomial)",
                   text));
-}
-
-std::string lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-bool is_time_name(const std::string& name) {
-  const std::string l = lower(name);
-  return l == "t" || l == "time" || l == "time_s";
-}
-
-/// The file's channel called `name`: exactly, else (with `ignore_case`)
-/// without regard to case — but never a time column standing in for the
-/// lab's temperature `T`.
-std::optional<std::string> find_channel(const std::vector<std::string>& channels,
-                                        const std::string& name, bool ignore_case) {
-  for (const auto& c : channels) {
-    if (c == name) return c;
-  }
-  if (!ignore_case) return std::nullopt;
-  for (const auto& c : channels) {
-    if (lower(c) == lower(name) && !is_time_name(c)) return c;
-  }
-  return std::nullopt;
-}
-
-/// The temperature channel names that pair with a rate channel (the lab's
-/// Y1 -> T1, Y2 -> T2: a name ending in digits d pairs with "T" + d; a name
-/// without digits, e.g. generate's CSV column "rate", with "T" or
-/// "temperature"), in order of preference.
-std::vector<std::string> paired_temperature_names(const std::string& channel) {
-  std::size_t digits = channel.size();
-  while (digits > 0 && std::isdigit(static_cast<unsigned char>(channel[digits - 1])) != 0) {
-    --digits;
-  }
-  if (digits < channel.size() && digits > 0) return {"T" + channel.substr(digits)};
-  if (digits == channel.size()) return {"T", "temperature"};
-  return {};  // a bare column index such as "2": nothing to pair by name
 }
 
 /// --temp where no second channel can be read (checked before reading).
@@ -141,7 +102,7 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   if (!c.temp_channel.empty()) {
     const bool index = std::all_of(c.temp_channel.begin(), c.temp_channel.end(),
                                    [](unsigned char ch) { return std::isdigit(ch) != 0; });
-    const auto found = find_channel(series.available_channels, c.temp_channel, true);
+    const auto found = io::find_channel(series.available_channels, c.temp_channel, true);
     if (!found && !index && unusable(c.temp_channel)) {
       name = c.temp_channel;
     } else if (!found && !index) {
@@ -151,10 +112,10 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
     }
     if (name.empty()) name = found ? *found : c.temp_channel;
   } else {
-    const std::vector<std::string> wanted = paired_temperature_names(series.channel);
+    const std::vector<std::string> wanted = io::paired_temperature_names(series.channel);
     for (const auto& w : wanted) {
       // The lab's T1, T2, T exactly; generate's "temperature" in any case.
-      const auto found = find_channel(series.available_channels, w, w == "temperature");
+      const auto found = io::find_channel(series.available_channels, w, w == "temperature");
       if (found && *found != series.channel) {
         name = *found;
         break;

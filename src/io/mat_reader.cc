@@ -683,7 +683,7 @@ const VarInfo* find_time_variable(const std::string& path, const MatFile& file,
   if (!options.time_channel.empty()) {
     return &require_variable(path, file, options.time_channel, "time ");
   }
-  for (const char* name : {"t", "time", "time_s"}) {
+  for (std::string_view name : kTimeChannelNames) {
     if (const VarInfo* var = file.find(name)) return var;
   }
   return nullptr;
@@ -699,14 +699,14 @@ const VarInfo& choose_channel(const std::string& path, const MatFile& file,
   std::vector<const VarInfo*> candidates;
   for (const VarInfo& var : file.variables()) {
     if (!var.readable() || var.numel() < 2 || var.name == "f" || &var == time ||
-        is_temperature_name(var.name)) {
+        is_lab_temperature_name(var.name)) {
       continue;
     }
     candidates.push_back(&var);
   }
   if (candidates.size() == 1) return *candidates.front();
   for (const VarInfo* var : candidates) {
-    if (var->name == "Y1") return *var;
+    if (var->name == kDefaultDataChannels[0]) return *var;
   }
   if (candidates.empty()) {
     throw_data_error(path, fmt::format("no data channel: expected a real numeric vector other "
@@ -717,7 +717,7 @@ const VarInfo& choose_channel(const std::string& path, const MatFile& file,
   std::vector<std::string> names;
   for (const VarInfo* var : candidates) names.push_back(var->name);
   throw_data_error(path, fmt::format("several data channels ({}) and none is Y1: choose one "
-                                     "with --channel",
+                                     "with ReadOptions::channel",
                                      join_names(names)));
 }
 
@@ -774,7 +774,7 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
       const double rate_hz = file.read(*f).front();
       check_file_sample_rate(path, rate_hz, "variable f");
       series.sample_rate_hz = rate_hz;
-      series.sample_rate_source = "variable f";
+      series.sample_rate_source = SampleRateSource::variable_f;
       // A time vector beside f must agree with the channel too: a record
       // with a gap or of another length is not analysed as if continuous.
       if (time != nullptr && time != &channel && time->readable() && time->numel() >= 2) {
@@ -782,11 +782,12 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
       }
     } else if (time != nullptr) {
       series.sample_rate_hz = rate_from_time_variable(path, file, *time, channel);
-      series.sample_rate_source = "time column " + time->name;
+      series.sample_rate_source = SampleRateSource::time_channel;
+      series.sample_rate_channel = time->name;
     } else {
       throw UsageError(
           fmt::format("{} has no sample rate (no variable f and no time variable "
-                      "t, time or time_s): give --fs",
+                      "t, time or time_s): give ReadOptions::sample_rate_hz",
                       quoted_path(path)));
     }
   }

@@ -60,7 +60,8 @@ struct FileCloser {
 Series read_raw(const std::string& path, const ReadOptions& options, InputFormat format) {
   const std::size_t element_bytes = format == InputFormat::f32 ? 4 : 8;
   if (!options.sample_rate_hz) {
-    throw UsageError(fmt::format("{}: raw input has no sample rate: give --fs", quoted_path(path)));
+    throw UsageError(fmt::format(
+        "{}: raw input has no sample rate: give ReadOptions::sample_rate_hz", quoted_path(path)));
   }
   if (!options.time_channel.empty()) {
     throw UsageError(fmt::format("{}: raw input has no time column (got time channel '{}')",

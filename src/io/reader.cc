@@ -31,8 +31,8 @@ void throw_data_error(const std::string& path, std::string_view what) {
 }
 
 const char* const kIgnoreTimeHint =
-    "; to analyse the samples as evenly spaced anyway, give the sample rate with --fs HZ "
-    "(the time is then ignored)";
+    "; to analyse the samples as evenly spaced anyway, give the sample rate [Hz] in "
+    "ReadOptions::sample_rate_hz (the time is then ignored)";
 
 namespace {
 
@@ -71,21 +71,6 @@ std::string join_names(const std::vector<std::string>& names) {
 }
 
 std::string format_value(double value) { return fmt::format("{:.12g}", value); }
-
-bool is_time_name(std::string_view name, bool ignore_case) {
-  if (!ignore_case) return name == "t" || name == "time" || name == "time_s";
-  if (name == "T") return false;  // the lab's temperature, not time
-  std::string lower(name);
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return lower == "t" || lower == "time" || lower == "time_s";
-}
-
-bool is_temperature_name(std::string_view name) {
-  if (name.empty() || name[0] != 'T') return false;
-  return std::all_of(name.begin() + 1, name.end(),
-                     [](unsigned char c) { return std::isdigit(c) != 0; });
-}
 
 TimeAxisCheck::TimeAxisCheck(const std::string& path, std::string name, double resolution_s)
     : path_(path), name_(std::move(name)), resolution_s_(resolution_s) {
@@ -155,9 +140,10 @@ void TimeAxisCheck::settle_reference() {
 
 double TimeAxisCheck::rate_hz() {
   if (count_ < 2) {
-    throw_data_error(path_, fmt::format("time column '{}' has {} sample(s); at least 2 are "
-                                        "needed for a sample rate (or give --fs)",
-                                        name_, count_));
+    throw_data_error(path_,
+                     fmt::format("time column '{}' has {} sample(s); at least 2 are "
+                                 "needed for a sample rate (or give ReadOptions::sample_rate_hz)",
+                                 name_, count_));
   }
   if (!settled_) settle_reference();
   const double rate_hz = static_cast<double>(count_ - 1) / (previous_s_ - first_s_);
@@ -273,6 +259,20 @@ std::string_view to_string(InputFormat format) {
   return "?";
 }
 
+std::string_view to_string(SampleRateSource source) {
+  switch (source) {
+    case SampleRateSource::option:
+      return "option";
+    case SampleRateSource::variable_f:
+      return "variable_f";
+    case SampleRateSource::time_channel:
+      return "time_channel";
+    case SampleRateSource::builtin:
+      return "builtin";
+  }
+  return "?";
+}
+
 InputFormat input_format_from_string(std::string_view text) {
   const std::string t = lower_case(text);
   if (t == "auto" || t == "automatic") return InputFormat::automatic;
@@ -293,10 +293,10 @@ Series read_series(const std::string& path, const ReadOptions& options) {
   }
   if (options.sample_rate_hz &&
       !(std::isfinite(*options.sample_rate_hz) && *options.sample_rate_hz > 0.0)) {
-    throw UsageError(
-        fmt::format("invalid sample rate --fs {} for {}: expected a positive, "
-                    "finite rate in Hz",
-                    internal::format_value(*options.sample_rate_hz), quoted_path(path)));
+    throw UsageError(fmt::format(
+        "invalid sample rate ReadOptions::sample_rate_hz {} for {}: expected a positive, "
+        "finite rate in Hz",
+        internal::format_value(*options.sample_rate_hz), quoted_path(path)));
   }
   const InputFormat format = resolve_format(path, options.format);
   check_format_source(path, format);
@@ -318,7 +318,7 @@ Series read_series(const std::string& path, const ReadOptions& options) {
   series.path = path;
   if (options.sample_rate_hz) {
     series.sample_rate_hz = *options.sample_rate_hz;
-    series.sample_rate_source = "option --fs";
+    series.sample_rate_source = SampleRateSource::option;
   }
   finish_values(series, options.unit, options.max_magnitude);
   return series;

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "foglab/io/channels.h"
 #include "foglab/io/reader.h"
 
 namespace foglab::io::internal {
@@ -42,14 +43,6 @@ std::string format_value(double value);
 /// "; to analyse the samples as evenly spaced anyway, give ... --fs ...": how
 /// to proceed past a bad time axis, appended to its messages.
 extern const char* const kIgnoreTimeHint;
-
-/// True for the automatic time-channel names `t`, `time`, `time_s`. Text
-/// headers compare without regard to case (`Time`, `TIME_S`), except that a
-/// column named exactly `T` is the lab's temperature and never time.
-bool is_time_name(std::string_view name, bool ignore_case);
-
-/// True for the lab's temperature names `T`, `T1`, `T2`, ... (never data).
-bool is_temperature_name(std::string_view name);
 
 /// Checks a time axis sample by sample, so that a text reader need not keep
 /// the time column: every time must be finite, every step positive (else

@@ -19,7 +19,7 @@ Series builtin_sample() {
   series.path = "(built-in sample)";
   series.channel = "Y1";
   series.sample_rate_hz = S::kSampleRateHz;
-  series.sample_rate_source = "built-in";
+  series.sample_rate_source = SampleRateSource::builtin;
   series.available_channels = {"Y1"};
   series.variables = series.available_channels;
   series.values.resize(count);

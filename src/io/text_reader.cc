@@ -333,7 +333,7 @@ std::optional<std::size_t> find_time_column(const std::string& path, const Layou
   }
   if (!layout.has_header) return std::nullopt;
   for (std::size_t k = 0; k < layout.names.size(); ++k) {
-    if (is_time_name(layout.names[k], true)) return k;
+    if (is_time_channel_name(layout.names[k], true)) return k;
   }
   return std::nullopt;
 }
@@ -348,14 +348,14 @@ std::size_t choose_column(const std::string& path, const Layout& layout, const R
   }
   if (candidates.size() == 1) return candidates.front();
   if (layout.has_header) {
-    for (std::string_view preferred : {"y1", "rate"}) {
+    for (std::string_view preferred : kDefaultDataChannels) {
       for (std::size_t k : candidates) {
-        if (lower_case(layout.names[k]) == preferred) return k;
+        if (lower_case(layout.names[k]) == lower_case(preferred)) return k;
       }
     }
   }
   throw_data_error(path, fmt::format("several columns ({}) and none is Y1 or rate: choose one "
-                                     "with --channel (a name or a 1-based index)",
+                                     "with ReadOptions::channel (a name or a 1-based index)",
                                      column_listing(layout)));
 }
 
@@ -377,7 +377,7 @@ Series read_text(const std::string& path, const ReadOptions& options) {
   if (!options.sample_rate_hz && !time) {
     throw UsageError(
         fmt::format("{} has no sample rate (no time column t, time or time_s): "
-                    "give --fs",
+                    "give ReadOptions::sample_rate_hz",
                     quoted_path(path)));
   }
   const bool need_time = !options.sample_rate_hz;
@@ -451,7 +451,8 @@ Series read_text(const std::string& path, const ReadOptions& options) {
 
   if (need_time) {
     series.sample_rate_hz = time_check->rate_hz();
-    series.sample_rate_source = "time column " + layout.names[*time];
+    series.sample_rate_source = SampleRateSource::time_channel;
+    series.sample_rate_channel = layout.names[*time];
   }
   return series;
 }

@@ -316,7 +316,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
   if (result.m.empty()) {
     throw DataError(fmt::format(
         "{} {} samples are too few for {} with at least {} clusters per tau "
-        "({} samples needed); lower --min-clusters or give --taus explicitly",
+        "({} samples needed); lower TauGrid::min_clusters or list the taus in TauGrid::taus_s",
         record_samples, to_string(input), to_string(options.kind), options.grid.min_clusters,
         options.grid.min_clusters + (input == InputKind::rate ? 0 : 1)));
   }

@@ -21,12 +21,12 @@ double parse_seconds(std::string_view item, std::string_view whole) {
   const auto [ptr, ec] = std::from_chars(first, last, value);
   if (ec != std::errc() || ptr != last) {
     throw UsageError(fmt::format(
-        "--taus '{}': expected octave, decade, all, N-per-decade or a comma-separated "
+        "parse_tau_grid(\"{}\"): expected octave, decade, all, N-per-decade or a comma-separated "
         "list of seconds, but '{}' is not a number",
         whole, item));
   }
   if (!(value > 0.0) || !std::isfinite(value)) {
-    throw UsageError(fmt::format("--taus '{}': tau {} s is not positive", whole, item));
+    throw UsageError(fmt::format("parse_tau_grid(\"{}\"): tau {} s is not positive", whole, item));
   }
   return value;
 }
@@ -51,7 +51,8 @@ TauGrid parse_tau_grid(std::string_view text) {
     const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), n);
     if (ec != std::errc() || ptr != number.data() + number.size() || n < 1 || n > 1000) {
       throw UsageError(fmt::format(
-          "--taus '{}': the number of points per decade must be an integer from 1 to 1000",
+          "parse_tau_grid(\"{}\"): the number of points per decade must be an integer from 1 to "
+          "1000",
           text));
     }
     grid.kind = TauGridKind::per_decade;
@@ -87,7 +88,7 @@ std::vector<std::int64_t> averaging_factors(const TauGrid& grid, std::int64_t ph
     throw UsageError(fmt::format("sample rate {} Hz is not positive", sample_rate_hz));
   }
   if (grid.min_clusters < 1) {
-    throw UsageError(fmt::format("--min-clusters {} must be at least 1", grid.min_clusters));
+    throw UsageError(fmt::format("TauGrid::min_clusters {} must be at least 1", grid.min_clusters));
   }
   std::vector<std::int64_t> factors;
   if (grid.kind == TauGridKind::list) {

@@ -43,6 +43,10 @@ TEST_P(CliBadInput, ClearMessageExitCodeAndNoOutputLost) {
   args.append(" --csv ").append(quote(dir / "new.csv"));
   const test::CliRun r = test::run_foglab(args);
   EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
+  // The library's messages name its API fields (ReadOptions::sample_rate_hz,
+  // parse_tau_grid("...")); the CLI shows the flags that set them.
+  EXPECT_EQ(r.err.find("::"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("parse_tau_grid"), std::string::npos) << r.err;
   for (const auto& fragment : c.message) {
     EXPECT_NE(r.err.find(fragment), std::string::npos)
         << "missing '" << fragment << "' in: " << r.err;
@@ -80,12 +84,13 @@ INSTANTIATE_TEST_SUITE_P(
                 {"nan.txt", "sample 5", "NaN"}},
         BadCase{
             "InfSample", "1\n2\ninf\n4\n", "inf.txt", "--fs 1", 3, {"inf.txt", "sample 3", "Inf"}},
-        BadCase{"TooFewSamplesForTheGrid",
-                "1\n2\n3\n",
-                "short.txt",
-                "--fs 1",
-                3,
-                {"too few", "oadev", "10 clusters"}},
+        BadCase{
+            "TooFewSamplesForTheGrid",
+            "1\n2\n3\n",
+            "short.txt",
+            "--fs 1",
+            3,
+            {"too few", "oadev", "10 clusters", "lower --min-clusters or list the taus in --taus"}},
         BadCase{"TooFewSamplesForAStatistic",
                 "1\n2\n",
                 "two.txt",
@@ -126,8 +131,42 @@ INSTANTIATE_TEST_SUITE_P(
                 2,
                 {"unknown statistic 'allan'"}},
         BadCase{"MissingFile", "", "", "--fs 1", 2, {"cannot open", "missing.csv"}},
-        BadCase{
-            "RawWithoutSampleRate", std::string(64, '\0'), "raw.f64", "", 2, {"raw.f64", "--fs"}},
+        BadCase{"RawWithoutSampleRate",
+                std::string(64, '\0'),
+                "raw.f64",
+                "",
+                2,
+                {"raw.f64", "raw input has no sample rate: give --fs"}},
+        BadCase{"TextWithoutSampleRate",
+                "1\n2\n3\n",
+                "nofs.txt",
+                "",
+                2,
+                {"nofs.txt", "(no time column t, time or time_s): give --fs"}},
+        BadCase{"ColumnsWithoutAPreferredName",
+                "a,b\n1,2\n3,4\n",
+                "ab.csv",
+                "--fs 1",
+                3,
+                {"ab.csv", "choose one with --channel (a name or a 1-based index)"}},
+        BadCase{"TimeColumnWithAGap",
+                "t,rate\n0,1\n1,2\n2,3\n5,4\n6,5\n",
+                "gap.csv",
+                "",
+                3,
+                {"gap.csv", "give the sample rate [Hz] in --fs (the time is then ignored)"}},
+        BadCase{"UnknownTauGrid",
+                "1\n2\n3\n",
+                "g.txt",
+                "--fs 1 --taus sometimes",
+                2,
+                {"--taus 'sometimes': expected octave, decade, all"}},
+        BadCase{"NoClusters",
+                "1\n2\n3\n",
+                "c.txt",
+                "--fs 1 --min-clusters 0",
+                2,
+                {"--min-clusters 0 must be at least 1"}},
         BadCase{"TruncatedRaw",
                 std::string(63, '\0'),
                 "cut.f64",

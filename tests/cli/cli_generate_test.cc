@@ -62,7 +62,7 @@ TEST(CliGenerate, MatHoldsFtY1T1ReadableByTheReader) {
   const io::Series y = io::read_series(path, channel("Y1"));
   EXPECT_EQ(y.values.size(), 3600u);
   EXPECT_EQ(y.sample_rate_hz, 10.0);
-  EXPECT_EQ(y.sample_rate_source, "variable f");
+  EXPECT_EQ(y.sample_rate_source, io::SampleRateSource::variable_f);
   const io::Series t = io::read_series(path, channel("T1"));
   EXPECT_NEAR(t.values.back() - t.values.front(), 10.0, 0.5);
 }

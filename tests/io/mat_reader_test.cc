@@ -98,7 +98,7 @@ TEST_P(MatVersionTest, LabLayoutGivesY1AndTheRateFromF) {
   EXPECT_EQ(series.channel, "Y1");
   EXPECT_THAT(series.values, ElementsAreArray(ramp(50, 1.5, 0.25)));
   EXPECT_DOUBLE_EQ(series.sample_rate_hz, 100.0);
-  EXPECT_EQ(series.sample_rate_source, "variable f");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::variable_f);
   // v7.3 lists variables in HDF5's name order, the others in file order
   EXPECT_THAT(series.available_channels, UnorderedElementsAre("t", "Y1", "Y2", "T1", "T2"));
   EXPECT_THAT(list_channels(path), UnorderedElementsAre("t", "Y1", "Y2", "T1", "T2"));
@@ -120,7 +120,8 @@ TEST_P(MatVersionTest, RateComesFromTheTimeVariableWithoutF) {
   });
   const Series series = read_series(path, {});
   EXPECT_NEAR(series.sample_rate_hz, 500.0, 1e-9);
-  EXPECT_EQ(series.sample_rate_source, "time column t");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::time_channel);
+  EXPECT_EQ(series.sample_rate_channel, "t");
   EXPECT_EQ(series.channel, "Y1");  // t is time, so Y1 is the only data channel
 }
 
@@ -130,7 +131,7 @@ TEST_P(MatVersionTest, RateOptionOverridesF) {
   options.sample_rate_hz = 2000.0;
   const Series series = read_series(path, options);
   EXPECT_EQ(series.sample_rate_hz, 2000.0);
-  EXPECT_EQ(series.sample_rate_source, "option --fs");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::option);
 }
 
 TEST_P(MatVersionTest, RowAndColumnVectorsReadTheSame) {
@@ -188,7 +189,7 @@ TEST_P(MatVersionTest, SeveralDataVariablesWithoutY1AreAnError) {
   EXPECT_THAT(message, HasSubstr("several data channels"));
   EXPECT_THAT(message, HasSubstr("A"));
   EXPECT_THAT(message, HasSubstr("B"));
-  EXPECT_THAT(message, HasSubstr("--channel"));
+  EXPECT_THAT(message, HasSubstr("choose one with ReadOptions::channel"));
 }
 
 TEST_P(MatVersionTest, UnknownVariableListsTheVariablesPresent) {
@@ -264,7 +265,8 @@ TEST_P(MatVersionTest, ExplicitTimeVariableIsUsedBeforeF) {
   options.time_channel = "clock";
   const Series series = read_series(path, options);
   EXPECT_DOUBLE_EQ(series.sample_rate_hz, 4.0);
-  EXPECT_EQ(series.sample_rate_source, "time column clock");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::time_channel);
+  EXPECT_EQ(series.sample_rate_channel, "clock");
   options.time_channel = "tick";
   EXPECT_THAT(message_of<DataError>([&] { read_series(path, options); }),
               HasSubstr("no time variable 'tick'; variables present: "));
@@ -293,7 +295,7 @@ TEST_P(MatVersionTest, NoRateAnywhereAsksForFs) {
   const std::string path = make([](MatWriter& mat) { mat.vector("Y1", ramp(10, 0.0, 1.0)); });
   const std::string message = message_of<UsageError>([&] { read_series(path, {}); });
   EXPECT_THAT(message, HasSubstr("'" + path + "' has no sample rate"));
-  EXPECT_THAT(message, HasSubstr("give --fs"));
+  EXPECT_THAT(message, HasSubstr("give ReadOptions::sample_rate_hz"));
 }
 
 TEST_P(MatVersionTest, NanSampleIsReportedWithItsIndex) {

@@ -55,7 +55,7 @@ TEST_F(RawReaderTest, Float64RoundTrip) {
   EXPECT_EQ(series.channel, "1");
   EXPECT_THAT(series.values, ElementsAreArray(values));
   EXPECT_EQ(series.sample_rate_hz, 400.0);
-  EXPECT_EQ(series.sample_rate_source, "option --fs");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::option);
   EXPECT_THAT(series.available_channels, ElementsAre("1"));
   EXPECT_THAT(list_channels(path), ElementsAre("1"));
 }
@@ -109,7 +109,7 @@ TEST_F(RawReaderTest, EmptyFileIsADataError) {
 TEST_F(RawReaderTest, MissingSampleRateIsAUsageError) {
   const std::string path = write("rec.f64", little_endian_bytes(std::vector<double>{1.0}));
   EXPECT_EQ(message_of<UsageError>([&] { read_series(path, {}); }),
-            "'" + path + "': raw input has no sample rate: give --fs");
+            "'" + path + "': raw input has no sample rate: give ReadOptions::sample_rate_hz");
 }
 
 TEST_F(RawReaderTest, OnlyChannelOneExists) {

@@ -42,7 +42,8 @@ TEST_F(TextReaderTest, CsvWithHeaderTakesRateAndItsSampleRateFromT) {
   EXPECT_EQ(series.channel, "rate");
   EXPECT_THAT(series.values, ElementsAre(1.5, 2.5, -3.5));
   EXPECT_NEAR(series.sample_rate_hz, 10.0, 1e-12);
-  EXPECT_EQ(series.sample_rate_source, "time column t");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::time_channel);
+  EXPECT_EQ(series.sample_rate_channel, "t");
   EXPECT_THAT(series.available_channels, ElementsAre("t", "rate", "temperature"));
   EXPECT_THAT(list_channels(path), ElementsAre("t", "rate", "temperature"));
 }
@@ -57,7 +58,8 @@ TEST_F(TextReaderTest, TabSeparatedWithTimeHeaderInAnyCase) {
   EXPECT_EQ(series.channel, "Y1");
   EXPECT_THAT(series.values, ElementsAre(1, 2, 3));
   EXPECT_NEAR(series.sample_rate_hz, 4.0, 1e-12);
-  EXPECT_EQ(series.sample_rate_source, "time column Time_S");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::time_channel);
+  EXPECT_EQ(series.sample_rate_channel, "Time_S");
 }
 
 TEST_F(TextReaderTest, WhitespaceColumnsWithoutHeaderAreChosenByIndex) {
@@ -70,7 +72,7 @@ TEST_F(TextReaderTest, WhitespaceColumnsWithoutHeaderAreChosenByIndex) {
   const Series series = read_series(path, options);
   EXPECT_EQ(series.channel, "3");
   EXPECT_THAT(series.values, ElementsAre(-1e-3, 250.0, 3.0));
-  EXPECT_EQ(series.sample_rate_source, "option --fs");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::option);
   EXPECT_THAT(series.available_channels, ElementsAre("1", "2", "3"));
 }
 
@@ -82,7 +84,8 @@ TEST_F(TextReaderTest, TimeColumnOfAHeaderlessFileIsChosenByIndex) {
   const Series series = read_series(path, options);
   EXPECT_THAT(series.values, ElementsAre(5, 6, 7));
   EXPECT_DOUBLE_EQ(series.sample_rate_hz, 2.0);
-  EXPECT_EQ(series.sample_rate_source, "time column 1");
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::time_channel);
+  EXPECT_EQ(series.sample_rate_channel, "1");
 }
 
 TEST_F(TextReaderTest, OneNumericColumnNeedsNoChannel) {
@@ -97,7 +100,7 @@ TEST_F(TextReaderTest, OneColumnWithoutFsAsksForIt) {
   const std::string path = write("rate.txt", "1\n2\n");
   const std::string message = message_of<UsageError>([&] { read_series(path, {}); });
   EXPECT_THAT(message, HasSubstr("'" + path + "' has no sample rate"));
-  EXPECT_THAT(message, HasSubstr("give --fs"));
+  EXPECT_THAT(message, HasSubstr("give ReadOptions::sample_rate_hz"));
 }
 
 TEST_F(TextReaderTest, CommentsBlankLinesCrLfAndQuotesAreHandled) {
@@ -153,7 +156,7 @@ TEST_F(TextReaderTest, SeveralColumnsWithoutAPreferredNameNeedAChannel) {
   const std::string message = message_of<DataError>([&] { read_series(path, {}); });
   EXPECT_THAT(message, HasSubstr("'" + path + "'"));
   EXPECT_THAT(message, HasSubstr("several columns (t, a, b) and none is Y1 or rate"));
-  EXPECT_THAT(message, HasSubstr("--channel"));
+  EXPECT_THAT(message, HasSubstr("choose one with ReadOptions::channel"));
 }
 
 TEST_F(TextReaderTest, TheOnlyNonTimeColumnIsTheDefault) {
@@ -176,7 +179,7 @@ TEST_F(TextReaderTest, TimeWithAGapIsAnErrorWithIndexAndValues) {
   EXPECT_THAT(message, HasSubstr("'" + path + "'"));
   EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample 4 of 't' (line 5): step 0.2 s "
                                  "(0.2 s -> 0.4 s), expected 0.1 s"));
-  // with --fs the time column is not used, so it does not matter
+  // with a sample rate given the time column is not used, so it does not matter
   EXPECT_EQ(read_series(path, with_fs(10.0)).values.size(), 5u);
 }
 
@@ -348,7 +351,7 @@ TEST_F(TextReaderTest, BadSampleRateOptionIsAUsageError) {
   for (double bad : {0.0, -10.0, std::numeric_limits<double>::quiet_NaN(),
                      std::numeric_limits<double>::infinity()}) {
     const std::string message = message_of<UsageError>([&] { read_series(path, with_fs(bad)); });
-    EXPECT_THAT(message, HasSubstr("invalid sample rate --fs"));
+    EXPECT_THAT(message, HasSubstr("invalid sample rate ReadOptions::sample_rate_hz"));
     EXPECT_THAT(message, HasSubstr("'" + path + "'"));
   }
 }

@@ -72,7 +72,7 @@ TEST(WriteMat, EveryVariableRoundTripsThroughTheReader) {
     EXPECT_EQ(s.channel, v.name);
     EXPECT_THAT(s.values, ElementsAreArray(v.values.begin(), v.values.end())) << v.name;
     EXPECT_EQ(s.sample_rate_hz, 10.0);
-    EXPECT_EQ(s.sample_rate_source, "variable f");
+    EXPECT_EQ(s.sample_rate_source, SampleRateSource::variable_f);
   }
   EXPECT_THAT(list_channels(path), ElementsAre("t", "Y1", "Y2", "T1", "T2"));
   EXPECT_THAT(files_in(dir.path()), ElementsAre("FOG1_1.mat"));  // no temporary left

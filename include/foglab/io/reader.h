@@ -1,6 +1,6 @@
 // foglab — reading gyro records: MAT files, text tables, raw binary, stdin.
 //
-// Supported inputs (SPEC.md Part A, CLI.md):
+// Supported inputs (docs/conventions.md, docs/cli.md):
 //   * MAT files v4, v5, v7 (compressed) and v7.3 (HDF5), read through matio.
 //     Variables are chosen by name; the lab's layout is `f` (sample rate,
 //     Hz), `t` (time, s), `Y1`, `Y2` (rate, deg/h), `T1`, `T2` (degC).
@@ -14,10 +14,12 @@
 // The sample rate comes, in this order, from ReadOptions::sample_rate_hz,
 // from a MAT variable `f`, or from a uniformly sampled time column (`t`,
 // `time` or `time_s`; gaps and non-monotonic time are data errors whose
-// message says to give --fs to ignore the time). When `f` gives the rate,
+// message says to give ReadOptions::sample_rate_hz to ignore the time; the
+// naming rules are in channels.h). When `f` gives the rate,
 // a MAT time vector `t`/`time`/`time_s` beside it is still checked (same
 // length as the channel, increasing, no gaps), so that a record with a gap
-// is never analysed as if it were continuous; --fs skips every time check.
+// is never analysed as if it were continuous; ReadOptions::sample_rate_hz
+// skips every time check.
 // An explicit ReadOptions::time_channel is used before `f`. Text headers
 // match the time names without regard to case, except that a column named
 // exactly `T` is the lab's temperature. A time step counts as a gap when it
@@ -70,6 +72,16 @@ std::string_view to_string(InputFormat format);
 /// throws UsageError listing them otherwise.
 InputFormat input_format_from_string(std::string_view text);
 
+/// Where a record's sample rate came from.
+enum class SampleRateSource {
+  option,        ///< ReadOptions::sample_rate_hz
+  variable_f,    ///< the MAT variable `f`
+  time_channel,  ///< a uniformly sampled time variable or column (Series::sample_rate_channel)
+  builtin,       ///< the built-in sample (sample.h)
+};
+/// "option", "variable_f", "time_channel", "builtin".
+std::string_view to_string(SampleRateSource source);
+
 /// How to read one channel of a record.
 struct ReadOptions {
   /// Variable (MAT) or column (text: header name or 1-based index). Empty:
@@ -101,9 +113,10 @@ struct Series {
   std::string channel;          ///< name of the chosen variable or column
   std::vector<double> values;   ///< samples [deg/h] (phase records: [(deg/h)*s])
   double sample_rate_hz = 0.0;  ///< [Hz]
-  /// Where the sample rate came from: "option --fs", "variable f" or
-  /// "time column t" (with the actual name).
-  std::string sample_rate_source;
+  /// Where the sample rate came from.
+  SampleRateSource sample_rate_source = SampleRateSource::option;
+  /// The time variable or column that gave it (time_channel), else empty.
+  std::string sample_rate_channel;
   /// Every data channel the file holds (for messages and listings). MAT:
   /// the real numeric vectors of two or more samples, in file order (v7.3:
   /// name order), `t` and `T1` included, scalars such as `f` not; text:

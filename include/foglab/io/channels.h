@@ -1,0 +1,51 @@
+// foglab — which channel of a record is which: the naming rules shared by
+// the readers and every program that pairs channels.
+//
+//   * Time: a variable or column named `t`, `time` or `time_s` (text
+//     headers without regard to case, except that a column named exactly
+//     `T` is the lab's temperature, never time) gives the sample rate.
+//   * Rate: the lab's files hold `Y1` and `Y2` (the lab manual's lab 2:
+//     `f, t, Y1, Y2, T1, T2`); generate's CSV holds `rate`. With several
+//     data channels and none chosen, `Y1` is read (text: `Y1` or `rate`,
+//     without regard to case).
+//   * Temperature: the lab's `T`, `T1`, `T2`, ... are never data channels.
+//     A rate channel pairs with a temperature by name: a name ending in
+//     digits d with `T` + d (`Y1` with `T1`, `Y2` with `T2`), a name without
+//     digits (`rate`) with `T` or `temperature`.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace foglab::io {
+
+/// The automatic time-channel names, in order of preference.
+inline constexpr std::array<std::string_view, 3> kTimeChannelNames = {"t", "time", "time_s"};
+
+/// The data channels read when a file has several and none was chosen, in
+/// order of preference (MAT: the first only; text: both, without regard
+/// to case).
+inline constexpr std::array<std::string_view, 2> kDefaultDataChannels = {"Y1", "rate"};
+
+/// True for a name of kTimeChannelNames; with `ignore_case` (text headers)
+/// also `Time`, `TIME_S`, ..., but never `T`.
+bool is_time_channel_name(std::string_view name, bool ignore_case);
+
+/// True for the lab's temperature names `T`, `T1`, `T2`, ....
+bool is_lab_temperature_name(std::string_view name);
+
+/// The temperature channel names that pair with a rate channel, in order
+/// of preference: `T1` for `Y1`, `T` and `temperature` for `rate`, none for
+/// a bare column index such as `2`.
+std::vector<std::string> paired_temperature_names(std::string_view rate_channel);
+
+/// The channel of `channels` called `name`: exactly, else (with
+/// `ignore_case`) without regard to case, but never a time channel
+/// standing in for the lab's temperature `T`.
+std::optional<std::string> find_channel(const std::vector<std::string>& channels,
+                                        std::string_view name, bool ignore_case);
+
+}  // namespace foglab::io
