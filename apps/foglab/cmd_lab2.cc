@@ -21,6 +21,7 @@
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
 #include "foglab/core/output.h"
+#include "foglab/io/channels.h"
 #include "foglab/io/writer.h"
 #include "foglab/model/analysis.h"
 #include "foglab/report/lab2.h"
@@ -57,8 +58,7 @@ struct Output {
   std::string text;
 };
 
-constexpr std::array<const char*, 2> kRateNames = {"Y1", "Y2"};
-constexpr std::array<const char*, 2> kTemperatureNames = {"T1", "T2"};
+constexpr std::array<const char*, 2> kRateNames = {"Y1", "Y2"};  // their temperatures: io/channels.h
 constexpr std::array<report::Lab2Condition, 2> kConditions = {report::Lab2Condition::constant,
                                                               report::Lab2Condition::ramp};
 
@@ -135,7 +135,7 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
     // Every variable of the file, usable or not (a char or complex Y1 is
     // not a channel, but the reader says why when it is asked for it).
     const std::vector<std::string> variables = io::list_variables(path);
-    auto present = [&](const char* name) {
+    auto present = [&](std::string_view name) {
       return std::find(variables.begin(), variables.end(), name) != variables.end();
     };
     io::ReadOptions read;
@@ -168,20 +168,21 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
       p.run.input.file_name = path;
       p.run.input.channel = rate.channel;
       p.json.input = input_json(rate);
-      if (present(kTemperatureNames[k])) {
-        io::Series t = read_channel(kTemperatureNames[k], rate.sample_rate_hz);
+      const std::string temperature = io::paired_temperature_names(kRateNames[k]).front();
+      if (present(temperature)) {
+        io::Series t = read_channel(temperature.c_str(), rate.sample_rate_hz);
         if (t.values.size() != rate.values.size()) {
           throw DataError(
               fmt::format("'{}': {} has {} samples but {} has {}; they must be sampled together",
                           path, rate.channel, rate.values.size(), t.channel, t.values.size()));
         }
         p.temperature_c = std::move(t.values);
-        p.run.input.temperature_channel = kTemperatureNames[k];
-        p.json.temperature_channel = kTemperatureNames[k];
+        p.run.input.temperature_channel = temperature;
+        p.json.temperature_channel = temperature;
       } else {
         const std::string text =
             fmt::format("'{}' has no {}: the systematic part of {} is a constant (the record mean)",
-                        path, kTemperatureNames[k], rate.channel);
+                        path, temperature, rate.channel);
         note(text);
         p.run.input.notes.push_back(text);
         p.json.notes.push_back(text);
