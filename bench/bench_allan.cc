@@ -30,7 +30,7 @@ const std::vector<double>& record() {
 }
 
 const std::vector<double>& phase() {
-  static const std::vector<double> x = stats::to_phase(record(), 100.0, InputKind::rate);
+  static const std::vector<double> x = stats::detail::to_phase(record(), 100.0, InputKind::rate);
   return x;
 }
 
@@ -78,7 +78,8 @@ void BM_OadevOctaveFromPhase(benchmark::State& state) {
   double best_s = 1e30;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(stats::deviations_from_phase(x, stats::AllanKind::oadev, factors));
+    benchmark::DoNotOptimize(
+        stats::detail::deviations_from_phase(x, stats::AllanKind::oadev, factors));
     best_s = std::min(best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
                                   .count());
   }
@@ -94,7 +95,7 @@ void BM_OadevOctaveFromPhase(benchmark::State& state) {
 
 void BM_ToPhase(benchmark::State& state) {
   const auto& y = record();
-  for (auto _ : state) benchmark::DoNotOptimize(stats::to_phase(y, 100.0, InputKind::rate));
+  for (auto _ : state) benchmark::DoNotOptimize(stats::detail::to_phase(y, 100.0, InputKind::rate));
 }
 
 void BM_AllanDeviation(benchmark::State& state) {

@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """Lists what differs between two trees of foglab outputs (bench/json_compare.sh).
 
-Usage: json_diff.py OLD_DIR NEW_DIR
+Usage: json_diff.py [--summary] OLD_DIR NEW_DIR
 
 Files are paired by relative path. Identical files are counted. JSON files
 that differ are walked value by value: every changed number is printed with
 its relative change, every added or removed field by name. Other files that
 differ are shown as a unified diff (first lines). Exit status 0 when
-everything is identical, 1 otherwise.
+everything is identical, 1 otherwise. With --summary, each differing JSON
+file gets one line for its changed numbers (how many, the largest relative
+change and where) and its other changes are listed in full.
 """
+import re
 import difflib
 import json
 import math
@@ -40,8 +43,25 @@ def walk(a, b, path, out):
         out.append(f"{path}: {json.dumps(a)[:80]} -> {json.dumps(b)[:80]}")
 
 
+NUMBER_CHANGE = re.compile(r"^(.*): \S+ -> \S+ \(relative ([0-9.e+-]+)\)$")
+
+
+def summarize(out):
+    """Changed numbers in one line; everything else as it is."""
+    numbers = [(float(m.group(2)), m.group(1)) for m in map(NUMBER_CHANGE.match, out) if m]
+    others = [line for line in out if not NUMBER_CHANGE.match(line)]
+    lines = []
+    if numbers:
+        worst = max(numbers)
+        lines.append(f"{len(numbers)} numbers changed, largest relative {worst[0]:.2e} at {worst[1]}")
+    return lines + others
+
+
 def main():
-    old_dir, new_dir = sys.argv[1], sys.argv[2]
+    args = sys.argv[1:]
+    summary = "--summary" in args
+    args = [a for a in args if a != "--summary"]
+    old_dir, new_dir = args[0], args[1]
     files = set()
     for top in (old_dir, new_dir):
         for root, _, names in os.walk(top):
@@ -65,7 +85,7 @@ def main():
         if rel.endswith(".json"):
             out = []
             walk(json.loads(a_bytes), json.loads(b_bytes), "", out)
-            for line in out:
+            for line in summarize(out) if summary else out:
                 print(f"   {line}")
         else:
             lines = difflib.unified_diff(a_bytes.decode(errors="replace").splitlines(),

@@ -250,7 +250,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"random_bias_evidence", evidence_json(r.evidence)},
           {"readings", readings},
           {"accuracy_class", std::string(to_string(r.verdict.accuracy_class))},
-          {"accuracy_class_decided_by", r.verdict.decided_by},
+          {"accuracy_class_decided_by", std::string(to_string(r.verdict.decided_by))},
           {"class_by_bias_instability", std::string(to_string(r.verdict.by_bias_instability))},
           {"class_by_arw", std::string(to_string(r.verdict.by_arw))},
           {"fit", fit_json(r.noise, options.noise_fit)},

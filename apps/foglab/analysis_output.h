@@ -1,4 +1,4 @@
-// foglab CLI — the JSON (CLI.md's `analyze --json` contract) and the Allan
+// foglab CLI — the JSON (the `analyze --json` contract of docs/json.md) and the Allan
 // table CSV of one analysis, shared by `analyze` and `lab2`. Formatting
 // only: the numbers come from model::analyze().
 #pragma once
@@ -22,7 +22,7 @@ struct AnalysisJsonInput {
   std::vector<std::string> notes;    ///< the command's notes (before the analysis's)
 };
 
-/// The whole analysis as JSON (CLI.md).
+/// The whole analysis as JSON (docs/json.md).
 nlohmann::json analysis_json(const model::AnalysisResult& result, const AnalysisJsonInput& input,
                              const model::AnalysisOptions& options);
 

@@ -22,7 +22,7 @@ struct CommandLine {
 std::unique_ptr<CommandLine> make_command_line();
 
 /// Parses the arguments, runs the chosen subcommand and maps errors to the
-/// exit codes of SPEC.md Part D (0 ok, 1 internal, 2 usage, 3 bad data).
+/// exit codes of docs/conventions.md section 11 (0 ok, 1 internal, 2 usage, 3 bad data).
 int run_command_line(int argc, char** argv);
 
 }  // namespace foglab::cli

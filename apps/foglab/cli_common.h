@@ -61,7 +61,7 @@ io::Series load_input(const InputOptions& options);
 nlohmann::json number(double value);
 nlohmann::json numbers(const std::vector<double>& values);
 
-/// An error model as JSON, in SPEC.md units (truth files, answer keys).
+/// An error model as JSON, in the units of docs/conventions.md (truth files, answer keys).
 nlohmann::json model_json(const sim::ErrorModel& model);
 /// N, B, K, R, Q, gm_sigma, gm_tc of a noise model (units: model_units_json()).
 nlohmann::json noise_model_json(const NoiseModel& model);

@@ -14,6 +14,12 @@
 namespace foglab::cli {
 namespace {
 
+std::vector<std::string> alpha_methods(const stats::AllanResult& r) {
+  std::vector<std::string> out;
+  for (const stats::AlphaMethod& m : r.alpha_method) out.push_back(stats::to_string(m));
+  return out;
+}
+
 struct AllanCommand {
   InputOptions input;
   std::string kind = "oadev";
@@ -39,7 +45,7 @@ nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
           {"n", r.n},
           {"m", r.m},
           {"alpha", r.alpha},
-          {"alpha_method", r.alpha_method},
+          {"alpha_method", alpha_methods(r)},
           {"edf", numbers(r.edf)},
           {"ci68_low", numbers(r.ci68_low)},
           {"ci68_high", numbers(r.ci68_high)},

@@ -102,7 +102,8 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   if (!c.temp_channel.empty()) {
     const bool index = std::all_of(c.temp_channel.begin(), c.temp_channel.end(),
                                    [](unsigned char ch) { return std::isdigit(ch) != 0; });
-    const auto found = io::find_channel(series.available_channels, c.temp_channel, true);
+    const auto found =
+        io::find_channel(series.available_channels, c.temp_channel, io::NameMatch::ignore_case);
     if (!found && !index && unusable(c.temp_channel)) {
       name = c.temp_channel;
     } else if (!found && !index) {
@@ -115,7 +116,9 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
     const std::vector<std::string> wanted = io::paired_temperature_names(series.channel);
     for (const auto& w : wanted) {
       // The lab's T1, T2, T exactly; generate's "temperature" in any case.
-      const auto found = io::find_channel(series.available_channels, w, w == "temperature");
+      const auto found =
+          io::find_channel(series.available_channels, w,
+                           w == "temperature" ? io::NameMatch::ignore_case : io::NameMatch::exact);
       if (found && *found != series.channel) {
         name = *found;
         break;

@@ -82,18 +82,6 @@ std::vector<double> parse_coefs(const std::string& text) {
   return out;
 }
 
-std::string_view to_string(sim::TemperatureKind k) {
-  switch (k) {
-    case sim::TemperatureKind::constant:
-      return "constant";
-    case sim::TemperatureKind::ramp:
-      return "ramp";
-    case sim::TemperatureKind::file:
-      return "file";
-  }
-  return "";
-}
-
 nlohmann::json units_json() {
   nlohmann::json units = model_units_json();
   units["rate"] = "deg/h";
@@ -189,7 +177,7 @@ void run(const GenerateCommand& c) {
   const ClassVerdict verdict = classify(bi.adev_deg_h, arw);
   if (!c.truth.empty()) {
     nlohmann::json temp = {{"spec", c.temperature},
-                           {"kind", std::string(to_string(temperature.kind))},
+                           {"kind", std::string(sim::to_string(temperature.kind))},
                            {"start_c", temperature.start_c},
                            {"span_c", temperature.span_c},
                            {"jitter_c", temperature.jitter_c},
@@ -215,7 +203,7 @@ void run(const GenerateCommand& c) {
           {"bias_instability_at_range_edge", bi.at_range_edge},
           {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
           {"accuracy_class", std::string(to_string(verdict.accuracy_class))},
-          {"class_decided_by", verdict.decided_by}}}};
+          {"class_decided_by", std::string(to_string(verdict.decided_by))}}}};
     write_text_file(c.truth, truth.dump(2) + "\n");
   }
   if (c.truth != "-") {

@@ -53,11 +53,11 @@ nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const
       {"file", g.file_name},
       {"gyro", g.name},
       {"variant", v.variant},
-      {"run", r.temperature.kind == sim::TemperatureKind::constant ? "constant" : "ramp"},
+      {"run", std::string(sim::to_string(r.temperature.kind))},
       {"rate_variable", r.rate_name},
       {"temperature_variable", r.temperature_name},
       {"temperature",
-       {{"kind", r.temperature.kind == sim::TemperatureKind::constant ? "constant" : "ramp"},
+       {{"kind", std::string(sim::to_string(r.temperature.kind))},
         {"start_c", r.temperature.start_c},
         {"span_c", r.temperature.span_c},
         {"jitter_c", r.temperature.jitter_c},
@@ -87,7 +87,7 @@ nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const
         {"accuracy_class", std::string(sim::to_string(g.verdict.accuracy_class))},
         {"class_by_bias_instability", std::string(sim::to_string(g.verdict.by_bias_instability))},
         {"class_by_arw", std::string(sim::to_string(g.verdict.by_arw))},
-        {"class_decided_by", g.verdict.decided_by}}}};
+        {"class_decided_by", std::string(to_string(g.verdict.decided_by))}}}};
 }
 
 std::string cell(const nlohmann::json& j) {

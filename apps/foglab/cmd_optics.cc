@@ -107,7 +107,7 @@ SweepInDegrees in_degrees(const sim::SweepResult& s) {
   return d;
 }
 
-/// CLI.md's sweep fields (rates, outputs, scale factors, nonlinearity).
+/// docs/json.md's sweep fields (rates, outputs, scale factors, nonlinearity).
 nlohmann::json sweep_json(const sim::SweepResult& s) {
   const SweepInDegrees d = in_degrees(s);
   return {{"rates_deg_s", d.rates_deg_s},

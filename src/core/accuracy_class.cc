@@ -15,6 +15,18 @@ std::string_view to_string(AccuracyClass c) {
   return "consumer";
 }
 
+std::string_view to_string(ClassCriterion c) {
+  switch (c) {
+    case ClassCriterion::both:
+      return "both";
+    case ClassCriterion::bias_instability:
+      return "bias_instability";
+    case ClassCriterion::arw:
+      return "arw";
+  }
+  return "both";
+}
+
 AccuracyClass class_by_bias_instability(double bi_deg_h) {
   if (bi_deg_h < 0.001) return AccuracyClass::strategic;
   if (bi_deg_h < 0.01) return AccuracyClass::navigation;
@@ -36,9 +48,9 @@ ClassVerdict classify(double bi_deg_h, double arw_deg_sqrt_h) {
   v.by_bias_instability = class_by_bias_instability(bi_deg_h);
   v.by_arw = class_by_arw(arw_deg_sqrt_h);
   v.accuracy_class = std::max(v.by_bias_instability, v.by_arw);
-  v.decided_by = v.by_bias_instability == v.by_arw ? "both"
-                 : v.by_bias_instability > v.by_arw ? "bias_instability"
-                                                    : "arw";
+  v.decided_by = v.by_bias_instability == v.by_arw  ? ClassCriterion::both
+                 : v.by_bias_instability > v.by_arw ? ClassCriterion::bias_instability
+                                                    : ClassCriterion::arw;
   return v;
 }
 

@@ -16,7 +16,8 @@ std::string lower_case(std::string_view text) {
 
 }  // namespace
 
-bool is_time_channel_name(std::string_view name, bool ignore_case) {
+bool is_time_channel_name(std::string_view name, NameMatch match) {
+  const bool ignore_case = match == NameMatch::ignore_case;
   if (ignore_case && name == "T") return false;  // the lab's temperature, not time
   const std::string key = ignore_case ? lower_case(name) : std::string(name);
   return std::find(kTimeChannelNames.begin(), kTimeChannelNames.end(), key) !=
@@ -44,15 +45,15 @@ std::vector<std::string> paired_temperature_names(std::string_view rate_channel)
 }
 
 std::optional<std::string> find_channel(const std::vector<std::string>& channels,
-                                        std::string_view name, bool ignore_case) {
+                                        std::string_view name, NameMatch match) {
   for (const auto& c : channels) {
     if (c == name) return c;
   }
-  if (!ignore_case) return std::nullopt;
+  if (match == NameMatch::exact) return std::nullopt;
   const std::string key = lower_case(name);
   for (const auto& c : channels) {
     // (any case of t, time, time_s: a time column is no temperature)
-    if (lower_case(c) == key && !is_time_channel_name(key, false)) return c;
+    if (lower_case(c) == key && !is_time_channel_name(key, NameMatch::exact)) return c;
   }
   return std::nullopt;
 }

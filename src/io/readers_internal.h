@@ -128,4 +128,18 @@ std::vector<std::string> list_text_channels(const std::string& path);
 /// `format` is InputFormat::f32 or InputFormat::f64.
 Series read_raw(const std::string& path, const ReadOptions& options, InputFormat format);
 
+// Structural checks of a MAT file before matio reads it (mat_checks.cc);
+// each throws DataError naming the file.
+/// v5/v7: every top-level element lies inside the file's `size` bytes.
+void check_mat5_layout(const std::string& path, std::uint64_t size);
+/// v4: every variable (header, name, data) lies inside the file.
+void check_mat4_layout(const std::string& path, std::uint64_t size);
+/// A file without v5's header marks whose first bytes read as a v4 header
+/// claiming more than the file holds is refused before matio allocates it.
+void check_mat4_first_header(const std::string& path, std::uint64_t size);
+/// Opens a v7.3 file's metadata in a child process; throws when HDF5 crashes.
+void probe_mat73_in_child(const std::string& path);
+/// The offset of an HDF5 superblock signature (0, 512, 1024, ...), if any.
+std::optional<std::uint64_t> hdf5_signature_offset(const std::string& path, std::uint64_t size);
+
 }  // namespace foglab::io::internal

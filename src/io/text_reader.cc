@@ -333,7 +333,7 @@ std::optional<std::size_t> find_time_column(const std::string& path, const Layou
   }
   if (!layout.has_header) return std::nullopt;
   for (std::size_t k = 0; k < layout.names.size(); ++k) {
-    if (is_time_channel_name(layout.names[k], true)) return k;
+    if (is_time_channel_name(layout.names[k], NameMatch::ignore_case)) return k;
   }
   return std::nullopt;
 }

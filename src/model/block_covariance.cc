@@ -32,7 +32,8 @@ double flicker_structure(const NoiseModel& m, double s) {
 // apart differ by the average of lag-k tau increments that overlap by
 // k tau - |s - u|, so E[(ybar_a - ybar_{a+k})^2] = K^2 (k tau - tau/3).
 std::vector<double> block_covariance(const NoiseModel& m, double tau, std::size_t lags,
-                                     bool stationary) {
+                                     TermGroup group) {
+  const bool stationary = group == TermGroup::stationary;
   auto second = [&](auto&& d, double k) {
     return (2.0 * d(tau) + 2.0 * d(k * tau) - d((k + 1.0) * tau) - d(std::fabs(k - 1.0) * tau)) /
            (tau * tau);

@@ -10,12 +10,17 @@
 
 namespace foglab::model::detail {
 
+/// Which terms of a model: those with a finite variance, or the others.
+enum class TermGroup {
+  stationary,     ///< white, quantisation, Gauss-Markov
+  non_stationary  ///< flicker and Wiener
+};
+
 /// Covariance of the means of consecutive blocks of `tau` seconds at lags
-/// 0..lags-1 [(deg/h)^2] for the terms of `m`: the stationary ones (white,
-/// quantisation, Gauss-Markov) when `stationary`, else flicker and Wiener,
-/// which have no variance and are given up to a matrix f(a) + f(b) that any
+/// 0..lags-1 [(deg/h)^2] for the terms of `m` in `group`. The non-stationary
+/// terms have no variance and are given up to a matrix f(a) + f(b) that any
 /// contrast (weights summing to zero) cancels.
 std::vector<double> block_covariance(const NoiseModel& m, double tau, std::size_t lags,
-                                     bool stationary);
+                                     TermGroup group);
 
 }  // namespace foglab::model::detail

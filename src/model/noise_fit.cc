@@ -160,7 +160,7 @@ NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOp
   edf.resize(allan.dev.size(), kNaN);
   for (std::size_t i = 0; i < edf.size(); ++i) {
     if (!std::isfinite(edf[i])) {
-      edf[i] = stats::greenhall_edf(0, 2, allan.m[i], allan.phase_points, true, false);
+      edf[i] = stats::greenhall_edf(0, allan.m[i], allan.phase_points);
     }
   }
   return fit_impl(allan.tau_s, allan.dev, edf, allan.m, allan.phase_points, options, detrend);

@@ -47,8 +47,7 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
       std::array<double, 4> e{};
       const int alphas[] = {-2, -1, 0, 2};
       for (int a = 0; a < 4; ++a) {
-        e[static_cast<std::size_t>(a)] =
-            stats::greenhall_edf(alphas[a], 2, factors[i], phase_points, true, false);
+        e[static_cast<std::size_t>(a)] = stats::greenhall_edf(alphas[a], factors[i], phase_points);
       }
       p.edf_by_alpha.push_back(e);
       p.factors.push_back(factors[i]);

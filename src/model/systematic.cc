@@ -18,6 +18,7 @@ namespace foglab::model {
 namespace {
 
 using detail::block_covariance;
+using detail::TermGroup;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxDegree = 3;
@@ -242,10 +243,10 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> middle(const BlockPowers& blocks, st
   const Eigen::MatrixXd x = blocks.means.leftCols(degree + 1);
   const double l = static_cast<double>(length) *
                    (static_cast<double>(samples) / static_cast<double>(m * length));
-  auto form = [&](bool stationary) -> Eigen::MatrixXd {
-    return l * l * (x.transpose() * toeplitz_times(block_covariance(noise, tau, m, stationary), x));
+  auto form = [&](TermGroup group) -> Eigen::MatrixXd {
+    return l * l * (x.transpose() * toeplitz_times(block_covariance(noise, tau, m, group), x));
   };
-  return {form(true), form(false)};
+  return {form(TermGroup::stationary), form(TermGroup::non_stationary)};
 }
 
 double polynomial(const std::vector<double>& c, double u) {
@@ -405,9 +406,10 @@ DetrendFactors detrend_of(const Sums& s, int degree, std::span<const double> tau
                                                     {NoiseTerm::random_walk, {.K = 1.0}},
                                                     {NoiseTerm::quantisation, {.Q = 1.0}}};
   for (const auto& [term, unit] : units) {
-    const bool stationary = term == NoiseTerm::white || term == NoiseTerm::quantisation;
-    f.linear[static_cast<int>(term)] =
-        factors_of(block_covariance(unit, tau_b, m_blocks, stationary));
+    const TermGroup group = term == NoiseTerm::white || term == NoiseTerm::quantisation
+                                ? TermGroup::stationary
+                                : TermGroup::non_stationary;
+    f.linear[static_cast<int>(term)] = factors_of(block_covariance(unit, tau_b, m_blocks, group));
   }
   // The rate ramp is deterministic: the residual's Allan variance over the ramp's.
   {
@@ -434,8 +436,8 @@ DetrendFactors detrend_of(const Sums& s, int degree, std::span<const double> tau
   for (int step = 0; step <= steps; ++step) {
     const double tc = std::exp(lo + (hi - lo) * step / steps);
     f.gm_tc_s[static_cast<std::size_t>(step)] = tc;
-    f.gm[static_cast<std::size_t>(step)] =
-        factors_of(block_covariance({.gm_sigma = 1.0, .gm_tc = tc}, tau_b, m_blocks, true));
+    f.gm[static_cast<std::size_t>(step)] = factors_of(
+        block_covariance({.gm_sigma = 1.0, .gm_tc = tc}, tau_b, m_blocks, TermGroup::stationary));
   }
   return f;
 }

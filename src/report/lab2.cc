@@ -200,10 +200,11 @@ void build_rows(Lab2Table& t) {
       t, "accuracy class", "Table 1: worse of BI and ARW", "-",
       [](const Lab2Run& r) {
         const ClassVerdict& v = r.result.verdict;
-        return Lab2Cell{
-            kNaN, kNaN, kNaN,
-            fmt::format("{} ({})", to_string(v.accuracy_class),
-                        v.decided_by == "both" ? "both criteria" : "by " + v.decided_by)};
+        return Lab2Cell{kNaN, kNaN, kNaN,
+                        fmt::format("{} ({})", to_string(v.accuracy_class),
+                                    v.decided_by == ClassCriterion::both
+                                        ? "both criteria"
+                                        : "by " + std::string(to_string(v.decided_by)))};
       },
       [](const Lab2Truth& tr) { return std::string(to_string(tr.accuracy_class)); });
 }
@@ -340,11 +341,9 @@ std::string class_text(const Lab2Table& t) {
     const ClassVerdict& v = t.runs[k]->result.verdict;
     text += fmt::format("{} {} {} ({})", first ? "" : ",", to_string(v.accuracy_class),
                         k == 0 ? "at constant temperature" : "during the temperature ramp",
-                        v.decided_by == "both"
-                            ? "both criteria agree"
-                            : "decided by " + std::string(v.decided_by == "arw" ? "the ARW"
-                                                                                : "the bias "
-                                                                                  "instability"));
+                        v.decided_by == ClassCriterion::both  ? "both criteria agree"
+                        : v.decided_by == ClassCriterion::arw ? "decided by the ARW"
+                                                              : "decided by the bias instability");
     first = false;
   }
   return text;

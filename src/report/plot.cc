@@ -306,7 +306,7 @@ std::string gnuplot_quote(const std::string& text) {
   return out;
 }
 
-std::string gnuplot_script(const Plot& plot, const PlotOptions& options) {
+std::string detail::gnuplot_script(const Plot& plot, const PlotOptions& options) {
   std::string s;
   s += fmt::format("set terminal svg size {},{} fixed font {} noenhanced background '#ffffff'\n",
                    options.width_px, options.height_px, gnuplot_quote(options.font));
@@ -446,7 +446,7 @@ std::string gnuplot_script(const Plot& plot, const PlotOptions& options) {
 
 PlotOutcome render_svg(const Plot& plot, const PlotOptions& options) {
   PlotOutcome outcome;
-  const ProcessResult r = run_process({options.gnuplot}, gnuplot_script(plot, options));
+  const ProcessResult r = run_process({options.gnuplot}, detail::gnuplot_script(plot, options));
   if (!r.started) {
     outcome.gnuplot_missing = true;
     outcome.error =

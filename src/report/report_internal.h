@@ -40,6 +40,9 @@ std::string random_bias_answer(const model::AnalysisResult& r);
 /// "tactical (decided by ...; by bias instability ...; by ARW ...)".
 std::string class_sentence(const model::AnalysisResult& r);
 
+/// The report's title, else "file (channel)", else the file name.
+std::string record_title(const ReportInput& input);
+
 /// <td>/<th> with the text escaped.
 std::string td(std::string_view text);
 std::string th(std::string_view text);

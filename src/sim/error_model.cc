@@ -13,6 +13,19 @@
 #include "foglab/core/error.h"
 
 namespace foglab::sim {
+
+std::string_view to_string(TemperatureKind kind) {
+  switch (kind) {
+    case TemperatureKind::constant:
+      return "constant";
+    case TemperatureKind::ramp:
+      return "ramp";
+    case TemperatureKind::file:
+      return "file";
+  }
+  return "constant";
+}
+
 namespace {
 
 // Whole-string decimal number, or false.

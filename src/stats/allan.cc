@@ -232,9 +232,9 @@ std::int64_t max_factor(AllanKind kind, std::int64_t phase_points) {
   return 0;
 }
 
-std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKind kind,
-                                          std::span<const std::int64_t> factors,
-                                          std::vector<std::int64_t>* terms) {
+std::vector<double> detail::deviations_from_phase(std::span<const double> phase, AllanKind kind,
+                                                  std::span<const std::int64_t> factors,
+                                                  std::vector<std::int64_t>* terms) {
   const auto n = static_cast<std::int64_t>(phase.size());
   const std::int64_t limit = max_factor(kind, n);
   std::vector<std::int64_t> counts(factors.size());
@@ -320,7 +320,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
         record_samples, to_string(input), to_string(options.kind), options.grid.min_clusters,
         options.grid.min_clusters + (input == InputKind::rate ? 0 : 1)));
   }
-  result.dev = deviations_from_phase(phase, options.kind, result.m, &result.n);
+  result.dev = detail::deviations_from_phase(phase, options.kind, result.m, &result.n);
   const std::size_t count = result.m.size();
   const double tau0_s = 1.0 / sample_rate_hz;
   result.tau_s.resize(count);
@@ -331,7 +331,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
 
   const double nan = std::numeric_limits<double>::quiet_NaN();
   result.alpha.assign(count, 0);
-  result.alpha_method.assign(count, "");
+  result.alpha_method.assign(count, AlphaMethod{});
   result.edf.assign(count, nan);
   result.ci68_low.assign(count, nan);
   result.ci68_high.assign(count, nan);
@@ -348,7 +348,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
   // edf; such calls beyond the shortest FM tau are taken as white FM.
   std::int64_t shortest_fm_m = std::numeric_limits<std::int64_t>::max();
   for (std::size_t k = 0; k < count; ++k) {
-    if (ids[k].method != "none" && ids[k].alpha <= 0) {
+    if (ids[k].method != NoiseIdMethod::none && ids[k].alpha <= 0) {
       shortest_fm_m = std::min(shortest_fm_m, result.m[k]);
     }
   }
@@ -356,22 +356,33 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t m = result.m[k];
     NoiseId id = ids[k];
-    if (id.method == "none") id.alpha = previous_alpha;
+    AlphaMethod how{id.method, false};
+    if (id.method == NoiseIdMethod::none) id.alpha = previous_alpha;
     if (id.alpha > 0 && m > shortest_fm_m) {
       id.alpha = 0;
-      id.method += ",fm_floor";
+      how.fm_floor = true;
     }
     previous_alpha = id.alpha;
     result.alpha[k] = id.alpha;
-    result.alpha_method[k] = id.method;
+    result.alpha_method[k] = how;
     double edf = nan;
     switch (options.kind) {
-      case AllanKind::adev: edf = greenhall_edf(id.alpha, 2, m, n, false, false); break;
-      case AllanKind::oadev: edf = greenhall_edf(id.alpha, 2, m, n, true, false); break;
+      case AllanKind::adev:
+        edf = greenhall_edf(id.alpha, m, n, {.stride = Stride::non_overlapping});
+        break;
+      case AllanKind::oadev:
+        edf = greenhall_edf(id.alpha, m, n);
+        break;
       case AllanKind::mdev:
-      case AllanKind::tdev: edf = greenhall_edf(id.alpha, 2, m, n, true, true); break;
-      case AllanKind::hdev: edf = greenhall_edf(id.alpha, 3, m, n, false, false); break;
-      case AllanKind::ohdev: edf = greenhall_edf(id.alpha, 3, m, n, true, false); break;
+      case AllanKind::tdev:
+        edf = greenhall_edf(id.alpha, m, n, {.filter = Filter::modified});
+        break;
+      case AllanKind::hdev:
+        edf = greenhall_edf(id.alpha, m, n, {.order = 3, .stride = Stride::non_overlapping});
+        break;
+      case AllanKind::ohdev:
+        edf = greenhall_edf(id.alpha, m, n, {.order = 3});
+        break;
       case AllanKind::totdev: edf = totdev_edf(id.alpha, m, n); break;
     }
     result.edf[k] = edf;
@@ -389,14 +400,14 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
 
 AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
                             InputKind input, const AllanOptions& options) {
-  const std::vector<double> phase = to_phase(samples, sample_rate_hz, input);
+  const std::vector<double> phase = detail::to_phase(samples, sample_rate_hz, input);
   return allan_from_phase(phase, samples.size(), sample_rate_hz, input, options);
 }
 
 AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
                                      InputKind input, const AllanOptions& options) {
   const std::size_t record_samples = samples.size();
-  to_phase_in_place(samples, sample_rate_hz, input);
+  detail::to_phase_in_place(samples, sample_rate_hz, input);
   return allan_from_phase(samples, record_samples, sample_rate_hz, input, options);
 }
 

@@ -110,8 +110,11 @@ double binomial(int n, int k) {
 
 }  // namespace
 
-double greenhall_edf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
-                     bool modified) {
+double greenhall_edf(int alpha, std::int64_t m, std::int64_t n_phase,
+                     const DifferenceVariance& variance) {
+  const int d = variance.order;
+  const bool overlapping = variance.stride == Stride::overlapping;
+  const bool modified = variance.filter == Filter::modified;
   if (d < 1 || d > 3 || alpha > 2 || alpha < -4 || alpha + 2 * d <= 1 || m < 1) return kNaN;
   const double md = static_cast<double>(m);
   const double F = modified ? 1.0 : md;  // filter factor
@@ -185,7 +188,8 @@ double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase) {
     case 0: return 1.50 * ratio;
     case -1: return 1.17 * ratio - 0.22;
     case -2: return 0.93 * ratio - 0.36;
-    default: return greenhall_edf(alpha, 2, m, n_phase, true, false);
+    default:
+      return greenhall_edf(alpha, m, n_phase);
   }
 }
 

@@ -131,7 +131,7 @@ NoiseId decide(const double* x, const Lag1Factor& f, const std::vector<DiffSums>
     tail[i] = f.residual(x, f.K - (kMaxD + 2) + i);
   }
   NoiseId id;
-  id.method = "lag1_acf";
+  id.method = NoiseIdMethod::lag1_acf;
   for (int order = 0; order <= d_max; ++order) {
     CompensatedSum s1, s2, sl;
     for (const auto& p : parts) {
@@ -232,7 +232,7 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
   const std::int64_t count = (n - 1) / m;  // number of m-sample averages
   NoiseId id;
   if (count < 3) {
-    id.method = "none";
+    id.method = NoiseIdMethod::none;
     return id;
   }
   std::vector<double> avg(static_cast<std::size_t>(count));
@@ -260,7 +260,7 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
       break;
     }
   }
-  id.method = "b1";
+  id.method = NoiseIdMethod::b1;
   if (mu >= -1) {
     id.alpha = -mu - 1;
     return id;
@@ -274,15 +274,15 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
     return id;
   }
   const std::array<std::int64_t, 1> factor = {m};
-  const double adev = deviations_from_phase(phase, AllanKind::adev, factor)[0];
-  const double mdev = deviations_from_phase(phase, AllanKind::mdev, factor)[0];
+  const double adev = detail::deviations_from_phase(phase, AllanKind::adev, factor)[0];
+  const double mdev = detail::deviations_from_phase(phase, AllanKind::mdev, factor)[0];
   const double rn = adev > 0.0 ? (mdev * mdev) / (adev * adev) : 0.5;
   const double md = static_cast<double>(m);
   const double rn_white_pm = 1.0 / md;
   const double rn_flicker_pm =
       3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
   const double rn_white_fm = 0.5;
-  id.method = "b1_rn";
+  id.method = NoiseIdMethod::b1_rn;
   if (rn < std::sqrt(rn_white_pm * rn_flicker_pm)) {
     id.alpha = 2;
   } else if (rn < std::sqrt(rn_flicker_pm * rn_white_fm)) {
@@ -294,6 +294,28 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
 }
 
 }  // namespace
+
+std::string_view to_string(NoiseIdMethod method) {
+  switch (method) {
+    case NoiseIdMethod::off:
+      return "";
+    case NoiseIdMethod::none:
+      return "none";
+    case NoiseIdMethod::lag1_acf:
+      return "lag1_acf";
+    case NoiseIdMethod::b1:
+      return "b1";
+    case NoiseIdMethod::b1_rn:
+      return "b1_rn";
+  }
+  return "?";
+}
+
+std::string to_string(const AlphaMethod& method) {
+  std::string text(to_string(method.method));
+  if (method.fm_floor) text += ",fm_floor";
+  return text;
+}
 
 double lag1_autocorrelation(std::span<const double> series) {
   const std::size_t n = series.size();

@@ -51,8 +51,8 @@ std::vector<double> chunk_offsets(std::span<const double> rate, double mean, dou
 
 }  // namespace
 
-std::vector<double> to_phase(std::span<const double> samples, double sample_rate_hz,
-                             InputKind input) {
+std::vector<double> detail::to_phase(std::span<const double> samples, double sample_rate_hz,
+                                     InputKind input) {
   check_rate(sample_rate_hz);
   if (input == InputKind::phase) {
     std::vector<double> x = large_vector(samples.size());
@@ -79,7 +79,8 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
   return x;
 }
 
-void to_phase_in_place(std::vector<double>& samples, double sample_rate_hz, InputKind input) {
+void detail::to_phase_in_place(std::vector<double>& samples, double sample_rate_hz,
+                               InputKind input) {
   check_rate(sample_rate_hz);
   if (input == InputKind::phase) {
     angle_to_phase(samples, sample_rate_hz, samples.data());

@@ -10,7 +10,7 @@
 // * Default segment length: the largest power of two not above N/4, at least
 //   16 and at most N (with 50 % overlap that gives at least 7 segments),
 //   and never above 2^20 (long transforms are slow to plan and run).
-// * Scaling (two-sided density, SPEC.md): for bins k = 1 .. floor(L/2)
+// * Scaling (two-sided density, docs/conventions.md section 5): for bins k = 1 .. floor(L/2)
 //       P_k = (1 / S) sum_s |X_{s,k}|^2 / (fs sum_n w[n]^2),
 //   X_{s,k} the DFT of segment s after removing its mean and windowing.
 //   Not doubled: 2 sum_k P_k df recovers the variance (Parseval), white noise

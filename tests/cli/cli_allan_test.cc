@@ -1,5 +1,5 @@
 // `foglab allan` end to end: the published references through the CLI's
-// JSON, the JSON/CSV contract of CLI.md, and every input route.
+// JSON, the JSON/CSV contract of docs/json.md, and every input route.
 #include <gtest/gtest.h>
 #include <matio.h>
 

@@ -1,5 +1,5 @@
 // `foglab analyze` end to end: recordings made by `foglab generate` with a
-// known truth go through the CLI, and the JSON must hold CLI.md's contract
+// known truth go through the CLI, and the JSON must hold docs/json.md's contract
 // (every field, with its JSON type) and find the truth within statistical
 // tolerances; temperature pairing, records without temperature and bad
 // inputs give the documented notes, messages and exit codes.
@@ -30,7 +30,7 @@ using test::quote;
 using test::run_foglab;
 using ::testing::HasSubstr;
 
-// The truth of the ramp recording: N, B, K in SPEC.md units, a bias
+// The truth of the ramp recording: N, B, K in the units of docs/conventions.md, a bias
 // polynomial 2 (T - T_ref) + 0.01 (T - T_ref)^2 deg/h over a 10 degC ramp.
 // The slope is large enough to stand well clear of the random walk's
 // confounding (its standard error is about 0.3 deg/h/degC at K = 0.02).

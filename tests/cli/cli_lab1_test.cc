@@ -1,4 +1,4 @@
-// Lab 1's commands end to end: `coil`, `sweep` (CLI.md's JSON fields),
+// Lab 1's commands end to end: `coil`, `sweep` (docs/json.md's fields),
 // `simulate` and `lab1`, with the theory they must reproduce and their
 // errors.
 #include <gmock/gmock.h>

@@ -270,14 +270,14 @@ TEST(Plot, EqualDecadesSetTheAspectRatio) {
   s.x = {1.5, 900.0};  // decades 10^0 .. 10^3
   s.y = {0.2, 8.0};    // decades 10^-1 .. 10^1
   p.series.push_back(s);
-  std::string script = gnuplot_script(p);
+  std::string script = detail::gnuplot_script(p);
   EXPECT_NE(script.find("set xrange [1:1000]"), std::string::npos) << script;
   EXPECT_NE(script.find("set yrange [0.1:10]"), std::string::npos) << script;
   EXPECT_NE(script.find("set size ratio 0.666666667"), std::string::npos) << script;
   // One decade of y over six of x would be too flat: y is widened to three.
   p.series[0].x = {1.0, 1e6};
   p.series[0].y = {1.0, 10.0};
-  script = gnuplot_script(p);
+  script = detail::gnuplot_script(p);
   EXPECT_NE(script.find("set size ratio 0.5\n"), std::string::npos) << script;
   EXPECT_NE(script.find("set yrange [0.1:100]"), std::string::npos) << script;
   // A guide line does not stretch the ranges; non-positive values break the line.
@@ -286,7 +286,7 @@ TEST(Plot, EqualDecadesSetTheAspectRatio) {
   guide.x = {1.0, 1e6};
   guide.y = {1e-9, -1.0};
   p.series.push_back(guide);
-  EXPECT_NE(gnuplot_script(p).find("set yrange [0.1:100]"), std::string::npos);
+  EXPECT_NE(detail::gnuplot_script(p).find("set yrange [0.1:100]"), std::string::npos);
 }
 
 TEST(Plot, TitlesAreQuotedForGnuplot) {
@@ -301,7 +301,7 @@ TEST(Plot, TitlesAreQuotedForGnuplot) {
   s.x = {1, 2};
   s.y = {3, 4};
   p.series.push_back(s);
-  const std::string script = gnuplot_script(p);
+  const std::string script = detail::gnuplot_script(p);
   EXPECT_NE(script.find("set title 'K''s line; set output ''/tmp/x'''\n"), std::string::npos)
       << script;
   EXPECT_NE(script.find("noenhanced"), std::string::npos);

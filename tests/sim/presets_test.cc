@@ -105,7 +105,7 @@ TEST(AccuracyClass, Table1BoundariesGoToTheBetterClass) {
   EXPECT_EQ(class_by_arw(0.0002), AccuracyClass::strategic);
   const ClassVerdict v = classify(1.0, 0.067);
   EXPECT_EQ(v.accuracy_class, AccuracyClass::tactical);
-  EXPECT_EQ(v.decided_by, "arw");
+  EXPECT_EQ(v.decided_by, ClassCriterion::arw);
 }
 
 }  // namespace

@@ -188,7 +188,8 @@ TEST(AllanTheory, InPlaceFormGivesTheSameResultAsTheCopyingForm) {
   const std::vector<double> rate = test::white(200000, 18, 3.0);
   for (const InputKind input : {InputKind::rate, InputKind::phase}) {
     std::vector<double> work = rate;
-    EXPECT_EQ(to_phase(rate, 5.0, input), (to_phase_in_place(work, 5.0, input), work));
+    EXPECT_EQ(detail::to_phase(rate, 5.0, input),
+              (detail::to_phase_in_place(work, 5.0, input), work));
     std::vector<double> again = rate;
     AllanOptions options;
     options.kind = AllanKind::totdev;

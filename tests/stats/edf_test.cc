@@ -21,7 +21,7 @@ TEST(GreenhallEdf, AgreesWithSp1065SimpleFormulaForWhiteFmAtLongTau) {
   // algorithm (and Stable32, see allan_reference_test) differs by up to 17 %
   // because it models the phase as averaged over tau0. At m >= 32 they agree.
   for (const std::int64_t m : {32, 64, 128, 256, 1024}) {
-    const double greenhall = greenhall_edf(0, 2, m, 10001, true, false);
+    const double greenhall = greenhall_edf(0, m, 10001);
     EXPECT_NEAR(greenhall / sp1065_white_fm_edf(10001, m), 1.0, 0.03) << "m " << m;
   }
 }
@@ -29,8 +29,8 @@ TEST(GreenhallEdf, AgreesWithSp1065SimpleFormulaForWhiteFmAtLongTau) {
 TEST(GreenhallEdf, UnitFactorIsTheSameOverlappedOrNot) {
   // At m = 1 the overlapping and non-overlapping estimators are one estimator.
   for (const int alpha : {2, 1, 0, -1, -2}) {
-    EXPECT_DOUBLE_EQ(greenhall_edf(alpha, 2, 1, 1001, false, false),
-                     greenhall_edf(alpha, 2, 1, 1001, true, false))
+    EXPECT_DOUBLE_EQ(greenhall_edf(alpha, 1, 1001, {.stride = Stride::non_overlapping}),
+                     greenhall_edf(alpha, 1, 1001))
         << "alpha " << alpha;
   }
 }
@@ -38,12 +38,11 @@ TEST(GreenhallEdf, UnitFactorIsTheSameOverlappedOrNot) {
 TEST(GreenhallEdf, OverlappingEstimatesHaveMoreDegreesOfFreedom) {
   for (const int alpha : {2, 1, 0, -1, -2}) {
     for (const std::int64_t m : {2, 8, 32}) {
-      EXPECT_GT(greenhall_edf(alpha, 2, m, 4097, true, false),
-                greenhall_edf(alpha, 2, m, 4097, false, false))
+      EXPECT_GT(greenhall_edf(alpha, m, 4097),
+                greenhall_edf(alpha, m, 4097, {.stride = Stride::non_overlapping}))
           << "alpha " << alpha << " m " << m;
       // Fewer degrees of freedom at longer tau.
-      EXPECT_GT(greenhall_edf(alpha, 2, m, 4097, true, false),
-                greenhall_edf(alpha, 2, 2 * m, 4097, true, false));
+      EXPECT_GT(greenhall_edf(alpha, m, 4097), greenhall_edf(alpha, 2 * m, 4097));
     }
   }
 }
@@ -51,19 +50,19 @@ TEST(GreenhallEdf, OverlappingEstimatesHaveMoreDegreesOfFreedom) {
 TEST(GreenhallEdf, AsymptoticTablesJoinTheExactSum) {
   // Just below and above J = 100 the exact and tabulated branches must agree.
   for (const int alpha : {0, -1, -2}) {
-    const double exact = greenhall_edf(alpha, 2, 33, 100001, true, false);  // J = 99
-    const double table = greenhall_edf(alpha, 2, 34, 100001, true, false);  // J = 102
+    const double exact = greenhall_edf(alpha, 33, 100001);  // J = 99
+    const double table = greenhall_edf(alpha, 34, 100001);  // J = 102
     EXPECT_NEAR(table / exact, 33.0 / 34.0, 0.05) << "alpha " << alpha;
   }
-  const double exact_mod = greenhall_edf(0, 2, 33, 100001, true, true);
-  const double table_mod = greenhall_edf(0, 2, 34, 100001, true, true);
+  const double exact_mod = greenhall_edf(0, 33, 100001, {.filter = Filter::modified});
+  const double table_mod = greenhall_edf(0, 34, 100001, {.filter = Filter::modified});
   EXPECT_NEAR(table_mod / exact_mod, 33.0 / 34.0, 0.05);
 }
 
 TEST(GreenhallEdf, OutsideTheDomainIsNaN) {
-  EXPECT_TRUE(std::isnan(greenhall_edf(-3, 2, 4, 1000, true, false)));  // alpha + 2d <= 1
-  EXPECT_TRUE(std::isnan(greenhall_edf(0, 2, 600, 1000, true, false)));  // no terms
-  EXPECT_FALSE(std::isnan(greenhall_edf(-4, 3, 4, 1000, true, false)));
+  EXPECT_TRUE(std::isnan(greenhall_edf(-3, 4, 1000)));   // alpha + 2d <= 1
+  EXPECT_TRUE(std::isnan(greenhall_edf(0, 600, 1000)));  // no terms
+  EXPECT_FALSE(std::isnan(greenhall_edf(-4, 4, 1000, {.order = 3})));
 }
 
 TEST(TotdevEdf, IsSp1065Table12) {

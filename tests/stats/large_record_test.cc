@@ -26,9 +26,10 @@ struct Case {
 
 std::vector<std::vector<double>> all_deviations(std::span<const double> rate,
                                                 const std::vector<Case>& cases) {
-  const std::vector<double> phase = to_phase(rate, 100.0, InputKind::rate);
+  const std::vector<double> phase = detail::to_phase(rate, 100.0, InputKind::rate);
   std::vector<std::vector<double>> out;
-  for (const auto& c : cases) out.push_back(deviations_from_phase(phase, c.kind, c.factors));
+  for (const auto& c : cases)
+    out.push_back(detail::deviations_from_phase(phase, c.kind, c.factors));
   return out;
 }
 

@@ -11,7 +11,7 @@ namespace foglab::stats {
 namespace {
 
 std::vector<double> phase_of_rate(const std::vector<double>& rate) {
-  return to_phase(rate, 1.0, InputKind::rate);
+  return detail::to_phase(rate, 1.0, InputKind::rate);
 }
 
 TEST(NoiseId, Lag1AutocorrelationOfAnAlternatingSeriesIsMinusOne) {
@@ -26,7 +26,7 @@ TEST(NoiseId, WhiteRateNoiseIsWhiteFm) {
   for (const std::int64_t m : {1, 10, 100, 1000}) {
     const NoiseId id = identify_noise(phase, m, 2);
     EXPECT_EQ(id.alpha, 0) << "m " << m;
-    EXPECT_EQ(id.method, "lag1_acf");
+    EXPECT_EQ(id.method, NoiseIdMethod::lag1_acf);
     EXPECT_EQ(id.differences, 1);  // the phase is a random walk: one difference
   }
 }
@@ -41,7 +41,7 @@ TEST(NoiseId, RateRandomWalkIsRandomWalkFm) {
 TEST(NoiseId, WhiteAngleNoiseIsWhitePm) {
   // Angle (phase) white noise, as angle quantisation looks at short tau.
   const std::vector<double> angle = test::white(100000, 23, 1.0);
-  const auto phase = to_phase(angle, 1.0, InputKind::phase);
+  const auto phase = detail::to_phase(angle, 1.0, InputKind::phase);
   for (const std::int64_t m : {1, 10, 100}) {
     EXPECT_EQ(identify_noise(phase, m, 2).alpha, 2) << "m " << m;
   }
@@ -62,7 +62,8 @@ TEST(NoiseId, FewAveragesUseTheB1Ratio) {
   for (int s = 0; s < 20; ++s) {
     const auto white = phase_of_rate(test::white(20000, 100 + s, 1.0));
     const NoiseId a = identify_noise(white, 1000, 2);
-    EXPECT_TRUE(a.method == "b1" || a.method == "b1_rn") << a.method;
+    EXPECT_TRUE(a.method == NoiseIdMethod::b1 || a.method == NoiseIdMethod::b1_rn)
+        << to_string(a.method);
     if (a.alpha == 0) ++white_fm;
     const auto walk = phase_of_rate(test::random_walk(20000, 200 + s, 1.0));
     if (identify_noise(walk, 1000, 2).alpha == -2) ++rw_fm;

@@ -10,11 +10,10 @@
 // The verdict uses the bias instability as the lab and datasheets quote it
 // (the minimum of the Allan deviation) and the ARW; where they point at
 // different classes the worse class wins, and the verdict says which
-// criterion decided (SPEC.md). Shared by the answer keys of `sim` and the
+// criterion decided (docs/conventions.md section 8). Shared by the answer keys of `sim` and the
 // estimators.
 #pragma once
 
-#include <string>
 #include <string_view>
 
 namespace foglab {
@@ -35,12 +34,18 @@ AccuracyClass class_by_bias_instability(double bi_deg_h);
 /// navigation, 0.005..0.05 intermediate, (0.05, 0.5] tactical, above consumer.
 AccuracyClass class_by_arw(double arw_deg_sqrt_h);
 
+/// Which Table 1 criterion set the class: both (they agree), or the one
+/// that points at the worse class.
+enum class ClassCriterion { both, bias_instability, arw };
+
+/// "both", "bias_instability", "arw".
+std::string_view to_string(ClassCriterion c);
+
 struct ClassVerdict {
   AccuracyClass accuracy_class = AccuracyClass::consumer;  ///< the worse of the two
   AccuracyClass by_bias_instability = AccuracyClass::consumer;
   AccuracyClass by_arw = AccuracyClass::consumer;
-  /// "bias_instability", "arw" or "both" (they agree).
-  std::string decided_by;
+  ClassCriterion decided_by = ClassCriterion::both;
 };
 
 /// The Table 1 verdict: the worse of the two classes wins.

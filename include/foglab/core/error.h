@@ -28,7 +28,7 @@ class DataError : public std::runtime_error {
   explicit DataError(const std::string& what) : std::runtime_error(what) {}
 };
 
-/// CLI exit codes (SPEC.md Part D).
+/// CLI exit codes (docs/conventions.md section 11).
 enum ExitCode : int { kExitOk = 0, kExitInternal = 1, kExitUsage = 2, kExitData = 3 };
 
 }  // namespace foglab

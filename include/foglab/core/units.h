@@ -1,7 +1,7 @@
 // foglab — units of angular rate and the kind of an input record.
 //
 // Inside foglab every rate is in deg/h, every time in s, every temperature in
-// degC (SPEC.md "Conventions"). Inputs in other units are converted once, on
+// degC (docs/conventions.md section 1). Inputs in other units are converted once, on
 // reading. An angle (phase) record is expressed in [rate unit x s]: deg for
 // deg/s, rad for rad/s, and (deg/h)*s for the default deg/h, so that the
 // rate is the angle's increment divided by the sample interval.

@@ -30,9 +30,13 @@ inline constexpr std::array<std::string_view, 3> kTimeChannelNames = {"t", "time
 /// to case).
 inline constexpr std::array<std::string_view, 2> kDefaultDataChannels = {"Y1", "rate"};
 
-/// True for a name of kTimeChannelNames; with `ignore_case` (text headers)
-/// also `Time`, `TIME_S`, ..., but never `T`.
-bool is_time_channel_name(std::string_view name, bool ignore_case);
+/// How a channel name is compared: exactly (MAT variables) or without regard
+/// to case (text headers).
+enum class NameMatch { exact, ignore_case };
+
+/// True for a name of kTimeChannelNames; ignoring case (text headers) also
+/// `Time`, `TIME_S`, ..., but never `T`.
+bool is_time_channel_name(std::string_view name, NameMatch match);
 
 /// True for the lab's temperature names `T`, `T1`, `T2`, ....
 bool is_lab_temperature_name(std::string_view name);
@@ -42,10 +46,10 @@ bool is_lab_temperature_name(std::string_view name);
 /// a bare column index such as `2`.
 std::vector<std::string> paired_temperature_names(std::string_view rate_channel);
 
-/// The channel of `channels` called `name`: exactly, else (with
-/// `ignore_case`) without regard to case, but never a time channel
-/// standing in for the lab's temperature `T`.
+/// The channel of `channels` called `name`: exactly, else (ignoring case)
+/// without regard to case, but never a time channel standing in for the
+/// lab's temperature `T`.
 std::optional<std::string> find_channel(const std::vector<std::string>& channels,
-                                        std::string_view name, bool ignore_case);
+                                        std::string_view name, NameMatch match);
 
 }  // namespace foglab::io

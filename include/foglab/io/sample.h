@@ -6,7 +6,7 @@
 
 namespace foglab::io {
 
-/// Parameters of the built-in sample, in SPEC.md units.
+/// Parameters of the built-in sample, in foglab's units (docs/conventions.md).
 struct BuiltinSample {
   static constexpr double kSampleRateHz = 10.0;     ///< [Hz]
   static constexpr double kDurationS = 4.0 * 3600;  ///< [s] four hours

@@ -1,6 +1,7 @@
-// foglab — the whole identification of a static recording (lab 2, SPEC.md
-// Part A): systematic part, statistics on the residual, noise-model fit,
-// the lab's graphical readings, the random-bias question and the class.
+// foglab — the whole identification of a static recording (the lab
+// manual's lab 2; conventions in docs/conventions.md): systematic part,
+// statistics on the residual, noise-model fit, the lab's graphical
+// readings, the random-bias question and the class.
 //
 //   1. temperature polynomial (systematic.h), when a temperature is given;
 //   2. its residual: Welch PSD (two-sided, log-smoothed for display) and the

@@ -1,4 +1,4 @@
-// foglab — the report of lab 1 (issue 6; the manual's "Содержание отчета":
+// foglab — the report of lab 1 (the manual's "Содержание отчета":
 // the coil's numbers, the output against rate for each modulation and
 // scheme, the sweep tables with scale factors and nonlinearity, and the
 // analysis), from sim::run_lab1().

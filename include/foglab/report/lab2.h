@@ -1,4 +1,4 @@
-// foglab — the report of lab 2 (issue 5; the lab manual's lab 2, items
+// foglab — the report of lab 2 (the lab manual's lab 2, items
 // 1.1-3.1 and "Содержание отчета"): for each gyro, a constant-temperature run
 // (Y1, T1) and a 10 degC ramp run (Y2, T2), each analysed by model::analyze()
 // and drawn by make_report(); then what the manual asks the student to hand

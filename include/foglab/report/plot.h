@@ -9,7 +9,7 @@
 // (terminal `svg`, fixed size, `font ",11"`, not `dynamic`, no mouse
 // script: the SVG is self-contained and can be inlined in an HTML page).
 //
-// Equal decades (SPEC.md: "log-log axes with equal decades"): both ranges
+// Equal decades (docs/conventions.md section 5: log-log axes with equal decades): both ranges
 // are widened to whole decades and the plot's aspect ratio set to
 // (y decades)/(x decades) with `set size ratio`, so one decade has the same
 // length on both axes and a slope of -1/2 looks like one. When that ratio
@@ -103,8 +103,11 @@ struct PlotOutcome {
   bool gnuplot_missing = false;    ///< the executable could not be started
 };
 
-/// The gnuplot script render_svg() runs (exposed for tests and debugging).
+namespace detail {
+/// The gnuplot script render_svg() runs (for the tests that read it; not a
+/// stable interface).
 std::string gnuplot_script(const Plot& plot, const PlotOptions& options = {});
+}  // namespace detail
 
 /// Runs gnuplot on the plot's script and returns its SVG, or an error.
 /// Never throws for a missing or failing gnuplot.

@@ -1,6 +1,5 @@
-// foglab — the report of one analysed recording (SPEC.md Part A step 5,
-// issue 5): plots, a self-contained HTML page, a Markdown summary and
-// Kalibr's imu.yaml.
+// foglab — the report of one analysed recording: plots, a self-contained
+// HTML page, a Markdown summary and Kalibr's imu.yaml.
 //
 // Input: the analysis (model/analysis.h) plus what it does not keep — the
 // record's name, channels and units, and a decimated copy of the rate and

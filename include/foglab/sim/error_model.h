@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "foglab/core/noise_model.h"
@@ -43,6 +44,9 @@ enum class TemperatureKind {
   ramp,      ///< linear from start_c to start_c + span_c over the run (plus jitter)
   file,      ///< a profile (time_s, temperature_c) read from a file, interpolated linearly
 };
+
+/// "constant", "ramp", "file".
+std::string_view to_string(TemperatureKind kind);
 
 struct TemperatureProfile {
   TemperatureKind kind = TemperatureKind::constant;

@@ -1,5 +1,5 @@
-// foglab — the FOG optical signal chain of lab 1 (SPEC.md Part C; the lab
-// manual's section 1 and "Исследование линейности выходного сигнала ВОГ"),
+// foglab — the FOG optical signal chain of lab 1 (docs/conventions.md
+// section 7; the lab manual's section 1 and "Исследование линейности выходного сигнала ВОГ"),
 // the equivalent of its Simulink models fog_open_loop.slx and
 // fog_closed_loop.slx.
 //

@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "foglab/core/units.h"
+#include "foglab/stats/noise_id.h"
 #include "foglab/stats/tau_grid.h"
 
 namespace foglab::stats {
@@ -80,7 +81,7 @@ struct AllanResult {
   std::vector<double> dev;
   std::vector<std::int64_t> n;       ///< number of terms in each estimate
   std::vector<int> alpha;            ///< identified noise exponent, S_y ~ f^alpha
-  std::vector<std::string> alpha_method;  ///< "lag1_acf", "b1", "b1_rn" or "" (off)
+  std::vector<AlphaMethod> alpha_method;  ///< how each alpha was identified (noise_id.h)
   std::vector<double> edf;           ///< equivalent degrees of freedom
   std::vector<double> ci68_low, ci68_high;  ///< 68.27 % interval, same unit as dev
   std::vector<double> ci95_low, ci95_high;  ///< 95 % interval
@@ -99,26 +100,29 @@ AllanResult allan_deviation(std::span<const double> samples, double sample_rate_
 AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
                                      InputKind input, const AllanOptions& options = {});
 
-/// Turns a rate or angle record into the angle record of to_phase() in
-/// place; a rate record grows by one element.
-void to_phase_in_place(std::vector<double>& samples, double sample_rate_hz, InputKind input);
+/// Largest averaging factor at which `kind` is defined for N phase points.
+std::int64_t max_factor(AllanKind kind, std::int64_t phase_points);
+
+// The steps of allan_deviation(), for the tests and benchmarks that check
+// and time them one by one; not a stable interface.
+namespace detail {
 
 /// The angle record foglab analyses, in units where tau0 = 1: a rate record
 /// becomes x_0 = 0, x_{k+1} = x_k + (y_k - mean(y)) (length N+1); an angle
 /// record becomes x_k * fs minus the straight line through its end points.
-/// Exposed for tests and benchmarks.
 std::vector<double> to_phase(std::span<const double> samples, double sample_rate_hz,
                              InputKind input);
 
+/// The same in place; a rate record grows by one element.
+void to_phase_in_place(std::vector<double>& samples, double sample_rate_hz, InputKind input);
+
 /// Deviation values only (no confidence intervals) on an angle record made by
 /// to_phase(), for the given averaging factors. Throws DataError if an
-/// averaging factor is too large for the statistic. The fast path used by
-/// allan_deviation(); exposed for benchmarks.
+/// averaging factor is too large for the statistic.
 std::vector<double> deviations_from_phase(std::span<const double> phase, AllanKind kind,
                                           std::span<const std::int64_t> factors,
                                           std::vector<std::int64_t>* terms = nullptr);
 
-/// Largest averaging factor at which `kind` is defined for N phase points.
-std::int64_t max_factor(AllanKind kind, std::int64_t phase_points);
+}  // namespace detail
 
 }  // namespace foglab::stats

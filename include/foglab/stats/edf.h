@@ -18,14 +18,25 @@
 
 namespace foglab::stats {
 
-/// Greenhall's edf for a finite-difference variance.
-/// alpha: noise exponent (+2 .. -4) with alpha + 2 d > 1; d: difference order
-/// (1, 2 Allan, 3 Hadamard); m: averaging factor; n_phase: number of phase
-/// points; overlapping: stride 1 (true) or m; modified: the modified
-/// (phase-averaged) variance. Returns NaN when the case is outside the
+/// The stride of the estimate's terms: 1 sample (overlapping) or m.
+enum class Stride { overlapping, non_overlapping };
+/// Plain differences of m-averages, or the modified (phase-averaged) form.
+enum class Filter { plain, modified };
+
+/// Which finite-difference variance: d = 2 for the Allan family, 3 for the
+/// Hadamard; the defaults are the overlapping Allan variance (OADEV).
+struct DifferenceVariance {
+  int order = 2;  ///< d: 1, 2 (Allan) or 3 (Hadamard)
+  Stride stride = Stride::overlapping;
+  Filter filter = Filter::plain;
+};
+
+/// Greenhall's edf for a finite-difference variance: alpha the noise
+/// exponent (+2 .. -4) with alpha + 2 d > 1, m the averaging factor, n_phase
+/// the number of phase points. Returns NaN when the case is outside the
 /// algorithm's domain.
-double greenhall_edf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
-                     bool modified);
+double greenhall_edf(int alpha, std::int64_t m, std::int64_t n_phase,
+                     const DifferenceVariance& variance = {});
 
 /// edf of TOTDEV (SP1065 Table 12, Greenhall's OADEV edf for alpha > 0).
 double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);

@@ -25,16 +25,39 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace foglab::stats {
 
+/// How a noise type was identified.
+enum class NoiseIdMethod {
+  off,       ///< not identified (intervals were not asked for; alpha is 0)
+  none,      ///< too few averages for any method (the previous tau's alpha holds)
+  lag1_acf,  ///< the lag-1 autocorrelation
+  b1,        ///< Barnes' B1 ratio
+  b1_rn,     ///< B1, with the R(n) ratio for phase noise
+};
+/// "" (off), "none", "lag1_acf", "b1", "b1_rn".
+std::string_view to_string(NoiseIdMethod method);
+
 struct NoiseId {
-  int alpha = 0;        ///< identified integer exponent
-  std::string method;   ///< "lag1_acf", "b1" or "b1_rn"
+  int alpha = 0;  ///< identified integer exponent
+  NoiseIdMethod method = NoiseIdMethod::none;
   double rho = 0.0;     ///< lag-1 method: the final rho estimate
   int differences = 0;  ///< lag-1 method: number of differences taken
 };
+
+/// How allan_deviation() set a point's alpha: the method, and whether a
+/// phase-noise call beyond the shortest frequency-noise tau was taken as
+/// white FM (the "fm_floor" above).
+struct AlphaMethod {
+  NoiseIdMethod method = NoiseIdMethod::off;
+  bool fm_floor = false;
+};
+/// The method's name, with ",fm_floor" when that applied: "lag1_acf",
+/// "b1,fm_floor", ... ("" when off).
+std::string to_string(const AlphaMethod& method);
 
 /// Identifies the noise at averaging factor m of an angle record (tau0 = 1
 /// units, as made by to_phase()). d_max = 2 for the Allan and modified

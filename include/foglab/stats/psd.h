@@ -5,7 +5,7 @@
 // each segment's mean removed, FFT by FFTW (one plan made per call and
 // reused for every segment).
 //
-// Sidedness (SPEC.md): foglab reports the TWO-SIDED rate PSD S(f) at the
+// Sidedness (docs/conventions.md section 5): foglab reports the TWO-SIDED rate PSD S(f) at the
 // non-negative frequencies f_k = k fs / L, k = 1 .. L/2 (the DC bin is
 // dropped), so that the density integrates to the variance over
 // [-fs/2, fs/2]. With this convention white rate noise of density N

@@ -1,0 +1,263 @@
+// foglab — checks a MAT file's structure before matio reads it
+// (readers_internal.h): each top-level element of a v4 or v5/v7 file lies
+// inside the file, a v4 header does not claim more than the file holds, and
+// a v7.3 (HDF5) file's metadata can be read without crashing the process.
+// Each guards against a fuzzing finding (fuzz/regressions/mat_reader/).
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <matio.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "readers_internal.h"
+
+namespace foglab::io::internal {
+
+namespace {
+
+// --- the layout walk: each top-level element must lie inside the file ---
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+bool read_at(std::FILE* file, std::uint64_t offset, unsigned char* out, std::size_t size) {
+  if (offset > static_cast<std::uint64_t>(std::numeric_limits<off_t>::max())) return false;
+  return fseeko(file, static_cast<off_t>(offset), SEEK_SET) == 0 &&
+         std::fread(out, 1, size, file) == size;
+}
+
+std::uint32_t decode_u32(const unsigned char* bytes, bool little_endian) {
+  return little_endian ? (std::uint32_t{bytes[0]} | std::uint32_t{bytes[1]} << 8 |
+                          std::uint32_t{bytes[2]} << 16 | std::uint32_t{bytes[3]} << 24)
+                       : (std::uint32_t{bytes[3]} | std::uint32_t{bytes[2]} << 8 |
+                          std::uint32_t{bytes[1]} << 16 | std::uint32_t{bytes[0]} << 24);
+}
+
+[[noreturn]] void throw_truncated(const std::string& path, std::size_t index, std::uint64_t offset,
+                                  double needed, std::uint64_t remaining) {
+  throw_data_error(path, fmt::format("the MAT file is truncated: variable #{} (at byte {}) "
+                                     "needs {} bytes, only {} remain",
+                                     index, offset, needed, remaining));
+}
+
+// An uncompressed matrix element starts with the sub-elements array flags,
+// dimensions and name, each "type, size, data" (or, when the size fits in
+// the upper half of the type word, "small" with the data in 4 bytes). Each
+// must fit inside the element: matio allocates what a sub-element claims
+// before reading it (a 4 GB name in an 848-byte element was a fuzzing
+// finding, fuzz/regressions/mat_reader/).
+void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::size_t index,
+                              std::uint64_t offset, std::uint32_t bytes, bool little_endian) {
+  std::uint64_t at = 0;  // within the element's data
+  for (int sub = 0; sub < 3 && at + 8 <= bytes; ++sub) {
+    unsigned char tag[8];
+    if (!read_at(file, offset + 8 + at, tag, sizeof(tag))) {
+      throw_data_error(path, fmt::format("cannot read the MAT file at byte {}", offset + 8 + at));
+    }
+    const std::uint32_t word = decode_u32(tag, little_endian);
+    if ((word >> 16) != 0) {  // small data element: 4 bytes of data in the tag's second word
+      at += 8;
+      continue;
+    }
+    const std::uint64_t sub_bytes = decode_u32(tag + 4, little_endian);
+    const std::uint64_t padded = (sub_bytes + 7) / 8 * 8;
+    if (at + 8 + sub_bytes > bytes) {
+      throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) "
+                                         "has a part claiming {} bytes where its {}-byte "
+                                         "element has only {} left",
+                                         index, offset, sub_bytes, bytes, bytes - at - 8));
+    }
+    at += 8 + padded;
+  }
+}
+
+// The bytes a v4 variable occupies (its 20-byte header "type, mrows, ncols,
+// imagf, namlen", the name and the data), or nothing when the header is no
+// valid v4 header in that byte order (type = 1000 M + 100 O + 10 P + T).
+std::optional<double> mat4_variable_bytes(const unsigned char* header, bool little_endian) {
+  constexpr std::array<int, 6> kElementBytes = {8, 4, 4, 2, 2, 1};
+  std::array<std::uint32_t, 5> field{};
+  for (std::size_t k = 0; k < field.size(); ++k) {
+    field[k] = decode_u32(header + 4 * k, little_endian);
+  }
+  const std::uint32_t type = field[0];
+  if (!(type < 5000 && (type / 100) % 10 == 0 && (type / 10) % 10 <= 5 && type % 10 <= 2)) {
+    return std::nullopt;
+  }
+  return 20.0 + field[4] +
+         static_cast<double>(field[1]) * field[2] * kElementBytes[(type / 10) % 10] *
+             (field[3] != 0 ? 2 : 1);
+}
+
+}  // namespace
+
+// v5/v7: a 128-byte header, then elements "type (4 bytes), size (4 bytes),
+// data" of type matrix (14) or compressed matrix (15).
+void check_mat5_layout(const std::string& path, std::uint64_t size) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  unsigned char header[128];
+  if (!file || size < 128 || !read_at(file.get(), 0, header, sizeof(header))) {
+    throw_data_error(path, "the MAT file is truncated inside its 128-byte header");
+  }
+  // MATLAB writes the characters "MI" as one 16-bit number.
+  const bool little_endian = header[126] == 'I' && header[127] == 'M';
+  std::uint64_t offset = 128;
+  std::size_t index = 0;
+  while (size - offset >= 8) {
+    unsigned char tag[8];
+    if (!read_at(file.get(), offset, tag, sizeof(tag))) {
+      throw_data_error(path, fmt::format("cannot read the MAT file at byte {}", offset));
+    }
+    ++index;
+    const std::uint32_t type = decode_u32(tag, little_endian);
+    const std::uint32_t bytes = decode_u32(tag + 4, little_endian);
+    if (type != MAT_T_MATRIX && type != MAT_T_COMPRESSED) {
+      throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) "
+                                         "has element type {}, expected 14 (matrix) or 15 "
+                                         "(compressed)",
+                                         index, offset, type));
+    }
+    if (bytes > size - offset - 8) {
+      throw_truncated(path, index, offset, 8.0 + bytes, size - offset);
+    }
+    if (type == MAT_T_MATRIX)
+      check_mat5_matrix_header(path, file.get(), index, offset, bytes, little_endian);
+    offset += 8 + std::uint64_t{bytes};
+  }
+  // Fewer than 8 bytes left: the start of a cut variable's tag (zeros are
+  // tolerated as padding).
+  if (offset < size) {
+    unsigned char rest[8] = {};
+    const auto count = static_cast<std::size_t>(size - offset);
+    if (!read_at(file.get(), offset, rest, count)) {
+      throw_data_error(path, fmt::format("cannot read the MAT file at byte {}", offset));
+    }
+    if (std::any_of(rest, rest + count, [](unsigned char b) { return b != 0; })) {
+      throw_truncated(path, index + 1, offset, 8.0, count);
+    }
+  }
+}
+
+// v4: per variable a 20-byte header "type, mrows, ncols, imagf, namlen"
+// (type = 1000 M + 100 O + 10 P + T), the name, then the data.
+void check_mat4_layout(const std::string& path, std::uint64_t size) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw_data_error(path, "cannot reopen the MAT file");
+  std::uint64_t offset = 0;
+  std::size_t index = 0;
+  while (offset < size) {
+    ++index;
+    unsigned char header[20];
+    if (size - offset < sizeof(header) || !read_at(file.get(), offset, header, sizeof(header))) {
+      throw_truncated(path, index, offset, sizeof(header), size - offset);
+    }
+    std::optional<double> bytes = mat4_variable_bytes(header, true);
+    if (!bytes) bytes = mat4_variable_bytes(header, false);
+    if (!bytes) {
+      throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) has "
+                                         "no valid v4 header",
+                                         index, offset));
+    }
+    const double needed = *bytes;
+    if (needed > static_cast<double>(size - offset)) {
+      throw_truncated(path, index, offset, needed, size - offset);
+    }
+    offset += static_cast<std::uint64_t>(needed);
+  }
+}
+
+// --- HDF5 files that are not MAT files ---
+
+// The offset of an HDF5 superblock signature (HDF5 looks at 0, 512, 1024,
+// 2048, ...; a v7.3 MAT file has it at 512, after MATLAB's header), or
+// nullopt.
+// HDF5 (1.10, Debian 12) can crash (SIGSEGV in H5F__accum_read under
+// H5Gget_info, from Mat_Open()) on a damaged v7.3 file — a fuzzing finding,
+// fuzz/regressions/mat_reader/. A library crash must not take foglab down
+// without a word, so a v7.3 file is first opened, and its variables' headers
+// read, in a child process; when the child dies of a signal the file is
+// reported as damaged. (Only the metadata is probed; reading one file's
+// headers twice costs milliseconds.)
+void probe_mat73_in_child(const std::string& path) {
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return;  // no process to spare: read it directly
+  if (pid == 0) {
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (devnull >= 0) {
+      ::dup2(devnull, STDOUT_FILENO);
+      ::dup2(devnull, STDERR_FILENO);
+    }
+    if (mat_t* mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY)) {
+      while (matvar_t* var = Mat_VarReadNextInfo(mat)) Mat_VarFree(var);
+      Mat_Close(mat);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    throw_data_error(path, fmt::format("the MAT file (v7.3, HDF5) is damaged: the HDF5 library "
+                                       "crashed reading its structure ({})",
+                                       ::strsignal(WTERMSIG(status))));
+  }
+}
+
+// Before matio sees a file without v5's header marks ("IM"/"MI" at bytes
+// 126-127): when its first 20 bytes read as a v4 variable header that
+// claims more bytes (name and data) than the file holds, it is refused here
+// — Mat_Open() would otherwise allocate the claimed name length (up to
+// 4 GB) while trying v4 (a fuzzing finding, fuzz/regressions/mat_reader/).
+void check_mat4_first_header(const std::string& path, std::uint64_t size) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  unsigned char header[128] = {};
+  if (!file || !read_at(file.get(), 0, header, std::min<std::uint64_t>(size, sizeof(header)))) {
+    return;  // Mat_Open() reports unreadable files
+  }
+  if (size >= 128 &&
+      ((header[126] == 'I' && header[127] == 'M') || (header[126] == 'M' && header[127] == 'I'))) {
+    return;  // v5, v7 or v7.3: checked after opening
+  }
+  if (size < 20) return;
+  bool any_valid = false;
+  double smallest_need = std::numeric_limits<double>::infinity();
+  for (const bool little_endian : {true, false}) {
+    if (const std::optional<double> need = mat4_variable_bytes(header, little_endian)) {
+      any_valid = true;
+      smallest_need = std::min(smallest_need, *need);
+    }
+  }
+  if (any_valid && smallest_need > static_cast<double>(size)) {
+    throw_truncated(path, 1, 0, smallest_need, size);
+  }
+}
+
+std::optional<std::uint64_t> hdf5_signature_offset(const std::string& path, std::uint64_t size) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) return std::nullopt;
+  for (std::uint64_t offset = 0; offset + sizeof(kSignature) <= size;
+       offset = offset == 0 ? 512 : offset * 2) {
+    unsigned char bytes[sizeof(kSignature)];
+    if (!read_at(file.get(), offset, bytes, sizeof(bytes))) return std::nullopt;
+    if (std::memcmp(bytes, kSignature, sizeof(kSignature)) == 0) return offset;
+  }
+  return std::nullopt;
+}
+
+}  // namespace foglab::io::internal

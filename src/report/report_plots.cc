@@ -1,0 +1,359 @@
+// foglab — the plots of one analysed recording (report.h): the record
+// against time, the bias against temperature, the PSD and the Allan
+// deviation with the fitted model, and the decimated preview they are drawn
+// from.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+#include "foglab/core/error.h"
+#include "foglab/core/units.h"
+#include "foglab/report/report.h"
+#include "report_internal.h"
+
+namespace foglab::report {
+
+using namespace detail;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<double> log_space(double lo, double hi, int n) {
+  std::vector<double> out;
+  if (!(lo > 0.0) || !(hi > lo) || n < 2) return out;
+  const double a = std::log10(lo), b = std::log10(hi);
+  for (int k = 0; k < n; ++k) out.push_back(std::pow(10.0, a + (b - a) * k / (n - 1)));
+  return out;
+}
+
+double polynomial(const model::SystematicFit& s, double t_c) {
+  double v = 0.0, p = 1.0;
+  for (double c : s.coefficients) {
+    v += c * p;
+    p *= t_c - s.t_ref_c;
+  }
+  return v;
+}
+
+// ---- the four plots ----------------------------------------------------------
+
+Plot time_plot(const ReportInput& in, const std::string& title) {
+  const RecordPreview& p = in.preview;
+  Plot plot;
+  plot.title = title + ": rate and temperature";
+  plot.x_label = "time [h]";
+  plot.y_label = "rate [deg/h]";
+  plot.y2_label = "temperature [degC]";
+  plot.key = "top left";
+  std::vector<double> hours(p.time_s.size());
+  for (std::size_t k = 0; k < hours.size(); ++k) hours[k] = p.time_s[k] / kSecondsPerHour;
+  if (p.block_samples > 1) {
+    Series env;
+    env.title = fmt::format("rate, min-max of {} samples", p.block_samples);
+    env.style = SeriesStyle::band;
+    env.x = hours;
+    env.y_low = p.rate_min_deg_h;
+    env.y_high = p.rate_max_deg_h;
+    env.color = kLightBlue;
+    env.fill_opacity = 0.35;
+    plot.series.push_back(std::move(env));
+  }
+  Series mean;
+  mean.title = p.block_samples > 1 ? "rate, block mean" : "rate";
+  mean.x = hours;
+  mean.y = p.rate_mean_deg_h;
+  mean.color = kBlue;
+  mean.line_width = 1.0;
+  plot.series.push_back(std::move(mean));
+  if (!p.temperature_c.empty()) {
+    Series t;
+    t.title = in.temperature_channel.empty()
+                  ? std::string("temperature (right axis)")
+                  : fmt::format("temperature {} (right axis)", in.temperature_channel);
+    t.x = hours;
+    t.y = p.temperature_c;
+    t.color = kRed;
+    t.line_width = 2.0;
+    t.y2 = true;
+    plot.series.push_back(std::move(t));
+  }
+  return plot;
+}
+
+Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::string& title,
+               std::size_t points) {
+  const RecordPreview& p = in.preview;
+  Plot plot;
+  plot.title = title + ": bias against temperature";
+  plot.x_label = "temperature [degC]";
+  plot.y_label = "bias (block mean of the rate) [deg/h]";
+  plot.key = "top left";
+  // Regroup the preview's blocks into about `points` means.
+  const std::size_t n = std::min(p.rate_mean_deg_h.size(), p.temperature_c.size());
+  const std::size_t group =
+      std::max<std::size_t>(1, (n + points - 1) / std::max<std::size_t>(points, 1));
+  Series dots;
+  dots.style = SeriesStyle::points;
+  dots.color = kBlue;
+  dots.point_size = 0.5;
+  double t_lo = std::numeric_limits<double>::infinity(), t_hi = -t_lo;
+  for (std::size_t k = 0; k < n; k += group) {
+    double sr = 0.0, st = 0.0;
+    std::size_t m = 0;
+    for (std::size_t j = k; j < std::min(n, k + group); ++j) {
+      if (!std::isfinite(p.rate_mean_deg_h[j]) || !std::isfinite(p.temperature_c[j])) continue;
+      sr += p.rate_mean_deg_h[j];
+      st += p.temperature_c[j];
+      ++m;
+    }
+    if (m == 0) continue;
+    dots.x.push_back(st / static_cast<double>(m));
+    dots.y.push_back(sr / static_cast<double>(m));
+    t_lo = std::min(t_lo, dots.x.back());
+    t_hi = std::max(t_hi, dots.x.back());
+  }
+  const double seconds =
+      static_cast<double>(group) * (p.time_s.size() > 1 ? (p.time_s[1] - p.time_s[0]) : 0.0);
+  dots.title = seconds > 0.0 ? fmt::format("block means ({:.3g} s)", seconds) : "block means";
+  plot.series.push_back(std::move(dots));
+  if (!(t_hi >= t_lo)) {
+    t_lo = s.temperature_min_c;
+    t_hi = s.temperature_max_c;
+  }
+  if (!(t_hi > t_lo)) {
+    t_lo -= 0.5;
+    t_hi += 0.5;
+  }
+  Series fit;
+  fit.title = fmt::format("fit: degree {} in (T - {:.4g} degC){}", s.degree, s.t_ref_c,
+                          s.constant_fallback ? ", constant fallback" : "");
+  fit.color = kRed;
+  fit.line_width = 2.5;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = t_lo + (t_hi - t_lo) * k / 100.0;
+    fit.x.push_back(t);
+    fit.y.push_back(polynomial(s, t));
+  }
+  plot.series.push_back(std::move(fit));
+  return plot;
+}
+
+// The lab's graphical reading of a line from the PSD, or the fit's value
+// (resolved terms only) when the PSD shows none, with where it came from.
+std::pair<std::optional<double>, std::string> reading_or_fit(const std::optional<double>& reading,
+                                                             const model::ParameterEstimate& fit) {
+  if (reading) return {reading, "PSD reading"};
+  if (fit.status == model::TermStatus::resolved) return {fit.value, "fit"};
+  return {std::nullopt, ""};
+}
+
+// A dashed reference line that does not set the plot's range.
+Series reference_line(std::string title, const char* color) {
+  Series line;
+  line.title = std::move(title);
+  line.color = color;
+  line.dash_type = 2;
+  line.line_width = 2.0;
+  line.sets_range = false;
+  return line;
+}
+
+Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
+  const stats::PsdResult& psd = r.psd_smoothed.frequency_hz.empty() ? r.psd : r.psd_smoothed;
+  Plot plot;
+  plot.title = title + ": square root of the PSD of the residual (two-sided)";
+  plot.x_label = "frequency [Hz]";
+  plot.y_label = "sqrt(PSD) [deg/h/sqrt(Hz)]";
+  plot.log_x = plot.log_y = true;
+  plot.equal_decades = true;
+  plot.key = "bottom left";
+  Series data;
+  data.title = &psd == &r.psd_smoothed ? "Welch estimate, log-smoothed" : "Welch estimate";
+  data.style = SeriesStyle::linespoints;
+  data.color = kBlue;
+  data.line_width = 1.0;
+  data.point_size = 0.4;
+  data.x = psd.frequency_hz;
+  data.y.resize(psd.psd.size());
+  for (std::size_t k = 0; k < psd.psd.size(); ++k) data.y[k] = std::sqrt(psd.psd[k]);
+  plot.series.push_back(std::move(data));
+  if (psd.frequency_hz.empty()) return plot;
+  const double f_lo = psd.frequency_hz.front(), f_hi = psd.frequency_hz.back();
+
+  const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N);
+  if (n) {
+    Series white = reference_line(
+        fmt::format("white noise level N = {} deg/h/sqrt(Hz) ({})", g(*n), n_source), kGreen);
+    white.x = {f_lo, f_hi};
+    white.y = {*n, *n};
+    plot.series.push_back(std::move(white));
+  }
+  const auto [k, k_source] = reading_or_fit(r.psd_readings.K, r.noise.K);
+  if (k) {
+    Series walk = reference_line(
+        fmt::format("random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})", g(*k), k_source), kRed);
+    // From the lowest frequency to 1 Hz (where the lab reads it), or to the
+    // white level when that is crossed later.
+    const NoiseModel walk_model{.K = *k};
+    double f_end = std::max(1.0, n ? *k / (2.0 * std::numbers::pi * *n) : 1.0);
+    f_end = std::min(f_end, f_hi);
+    walk.x = log_space(f_lo, std::max(f_end, f_lo * 1.01), 50);
+    for (double f : walk.x) {
+      walk.y.push_back(std::sqrt(rate_psd(walk_model, NoiseTerm::random_walk, f, 0.0)));
+    }
+    plot.series.push_back(std::move(walk));
+  }
+  return plot;
+}
+
+struct TermLine {
+  NoiseTerm term;
+  const char* label;
+  const char* color;
+  int dash;
+};
+
+Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
+  const stats::AllanResult& a = r.allan;
+  Plot plot;
+  plot.title = title + ": overlapping Allan deviation of the residual";
+  plot.x_label = "tau [s]";
+  plot.y_label = "Allan deviation [deg/h]";
+  plot.log_x = plot.log_y = true;
+  plot.equal_decades = true;
+  plot.headroom_decades = 1;
+  plot.key = "top right";
+  if (a.ci95_low.size() == a.tau_s.size() && a.ci95_high.size() == a.tau_s.size()) {
+    Series band;
+    band.title = "95 % interval";
+    band.style = SeriesStyle::band;
+    band.color = kLightBlue;
+    band.fill_opacity = 0.35;
+    band.x = a.tau_s;
+    band.y_low = a.ci95_low;
+    band.y_high = a.ci95_high;
+    plot.series.push_back(std::move(band));
+  }
+  Series dev;
+  dev.title = "OADEV";
+  dev.style = SeriesStyle::linespoints;
+  dev.color = kBlue;
+  dev.line_width = 1.0;
+  dev.point_size = 0.6;
+  dev.x = a.tau_s;
+  dev.y = a.dev;
+  plot.series.push_back(std::move(dev));
+  if (a.tau_s.empty()) return plot;
+
+  const NoiseModel& m = r.noise.model;
+  const std::vector<double> taus = log_space(a.tau_s.front(), a.tau_s.back(), 80);
+  static const TermLine kTerms[] = {
+      {NoiseTerm::quantisation, "quantisation Q (-1)", kPurple, 4},
+      {NoiseTerm::white, "white noise N (-1/2)", kGreen, 2},
+      {NoiseTerm::flicker, "flicker B (0)", kOrange, 2},
+      {NoiseTerm::random_walk, "random walk K (+1/2)", kRed, 2},
+      {NoiseTerm::ramp, "rate ramp R (+1)", kYellow, 4},
+      {NoiseTerm::gauss_markov, "Gauss-Markov sigma, Tc", kGrey, 5},
+  };
+  for (const TermLine& t : kTerms) {
+    if (!(m.coefficient(t.term) > 0.0)) continue;
+    Series line;
+    line.title = t.label;
+    line.color = t.color;
+    line.dash_type = t.dash;
+    line.line_width = 1.5;
+    line.sets_range = false;
+    line.x = taus;
+    for (double tau : taus) line.y.push_back(std::sqrt(allan_variance(m, t.term, tau)));
+    plot.series.push_back(std::move(line));
+  }
+  Series fit;
+  fit.title = fmt::format("fit {}", to_string(r.noise.terms));
+  fit.color = kBlack;
+  fit.line_width = 2.0;
+  fit.sets_range = false;
+  fit.x = taus;
+  for (double tau : taus) fit.y.push_back(std::sqrt(allan_variance(m, tau)));
+  plot.series.push_back(std::move(fit));
+  if (r.bias_instability_tau_s > 0.0 && r.bias_instability_deg_h > 0.0) {
+    Series min;
+    min.title = fmt::format("minimum {} deg/h at {} s", g(r.bias_instability_deg_h),
+                            g(r.bias_instability_tau_s));
+    min.style = SeriesStyle::points;
+    min.point_type = 6;
+    min.point_size = 1.6;
+    min.color = kRed;
+    min.x = {r.bias_instability_tau_s};
+    min.y = {r.bias_instability_deg_h};
+    plot.series.push_back(std::move(min));
+  }
+  return plot;
+}
+
+}  // namespace
+
+RecordPreview preview_record(std::span<const double> rate_deg_h,
+                             std::span<const double> temperature_c, double sample_rate_hz,
+                             std::size_t points) {
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw UsageError(
+        fmt::format("preview_record: sample rate {} Hz: expected > 0", sample_rate_hz));
+  }
+  if (!temperature_c.empty() && temperature_c.size() != rate_deg_h.size()) {
+    throw UsageError(
+        fmt::format("preview_record: {} temperature samples for {} rate samples: expected as many",
+                    temperature_c.size(), rate_deg_h.size()));
+  }
+  if (points < 1) throw UsageError("preview_record: points 0: expected at least 1");
+  RecordPreview p;
+  const std::size_t n = rate_deg_h.size();
+  if (n == 0) return p;
+  const std::size_t block = (n + points - 1) / points;
+  p.block_samples = static_cast<std::int64_t>(block);
+  for (std::size_t start = 0; start < n; start += block) {
+    const std::size_t end = std::min(n, start + block);
+    double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo, tsum = 0.0;
+    std::size_t m = 0, tm = 0;
+    for (std::size_t k = start; k < end; ++k) {
+      const double v = rate_deg_h[k];
+      if (std::isfinite(v)) {
+        sum += v;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        ++m;
+      }
+      if (!temperature_c.empty() && std::isfinite(temperature_c[k])) {
+        tsum += temperature_c[k];
+        ++tm;
+      }
+    }
+    p.time_s.push_back(0.5 * static_cast<double>(start + end - 1) / sample_rate_hz);
+    p.rate_mean_deg_h.push_back(m > 0 ? sum / static_cast<double>(m) : kNaN);
+    p.rate_min_deg_h.push_back(m > 0 ? lo : kNaN);
+    p.rate_max_deg_h.push_back(m > 0 ? hi : kNaN);
+    if (!temperature_c.empty()) {
+      p.temperature_c.push_back(tm > 0 ? tsum / static_cast<double>(tm) : kNaN);
+    }
+  }
+  return p;
+}
+
+std::vector<Plot> report_plots(const model::AnalysisResult& result, const ReportInput& input,
+                               const ReportOptions& options) {
+  const std::string title = record_title(input);
+  std::vector<Plot> plots;
+  plots.push_back(time_plot(input, title));
+  if (result.systematic && !input.preview.temperature_c.empty()) {
+    plots.push_back(bias_plot(*result.systematic, input, title, options.bias_points));
+  }
+  plots.push_back(psd_plot(result, title));
+  plots.push_back(adev_plot(result, title));
+  return plots;
+}
+
+}  // namespace foglab::report
