@@ -65,7 +65,7 @@ struct SystematicFit {
   bool lab_constant_meaningful = true;  ///< false when the span is below min_span_c
   bool constant_fallback = false;       ///< the span was too small for a slope
   bool degree_chosen = false;           ///< by the criterion (not forced)
-  std::vector<double> criterion;        ///< W_d + ln(n) d for d = 0..max (empty if not chosen)
+  std::vector<double> criterion;        ///< W_d + 6.63 d, d = 0..max (empty if not chosen)
   double residual_rms_deg_h = 0.0;      ///< [deg/h]
   std::string note;                     ///< what was done, for the report
 };
