@@ -81,7 +81,7 @@ std::vector<double> model_adev(const model::AnalysisResult& r) {
   std::vector<double> out;
   out.reserve(r.allan.tau_s.size());
   for (const double tau : r.allan.tau_s) {
-    out.push_back(std::sqrt(allan_variance(r.noise.model, tau)));
+    out.push_back(std::sqrt(model::fitted_allan_variance(r.noise, tau)));
   }
   return out;
 }
@@ -148,6 +148,19 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
           {"candidates", candidates}};
 }
 
+nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
+  if (!b.resolved) return {{"resolved", false}, {"deviance_drop", number(b.deviance_drop)}};
+  return {{"resolved", true},
+          {"time_constant_s", number(b.bandwidth.time_constant_s)},
+          {"cutoff_hz", number(b.cutoff_hz)},
+          {"filtered_fraction", number(b.bandwidth.filtered_fraction)},
+          {"lag1_correlation", number(b.lag1_correlation)},
+          {"first_tau_reduction", number(b.first_tau_reduction)},
+          {"sample_interval_s", number(b.sample_interval_s)},
+          {"deviance_drop", number(b.deviance_drop)},
+          {"at_search_bound", b.at_search_bound}};
+}
+
 nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
   return {{"deviance_none", number(e.deviance_none)},
           {"deviance_wiener", number(e.deviance_wiener)},
@@ -163,6 +176,12 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
 nlohmann::json units_json() {
   nlohmann::json units = {
       {"input.sample_rate_hz", "Hz"},
+      {"sensor_bandwidth.time_constant_s", "s"},
+      {"sensor_bandwidth.cutoff_hz", "Hz"},
+      {"sensor_bandwidth.sample_interval_s", "s"},
+      {"sensor_bandwidth.filtered_fraction", "1 (fraction of N^2)"},
+      {"sensor_bandwidth.lag1_correlation", "1"},
+      {"sensor_bandwidth.first_tau_reduction", "1 (fraction of the first tau's Allan variance)"},
       {"input.duration_s", "s"},
       {"input.rate", "deg/h (converted on reading from input.units)"},
       {"input.temperature", "degC"},
@@ -242,6 +261,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"allan", allan_json(r)},
           {"psd", psd_json(r, options.psd_bins_per_decade)},
           {"noise_model", noise},
+          {"sensor_bandwidth", bandwidth_json(r.noise.bandwidth)},
           {"arw_deg_per_sqrt_h", number(r.arw_deg_sqrt_h)},
           {"bias_instability_deg_h", number(r.bias_instability_deg_h)},
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},
@@ -279,7 +299,7 @@ std::string analysis_csv(const model::AnalysisResult& r) {
                        cell(a.edf[k]), cell(a.ci95_low[k]), cell(a.ci95_high[k]), cell(fitted[k]));
     for (const NoiseTerm t : kNoiseTerms) {
       out += ',';
-      out += cell(std::sqrt(allan_variance(r.noise.model, t, a.tau_s[k])));
+      out += cell(std::sqrt(model::fitted_allan_variance(r.noise, t, a.tau_s[k])));
     }
     out += "\n";
   }

@@ -64,9 +64,10 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::int64_t phase_points, const NoiseFitOptions& options,
                         const DetrendFactors* detrend) {
-  // 1. The points.
-  const detail::Points p =
+  // 1. The points, and the sensor bandwidth they show.
+  detail::Points p =
       detail::gather_points(tau_s, adev_deg_h, edf, factors, phase_points, options, detrend);
+  const detail::BandwidthSearch bandwidth = detail::find_bandwidth(p, options);
   // 2. Every admissible subset, best first; the best is the chosen model.
   const std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
   if (fits.empty()) return degenerate(p);
@@ -74,6 +75,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   NoiseFitResult r;
   set_status(chosen, fits, options, r);
   r.model = detail::to_model(chosen);
+  r.bandwidth = bandwidth.estimate;
   r.terms = chosen.terms;
   r.deviance = chosen.deviance;
   r.points = static_cast<int>(p.y.size());
@@ -88,6 +90,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   detail::set_chosen_intervals(model, options, r);
   detail::bound_left_out_terms(model, options, r);
   detail::widen_over_near_candidates(p, model, fits, options, r);
+  detail::widen_over_bandwidths(p, chosen, bandwidth.near, r);
   return r;
 }
 
@@ -130,6 +133,18 @@ ParameterEstimate& NoiseFitResult::estimate(const NoiseParameter& parameter) {
   if (member == &NoiseModel::Q) return Q;
   if (member == &NoiseModel::gm_sigma) return gm_sigma;
   return gm_tc;
+}
+
+double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double tau_s) {
+  const double v = allan_variance(fit.model, term, tau_s);
+  if (term != NoiseTerm::white || !fit.bandwidth.resolved) return v;
+  return v * white_allan_factor(fit.bandwidth.bandwidth, tau_s, fit.bandwidth.sample_interval_s);
+}
+
+double fitted_allan_variance(const NoiseFitResult& fit, double tau_s) {
+  double sum = 0.0;
+  for (NoiseTerm t : kNoiseTerms) sum += fitted_allan_variance(fit, t, tau_s);
+  return sum;
 }
 
 double DetrendFactors::factor(NoiseTerm term, std::size_t index, double tc_s) const {

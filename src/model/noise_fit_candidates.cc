@@ -194,12 +194,14 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
   return fit;
 }
 
-// The correlation times tried for a Gauss-Markov term: from the shortest tau
-// to well beyond the longest (where the process looks like a random walk),
-// six per decade, then golden-section refinement around the best.
+// The correlation times tried for a Gauss-Markov term: from half the
+// shortest tau (from the shortest, when the sensor bandwidth is modelled:
+// a shorter correlation is the bandwidth's) to well beyond the longest
+// (where the process looks like a random walk), six per decade, then
+// golden-section refinement around the best.
 SubsetFit fit_subset_profiled(const Points& p, NoiseTermSet terms) {
   if (!terms.contains(NoiseTerm::gauss_markov)) return fit_subset(p, terms, 1.0);
-  const double lo = std::log(p.tau.front() * 0.5);
+  const double lo = std::log(p.tau.front() * (p.white_shape.empty() ? 0.5 : 1.0));
   const double hi = std::log(p.tau.back() * 30.0);
   const int steps = std::max(8, static_cast<int>(std::ceil((hi - lo) / std::log(10.0) * 6.0)));
   std::vector<SubsetFit> grid;

@@ -1,8 +1,10 @@
 // foglab — the steps of the noise-model fit (internal to the model module).
 //
-// fit_noise_model() (noise_fit.cc) runs six named steps, one file each:
+// fit_noise_model() (noise_fit.cc) runs its named steps in order, one file each:
 //   1. gather_points()                 noise_fit_points.cc
 //      the Allan variances, their edf and the detrending factors;
+//   1b. find_bandwidth()               noise_fit_bandwidth.cc
+//      the sensor's output bandwidth, when the short taus show one;
 //   2. fit_candidates()                noise_fit_candidates.cc
 //      every admissible subset of terms, by maximum gamma likelihood
 //      (iteratively reweighted least squares, Tc profiled), best first;
@@ -14,7 +16,8 @@
 //   5. bound_left_out_terms()          noise_fit_bounds.cc
 //      status and one-sided bound of each term left out;
 //   6. widen_over_near_candidates()    noise_fit_intervals.cc
-//      intervals robust to the model choice.
+//      intervals robust to the model choice, and widen_over_bandwidths()
+//      (noise_fit_bandwidth.cc), N's interval over the bandwidths.
 // The method is described in include/foglab/model/noise_fit.h.
 #pragma once
 
@@ -57,11 +60,20 @@ struct Points {
   std::int64_t phase_points = 0;
   /// How every fit on these points iterates.
   IterationControl control;
+  /// The sensor bandwidth's factor on the white term at each point
+  /// (core/sensor_bandwidth.h); empty: 1.
+  std::vector<double> white_shape;
+
+  /// The sample interval tau0 [s] (0 when the averaging factors are unknown).
+  double sample_interval_s() const {
+    return factors.empty() ? 0.0 : tau.front() / static_cast<double>(factors.front());
+  }
 
   /// The expected Allan variance of term t at point i per unit squared
   /// coefficient (Tc for the Gauss-Markov term), detrended.
   double basis_at(NoiseTerm t, std::size_t i, double tc) const {
-    const double b = unit_allan_variance(t, tau[i], tc);
+    double b = unit_allan_variance(t, tau[i], tc);
+    if (t == NoiseTerm::white && !white_shape.empty()) b *= white_shape[i];
     return detrend ? b * detrend->factor(t, index[i], tc) : b;
   }
 };
@@ -105,6 +117,26 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
                      std::span<const double> edf, std::span<const std::int64_t> factors,
                      std::int64_t phase_points, const NoiseFitOptions& options,
                      const DetrendFactors* detrend);
+
+// --- 1b. the sensor bandwidth (noise_fit_bandwidth.cc) ----------------------
+
+/// What the bandwidth search found: the estimate, and the (phi, T) the data
+/// do not tell from it (reference deviance within the 95 % point of
+/// chi-square with two degrees of freedom, times the dispersion).
+struct BandwidthSearch {
+  BandwidthEstimate estimate;
+  std::vector<SensorBandwidth> near;
+};
+
+/// Looks for the sensor bandwidth in the short-tau points and, when the data
+/// resolve it, sets p.white_shape; returns what it found.
+BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options);
+
+/// Widens N's interval to the union over the bandwidths the data do not
+/// tell apart (the chosen terms refitted with each): the white level is
+/// read through the filter's shape at the first taus.
+void widen_over_bandwidths(const Points& p, const SubsetFit& chosen,
+                           std::span<const SensorBandwidth> near, NoiseFitResult& r);
 
 // --- 2. candidates (noise_fit_candidates.cc) --------------------------------
 

@@ -62,6 +62,21 @@ std::string random_bias_answer(const model::AnalysisResult& r) {
          "by the data)";
 }
 
+std::string bandwidth_sentence(const model::BandwidthEstimate& b) {
+  if (!b.resolved) {
+    return "none resolved (the first taus follow N/sqrt(tau): the samples' white noise is not "
+           "visibly filtered)";
+  }
+  return fmt::format(
+      "time constant {} s, first-order cut-off {} Hz, on {} % of the white noise (lag-1 "
+      "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, and "
+      "N is the white level above it{}",
+      g(b.bandwidth.time_constant_s), g(b.cutoff_hz), g(100.0 * b.bandwidth.filtered_fraction),
+      g(b.lag1_correlation), g(100.0 * b.first_tau_reduction),
+      b.at_search_bound ? "; the time constant is at the longest the search allows (10 samples)"
+                        : "");
+}
+
 std::string class_sentence(const model::AnalysisResult& r) {
   const ClassVerdict& v = r.verdict;
   std::string decided = v.decided_by == ClassCriterion::both ? "both criteria agree"
@@ -240,6 +255,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   }
   h += "</table>\n<table class=\"meta\">\n";
   row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
+  row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
   row("bias instability (ADEV minimum)",
       fmt::format("{} deg/h at tau = {} s{}", g(r.bias_instability_deg_h),
                   g(r.bias_instability_tau_s),
@@ -380,6 +396,7 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
                     g(r.adev_readings.N), g(r.adev_readings.K),
                     g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N),
                     g(r.psd_readings.K));
+  md += "- sensor bandwidth: " + bandwidth_sentence(r.noise.bandwidth) + "\n";
   md += "- random bias: " + random_bias_answer(r) + "\n";
   if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary + ")\n";
   md += "- accuracy class: **" + class_sentence(r) + "**\n";

@@ -37,6 +37,9 @@ ParameterText parameter_text(const model::ParameterEstimate& p);
 
 /// "a Wiener process (rate random walk), K = ... deg/h/sqrt(s)" etc.
 std::string random_bias_answer(const model::AnalysisResult& r);
+/// "not resolved ..." or "time constant ... s (first-order cut-off ... Hz) ...":
+/// the sensor bandwidth the fit found.
+std::string bandwidth_sentence(const model::BandwidthEstimate& b);
 /// "tactical (decided by ...; by bias instability ...; by ARW ...)".
 std::string class_sentence(const model::AnalysisResult& r);
 

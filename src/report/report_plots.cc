@@ -269,7 +269,13 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
     line.line_width = 1.5;
     line.sets_range = false;
     line.x = taus;
-    for (double tau : taus) line.y.push_back(std::sqrt(allan_variance(m, t.term, tau)));
+    if (t.term == NoiseTerm::white && r.noise.bandwidth.resolved) {
+      line.title = fmt::format("white noise N with the sensor bandwidth (f_c {} Hz)",
+                               g(r.noise.bandwidth.cutoff_hz));
+    }
+    for (double tau : taus) {
+      line.y.push_back(std::sqrt(model::fitted_allan_variance(r.noise, t.term, tau)));
+    }
     plot.series.push_back(std::move(line));
   }
   Series fit;
@@ -278,7 +284,7 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
   fit.line_width = 2.0;
   fit.sets_range = false;
   fit.x = taus;
-  for (double tau : taus) fit.y.push_back(std::sqrt(allan_variance(m, tau)));
+  for (double tau : taus) fit.y.push_back(std::sqrt(model::fitted_allan_variance(r.noise, tau)));
   plot.series.push_back(std::move(fit));
   if (r.bias_instability_tau_s > 0.0 && r.bias_instability_deg_h > 0.0) {
     Series min;

@@ -28,6 +28,16 @@
 // than `NoiseFitOptions::tolerance` (or `max_iterations` is reached: the
 // result's status says which); Tc is profiled on a log grid and refined.
 //
+// Sensor bandwidth. A gyro's electronics low-pass filter its output, which
+// lowers the first taus' Allan variance below N^2/tau. Before the
+// candidates are fitted, the white term's shape is profiled over a filtered
+// fraction phi and a time constant T (core/sensor_bandwidth.h) with a large
+// model without a Gauss-Markov term; when the data resolve it (the deviance
+// drops by more than two parameters' penalty) it is held for every
+// candidate, N stays the white level, the Gauss-Markov search starts at the
+// shortest tau, and N's interval spans the bandwidths the data cannot tell
+// apart (`NoiseFitResult::bandwidth`).
+//
 // The edf of each point is Greenhall's for the noise type that dominates the
 // candidate model there (white N: alpha 0, flicker B: -1, random walk K and
 // ramp R: -2, quantisation Q: +2, Gauss-Markov: -2 below Tc, 0 above), fit
@@ -89,6 +99,7 @@
 #include <vector>
 
 #include "foglab/core/noise_model.h"
+#include "foglab/core/sensor_bandwidth.h"
 #include "foglab/stats/allan.h"
 
 namespace foglab::model {
@@ -138,6 +149,30 @@ struct NoiseFitOptions {
   /// It stops after this many iterations whether or not it has converged
   /// (the status then says `iteration_limit`).
   int max_iterations = 200;
+  /// Look for the sensor's output bandwidth in the short taus and model it
+  /// (core/sensor_bandwidth.h); needs the averaging factors.
+  bool model_bandwidth = true;
+};
+
+/// The sensor bandwidth the fit found (core/sensor_bandwidth.h): a part of
+/// the white noise low-pass filtered before sampling. It is a property of
+/// the white term: N stays the white level, the filter only lowers the
+/// first taus' Allan variance.
+struct BandwidthEstimate {
+  bool resolved = false;  ///< the short taus show it (else the fields below are 0)
+  SensorBandwidth bandwidth;
+  double sample_interval_s = 0.0;  ///< [s] tau0 of the record
+  double cutoff_hz = 0.0;          ///< [Hz] first-order cut-off 1 / (2 pi T)
+  double lag1_correlation = 0.0;   ///< of the white noise's samples
+  /// How much of the Allan variance at the first tau the filter takes away
+  /// (1 - its factor there).
+  double first_tau_reduction = 0.0;
+  /// The drop of the deviance of the largest model without a random bias
+  /// when the bandwidth is added (two parameters).
+  double deviance_drop = 0.0;
+  /// The time constant sits at the longest the search allows (10 tau0): the
+  /// correlation is longer than a bandwidth and is left to the other terms.
+  bool at_search_bound = false;
 };
 
 /// How removing a fitted polynomial (the temperature dependence) from the
@@ -183,6 +218,7 @@ struct NoiseFitResult {
   int iterations = 0;  ///< of the chosen model's final reweighting loop
 
   NoiseModel model;  ///< the chosen model (terms left out are 0)
+  BandwidthEstimate bandwidth;  ///< the sensor's output bandwidth, on the white term
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
   RandomBiasProcess random_bias_process = RandomBiasProcess::none;
   NoiseTermSet terms;  ///< the chosen terms, e.g. N+B+K
@@ -201,6 +237,12 @@ struct NoiseFitResult {
   const ParameterEstimate& estimate(const NoiseParameter& parameter) const;
   ParameterEstimate& estimate(const NoiseParameter& parameter);
 };
+
+/// The fitted Allan variance [(deg/h)^2] of one term at tau [s]: the
+/// model's, with the white term's bandwidth factor.
+double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double tau_s);
+/// The sum over the terms.
+double fitted_allan_variance(const NoiseFitResult& fit, double tau_s);
 
 /// Fits the model to Allan deviations `adev_deg_h` at `tau_s` with their
 /// equivalent degrees of freedom `edf` (stats::AllanResult's fields).

@@ -1,0 +1,69 @@
+// The sensor bandwidth's Allan-variance factor (core/sensor_bandwidth.h)
+// against the Allan variance computed from the process's autocovariance by
+// direct summation, and its limits.
+#include "foglab/core/sensor_bandwidth.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace foglab {
+namespace {
+
+// The sampled process: (1 - phi) of the white level unfiltered (variance
+// (1 - phi) S at lag 0) and phi of it through the first-order filter (an
+// AR(1) sequence with lag-1 correlation rho and variance phi S (1 - rho) /
+// (1 + rho)); S = 1 per sample.
+double autocovariance(double phi, double rho, int lag) {
+  const double filtered = phi * (1.0 - rho) / (1.0 + rho) * std::pow(rho, std::abs(lag));
+  return filtered + (lag == 0 ? 1.0 - phi : 0.0);
+}
+
+// Half the mean square difference of two neighbouring m-averages, summed
+// sample by sample: (Var(a) + Var(b) - 2 Cov(a, b)) / 2.
+double allan_variance_by_sums(double phi, double rho, int m) {
+  double var = 0.0, cov = 0.0;
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      var += autocovariance(phi, rho, i - j);
+      cov += autocovariance(phi, rho, m + j - i);
+    }
+  }
+  return (var - cov) / (static_cast<double>(m) * m);
+}
+
+TEST(SensorBandwidth, AllanFactorEqualsTheSumOverTheAutocovariance) {
+  const double tau0 = 0.01;
+  for (double phi : {0.3, 1.0}) {
+    for (double t_over_tau0 : {0.2, 0.54, 1.0, 3.0, 9.0}) {
+      const SensorBandwidth bw{phi, t_over_tau0 * tau0};
+      const double rho = std::exp(-1.0 / t_over_tau0);
+      EXPECT_NEAR(filtered_lag1(bw, tau0), rho, 1e-15);
+      for (int m : {1, 2, 3, 5, 16, 100}) {
+        // White level S = 1 per sample: N^2 / tau = 1 / m in these units.
+        const double expected = allan_variance_by_sums(phi, rho, m) * m;
+        EXPECT_NEAR(white_allan_factor(bw, m * tau0, tau0), expected, 1e-12)
+            << "phi " << phi << ", T " << t_over_tau0 << " tau0, m " << m;
+      }
+      // Lag-1 autocorrelation of the samples.
+      EXPECT_NEAR(white_lag1_correlation(bw, tau0),
+                  autocovariance(phi, rho, 1) / autocovariance(phi, rho, 0), 1e-14);
+    }
+  }
+}
+
+TEST(SensorBandwidth, FactorTendsToTheContinuousFilterAndToOne) {
+  const double tau0 = 0.01;
+  const SensorBandwidth bw{1.0, 20.0 * tau0};
+  // tau >> T >> tau0: 1 - 1.5 T / tau (the continuous first-order filter).
+  const double tau = 2000.0 * tau0;
+  EXPECT_NEAR(1.0 - white_allan_factor(bw, tau, tau0), 1.5 * bw.time_constant_s / tau, 2e-5);
+  EXPECT_EQ(white_allan_factor(SensorBandwidth{}, tau0, tau0), 1.0);
+  EXPECT_EQ(white_allan_factor(SensorBandwidth{0.0, 1.0}, tau0, tau0), 1.0);
+  EXPECT_NEAR(cutoff_hz(bw), 1.0 / (2.0 * std::numbers::pi * 0.2), 1e-12);
+  EXPECT_TRUE(std::isinf(cutoff_hz(SensorBandwidth{})));
+}
+
+}  // namespace
+}  // namespace foglab
