@@ -506,13 +506,20 @@ SystematicFit choose_of(const SystematicFit& first, const Sums& s, const NoiseMo
       fit.criterion[static_cast<std::size_t>(d)] = b.dot(v.ldlt().solve(b)) + penalty * d;
     }
     fit.criterion[static_cast<std::size_t>(top)] = penalty * top;
-    const int best = static_cast<int>(std::min_element(fit.criterion.begin(), fit.criterion.end()) -
-                                      fit.criterion.begin());
+    const int lowest = std::clamp(options.min_degree, 0, top);
+    const int best =
+        static_cast<int>(std::min_element(fit.criterion.begin() + lowest, fit.criterion.end()) -
+                         fit.criterion.begin());
     fit.degree = best;
     fit.note = fmt::format(
         "degree {} chosen by the criterion W_d + {:.3g} d (Wald statistic of the higher "
-        "coefficients with the noise model's covariance) = {:.4g} for d = 0..{}",
-        best, penalty, fmt::join(fit.criterion, ", "), top);
+        "coefficients with the noise model's covariance) = {:.4g} for d = 0..{}{}",
+        best, penalty, fmt::join(fit.criterion, ", "), top,
+        lowest > 0 ? fmt::format(", from degree {} up (the temperature moves by {:.3g} degC, so "
+                                 "its linear coefficient is measured and reported with its "
+                                 "standard error, significant or not)",
+                                 lowest, fit.temperature_span_c)
+                   : "");
   }
   fit.coefficients = unscale(solve_scaled(mo, fit.degree), s.scale);
   fit.bias_deg_h = fit.coefficients[0];

@@ -43,6 +43,12 @@ namespace foglab::model {
 struct SystematicOptions {
   int degree = -1;          ///< -1: choose by the criterion; 0..3 forces it
   int max_degree = 3;       ///< highest degree the criterion considers (0..3)
+  /// Lowest degree the criterion considers when the temperature moves
+  /// (span >= min_span_c): a run through a temperature range is made to
+  /// measure the linear coefficient, which is then reported with its
+  /// standard error even when it is not significant (0: let the criterion
+  /// drop it).
+  int min_degree = 1;
   double min_span_c = 0.5;  ///< [degC] below this spread, fit a constant
   int blocks = 1024;        ///< block means used for the covariance
   /// Cost of one coefficient in the degree criterion (chi-square_1 at 99 %).
