@@ -149,7 +149,11 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
 }
 
 nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
-  if (!b.resolved) return {{"resolved", false}, {"deviance_drop", number(b.deviance_drop)}};
+  if (!b.resolved) {
+    return {{"resolved", false},
+            {"deviance_drop", number(b.deviance_drop)},
+            {"at_search_bound", b.at_search_bound}};
+  }
   return {{"resolved", true},
           {"time_constant_s", number(b.bandwidth.time_constant_s)},
           {"cutoff_hz", number(b.cutoff_hz)},
@@ -159,6 +163,20 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
           {"sample_interval_s", number(b.sample_interval_s)},
           {"deviance_drop", number(b.deviance_drop)},
           {"at_search_bound", b.at_search_bound}};
+}
+
+nlohmann::json lines_json(const model::NoiseFitResult& f) {
+  nlohmann::json lines = nlohmann::json::array();
+  for (const SpectralLine& line : f.lines) {
+    lines.push_back({{"frequency_hz", number(line.frequency_hz)},
+                     {"width_hz", number(line.width_hz)},
+                     {"rms_deg_h", number(std::sqrt(line.variance))},
+                     {"peak_ratio", number(line.peak_ratio)},
+                     {"adev_at_quarter_period_deg_h",
+                      number(std::sqrt(line_allan_variance(line, 0.371 / line.frequency_hz,
+                                                           f.bandwidth.sample_interval_s)))}});
+  }
+  return lines;
 }
 
 nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
@@ -176,6 +194,11 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
 nlohmann::json units_json() {
   nlohmann::json units = {
       {"input.sample_rate_hz", "Hz"},
+      {"spectral_lines[].frequency_hz", "Hz"},
+      {"spectral_lines[].width_hz", "Hz"},
+      {"spectral_lines[].rms_deg_h", "deg/h"},
+      {"spectral_lines[].peak_ratio", "1 (PSD over the noise floor)"},
+      {"spectral_lines[].adev_at_quarter_period_deg_h", "deg/h"},
       {"sensor_bandwidth.time_constant_s", "s"},
       {"sensor_bandwidth.cutoff_hz", "Hz"},
       {"sensor_bandwidth.sample_interval_s", "s"},
@@ -262,6 +285,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"psd", psd_json(r, options.psd_bins_per_decade)},
           {"noise_model", noise},
           {"sensor_bandwidth", bandwidth_json(r.noise.bandwidth)},
+          {"spectral_lines", lines_json(r.noise)},
           {"arw_deg_per_sqrt_h", number(r.arw_deg_sqrt_h)},
           {"bias_instability_deg_h", number(r.bias_instability_deg_h)},
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "foglab/model/spectral_lines.h"
 
 namespace foglab::model {
 namespace {
@@ -111,12 +112,13 @@ void add_reported_allan(Statistics& s, const stats::AllanResult& all, double fs,
 // (> 0) give the polynomial in temperature removed from it: the fit then
 // allows for what removing it did to each term (detrend_factors).
 NoiseFitResult residual_noise_model(const stats::AllanResult& all, const AnalysisOptions& options,
-                                    const TemperatureRecord* record, int degree) {
+                                    const TemperatureRecord* record, int degree,
+                                    std::span<const SpectralLine> lines) {
   if (record && degree > 0) {
     const DetrendFactors factors = detrend_factors(*record, degree, all.tau_s);
-    return fit_noise_model(all, options.noise_fit, &factors);
+    return fit_noise_model(all, options.noise_fit, &factors, lines);
   }
-  return fit_noise_model(all, options.noise_fit);
+  return fit_noise_model(all, options.noise_fit, nullptr, lines);
 }
 
 // PSD, OADEV and the noise fit of the residual (consumed: it becomes the
@@ -125,9 +127,10 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
                       const TemperatureRecord* record, int degree) {
   Statistics s;
   add_psd(s, residual, fs, options);
+  const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
   const stats::AllanResult all = residual_allan(residual, fs, options);
   add_reported_allan(s, all, fs, options);
-  s.noise = residual_noise_model(all, options, record, degree);
+  s.noise = residual_noise_model(all, options, record, degree, lines);
   return s;
 }
 
@@ -152,6 +155,11 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
                                   std::vector<double>& rate, std::span<const double> temperature,
                                   double fs, const AnalysisOptions& options) {
   const int cubic_degree = fit.degree;
+  // The lines from the record's own PSD: a polynomial in temperature moves
+  // only the lowest bins, below where lines are looked for.
+  stats::WelchOptions welch;
+  welch.segment_length = options.psd_segment;
+  const std::vector<SpectralLine> lines = find_spectral_lines(stats::welch_psd(rate, fs, welch));
   std::vector<double> residual = temperature_fit_residual(fit, rate, temperature);
   const stats::AllanResult cubic_allan = residual_allan(residual, fs, options);
   if (cubic_allan.tau_s.size() < 3) {
@@ -162,10 +170,10 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   }
   const DetrendFactors cubic_factors = detrend_factors(record, cubic_degree, cubic_allan.tau_s);
   std::future<NoiseFitResult> cubic_noise = std::async(std::launch::async, [&] {
-    return fit_noise_model(cubic_allan, options.noise_fit, &cubic_factors);
+    return fit_noise_model(cubic_allan, options.noise_fit, &cubic_factors, lines);
   });
   const NoiseFitResult look =
-      fit_noise_model(without_intervals(cubic_allan), options.noise_fit, &cubic_factors);
+      fit_noise_model(without_intervals(cubic_allan), options.noise_fit, &cubic_factors, lines);
   fit = choose_temperature_degree(fit, record, look.model, options.systematic);
   subtract_temperature_fit(fit, rate, temperature);
 
@@ -180,8 +188,9 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   residual.assign(rate.begin(), rate.end());  // the capacity (n + 1) stays
   const stats::AllanResult all = residual_allan(residual, fs, options);
   residual = {};
-  std::future<NoiseFitResult> noise = std::async(
-      std::launch::async, [&] { return residual_noise_model(all, options, &record, fit.degree); });
+  std::future<NoiseFitResult> noise = std::async(std::launch::async, [&] {
+    return residual_noise_model(all, options, &record, fit.degree, lines);
+  });
   add_psd(s, rate, fs, options);
   add_reported_allan(s, all, fs, options);
   s.noise = noise.get();

@@ -63,10 +63,20 @@ NoiseFitResult degenerate(const detail::Points& p) {
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::int64_t phase_points, const NoiseFitOptions& options,
-                        const DetrendFactors* detrend) {
-  // 1. The points, and the sensor bandwidth they show.
+                        const DetrendFactors* detrend, std::span<const SpectralLine> lines) {
+  // 1. The points, the known Allan variance of the spectral lines, and the
+  // sensor bandwidth they show.
   detail::Points p =
       detail::gather_points(tau_s, adev_deg_h, edf, factors, phase_points, options, detrend);
+  const double tau0 = p.sample_interval_s();
+  if (!lines.empty() && tau0 > 0.0) {
+    p.fixed_avar.assign(p.tau.size(), 0.0);
+    for (std::size_t i = 0; i < p.tau.size(); ++i) {
+      for (const SpectralLine& line : lines) {
+        p.fixed_avar[i] += line_allan_variance(line, p.tau[i], tau0);
+      }
+    }
+  }
   const detail::BandwidthSearch bandwidth = detail::find_bandwidth(p, options);
   // 2. Every admissible subset, best first; the best is the chosen model.
   const std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
@@ -76,6 +86,7 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   set_status(chosen, fits, options, r);
   r.model = detail::to_model(chosen);
   r.bandwidth = bandwidth.estimate;
+  if (!p.fixed_avar.empty()) r.lines.assign(lines.begin(), lines.end());
   r.terms = chosen.terms;
   r.deviance = chosen.deviance;
   r.points = static_cast<int>(p.y.size());
@@ -141,8 +152,16 @@ double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double t
   return v * white_allan_factor(fit.bandwidth.bandwidth, tau_s, fit.bandwidth.sample_interval_s);
 }
 
-double fitted_allan_variance(const NoiseFitResult& fit, double tau_s) {
+double lines_allan_variance(const NoiseFitResult& fit, double tau_s) {
   double sum = 0.0;
+  for (const SpectralLine& line : fit.lines) {
+    sum += line_allan_variance(line, tau_s, fit.bandwidth.sample_interval_s);
+  }
+  return sum;
+}
+
+double fitted_allan_variance(const NoiseFitResult& fit, double tau_s) {
+  double sum = lines_allan_variance(fit, tau_s);
   for (NoiseTerm t : kNoiseTerms) sum += fitted_allan_variance(fit, t, tau_s);
   return sum;
 }
@@ -161,11 +180,11 @@ double DetrendFactors::factor(NoiseTerm term, std::size_t index, double tc_s) co
 NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                                std::span<const double> edf, const NoiseFitOptions& options,
                                const DetrendFactors* detrend) {
-  return fit_impl(tau_s, adev_deg_h, edf, {}, 0, options, detrend);
+  return fit_impl(tau_s, adev_deg_h, edf, {}, 0, options, detrend, {});
 }
 
 NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOptions& options,
-                               const DetrendFactors* detrend) {
+                               const DetrendFactors* detrend, std::span<const SpectralLine> lines) {
   if (allan.kind != stats::AllanKind::oadev || allan.m.size() != allan.dev.size()) {
     throw UsageError("noise-model fit: needs an overlapping Allan deviation (oadev) result");
   }
@@ -178,7 +197,8 @@ NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOp
       edf[i] = stats::greenhall_edf(0, allan.m[i], allan.phase_points);
     }
   }
-  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, allan.phase_points, options, detrend);
+  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, allan.phase_points, options, detrend,
+                  lines);
 }
 
 }  // namespace foglab::model

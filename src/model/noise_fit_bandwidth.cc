@@ -144,7 +144,12 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options) {
   const int spare = static_cast<int>(p.y.size()) - terms.parameter_count() - 2;
   const double dispersion = std::max(1.0, best.deviance / std::max(1, spare));
   e.deviance_drop = plain.deviance - best.deviance;
-  if (!(e.deviance_drop > 2.0 * options.penalty * dispersion) || reduction < kSmallestEffect) {
+  // At the longest T searched the data want a correlation longer than a
+  // filter's: a random-bias process the reference model lacks (a Gauss-
+  // Markov hump) bends the first taus, and that is left to the candidates.
+  e.at_search_bound = best.log_t >= std::log(kLongestT) - 1e-3;
+  if (!(e.deviance_drop > 2.0 * options.penalty * dispersion) || reduction < kSmallestEffect ||
+      e.at_search_bound) {
     return result;
   }
   e.resolved = true;
@@ -152,7 +157,6 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options) {
   e.cutoff_hz = cutoff_hz(bandwidth);
   e.lag1_correlation = white_lag1_correlation(bandwidth, e.sample_interval_s);
   e.first_tau_reduction = reduction;
-  e.at_search_bound = best.log_t >= std::log(kLongestT) - 1e-3;
   for (const Trial& t : search.trials) {
     if (t.deviance <= best.deviance + kTwoParameters95 * dispersion) {
       result.near.push_back({t.fraction, e.sample_interval_s * std::exp(t.log_t)});

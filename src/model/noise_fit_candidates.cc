@@ -107,10 +107,11 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
   for (NoiseTerm t : kNoiseTerms) {
     if (terms.contains(t)) fitted.push_back(t);
   }
-  std::vector<double> offset(n, 0.0);
+  std::vector<double> offset = p.fixed_avar;
+  offset.resize(n, 0.0);
   if (fixed) {
     for (std::size_t i = 0; i < n; ++i) {
-      offset[i] = fixed->squared_coefficient * p.basis_at(fixed->term, i, tc);
+      offset[i] += fixed->squared_coefficient * p.basis_at(fixed->term, i, tc);
     }
   }
   std::vector<double> mu = p.y;  // first weights from the data themselves

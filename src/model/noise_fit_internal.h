@@ -60,6 +60,9 @@ struct Points {
   std::int64_t phase_points = 0;
   /// How every fit on these points iterates.
   IterationControl control;
+  /// The known Allan variance at each point (the spectral lines'), added
+  /// to every model; empty: none.
+  std::vector<double> fixed_avar;
   /// The sensor bandwidth's factor on the white term at each point
   /// (core/sensor_bandwidth.h); empty: 1.
   std::vector<double> white_shape;

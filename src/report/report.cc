@@ -70,11 +70,20 @@ std::string bandwidth_sentence(const model::BandwidthEstimate& b) {
   return fmt::format(
       "time constant {} s, first-order cut-off {} Hz, on {} % of the white noise (lag-1 "
       "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, and "
-      "N is the white level above it{}",
+      "N is the white level above it",
       g(b.bandwidth.time_constant_s), g(b.cutoff_hz), g(100.0 * b.bandwidth.filtered_fraction),
-      g(b.lag1_correlation), g(100.0 * b.first_tau_reduction),
-      b.at_search_bound ? "; the time constant is at the longest the search allows (10 samples)"
-                        : "");
+      g(b.lag1_correlation), g(100.0 * b.first_tau_reduction));
+}
+
+std::string lines_sentence(const model::NoiseFitResult& fit) {
+  if (fit.lines.empty()) return "none found in the PSD";
+  std::string text;
+  for (const SpectralLine& line : fit.lines) {
+    text += fmt::format("{}{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor",
+                        text.empty() ? "" : "; ", g(line.frequency_hz), g(line.width_hz),
+                        g(std::sqrt(line.variance)), g(line.peak_ratio));
+  }
+  return text + " (its Allan variance is part of the fit, not of any noise term)";
 }
 
 std::string class_sentence(const model::AnalysisResult& r) {
@@ -256,6 +265,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   h += "</table>\n<table class=\"meta\">\n";
   row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
   row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
+  row("spectral lines", lines_sentence(r.noise));
   row("bias instability (ADEV minimum)",
       fmt::format("{} deg/h at tau = {} s{}", g(r.bias_instability_deg_h),
                   g(r.bias_instability_tau_s),
@@ -397,6 +407,7 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
                     g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N),
                     g(r.psd_readings.K));
   md += "- sensor bandwidth: " + bandwidth_sentence(r.noise.bandwidth) + "\n";
+  md += "- spectral lines: " + lines_sentence(r.noise) + "\n";
   md += "- random bias: " + random_bias_answer(r) + "\n";
   if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary + ")\n";
   md += "- accuracy class: **" + class_sentence(r) + "**\n";

@@ -40,6 +40,8 @@ std::string random_bias_answer(const model::AnalysisResult& r);
 /// "not resolved ..." or "time constant ... s (first-order cut-off ... Hz) ...":
 /// the sensor bandwidth the fit found.
 std::string bandwidth_sentence(const model::BandwidthEstimate& b);
+/// "none found" or "20.2 Hz (2.85 Hz wide), 882 deg/h rms, ...": the lines.
+std::string lines_sentence(const model::NoiseFitResult& fit);
 /// "tactical (decided by ...; by bias instability ...; by ARW ...)".
 std::string class_sentence(const model::AnalysisResult& r);
 

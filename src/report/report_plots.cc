@@ -278,6 +278,19 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
     }
     plot.series.push_back(std::move(line));
   }
+  if (!r.noise.lines.empty()) {
+    Series line;
+    line.title = r.noise.lines.size() == 1
+                     ? fmt::format("spectral line {} Hz", g(r.noise.lines.front().frequency_hz))
+                     : fmt::format("{} spectral lines", r.noise.lines.size());
+    line.color = kPurple;
+    line.dash_type = 3;
+    line.line_width = 1.5;
+    line.sets_range = false;
+    line.x = taus;
+    for (double tau : taus) line.y.push_back(std::sqrt(model::lines_allan_variance(r.noise, tau)));
+    plot.series.push_back(std::move(line));
+  }
   Series fit;
   fit.title = fmt::format("fit {}", to_string(r.noise.terms));
   fit.color = kBlack;

@@ -100,6 +100,7 @@
 
 #include "foglab/core/noise_model.h"
 #include "foglab/core/sensor_bandwidth.h"
+#include "foglab/core/spectral_line.h"
 #include "foglab/stats/allan.h"
 
 namespace foglab::model {
@@ -170,8 +171,9 @@ struct BandwidthEstimate {
   /// The drop of the deviance of the largest model without a random bias
   /// when the bandwidth is added (two parameters).
   double deviance_drop = 0.0;
-  /// The time constant sits at the longest the search allows (10 tau0): the
-  /// correlation is longer than a bandwidth and is left to the other terms.
+  /// The best time constant sat at the longest the search allows (10 tau0):
+  /// the correlation is longer than a filter's and is left to the other
+  /// terms; the bandwidth is then not resolved.
   bool at_search_bound = false;
 };
 
@@ -219,6 +221,9 @@ struct NoiseFitResult {
 
   NoiseModel model;  ///< the chosen model (terms left out are 0)
   BandwidthEstimate bandwidth;  ///< the sensor's output bandwidth, on the white term
+  /// Narrow-band disturbances whose Allan variance the fit took as known
+  /// (model/spectral_lines.h); empty when none were given.
+  std::vector<SpectralLine> lines;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
   RandomBiasProcess random_bias_process = RandomBiasProcess::none;
   NoiseTermSet terms;  ///< the chosen terms, e.g. N+B+K
@@ -241,8 +246,10 @@ struct NoiseFitResult {
 /// The fitted Allan variance [(deg/h)^2] of one term at tau [s]: the
 /// model's, with the white term's bandwidth factor.
 double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double tau_s);
-/// The sum over the terms.
+/// The sum over the terms and the spectral lines.
 double fitted_allan_variance(const NoiseFitResult& fit, double tau_s);
+/// The spectral lines' part of it.
+double lines_allan_variance(const NoiseFitResult& fit, double tau_s);
 
 /// Fits the model to Allan deviations `adev_deg_h` at `tau_s` with their
 /// equivalent degrees of freedom `edf` (stats::AllanResult's fields).
@@ -254,8 +261,11 @@ NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const do
                                std::span<const double> edf, const NoiseFitOptions& options = {},
                                const DetrendFactors* detrend = nullptr);
 
-/// The same on an Allan result computed with confidence intervals.
+/// The same on an Allan result computed with confidence intervals; the
+/// Allan variance of `lines` (spectral lines of the same record) is taken as
+/// known and added to every candidate model.
 NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOptions& options = {},
-                               const DetrendFactors* detrend = nullptr);
+                               const DetrendFactors* detrend = nullptr,
+                               std::span<const SpectralLine> lines = {});
 
 }  // namespace foglab::model

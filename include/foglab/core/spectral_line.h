@@ -1,0 +1,37 @@
+// foglab — a narrow-band disturbance of the rate (a spectral line: mains
+// pickup, a dither or structural resonance, a sinusoidal input) and what it
+// does to the Allan variance.
+//
+// A line is kept as its excess over the noise floor in the frequency bins
+// of a Welch PSD: each bin b at frequency f_b carries the variance v_b (both
+// signs of f; the line's variance is their sum). A sinusoid of variance v at
+// frequency f, sampled every tau0, has at tau = m tau0 the Allan variance
+//
+//   AVAR(tau) = 2 v sin^4(pi f tau) / (m sin(pi f tau0))^2
+//
+// (the m-average of a sampled sinusoid is its value at the block's centre
+// times the Dirichlet kernel sin(pi f tau) / (m sin(pi f tau0)); two
+// neighbouring averages differ by 2 sin(pi f tau) times that); a line is the
+// sum over its bins. It vanishes where tau is a whole number of periods and
+// decays as 1/tau^2 between bumps: the pattern of bumps near tau = 0.37/f,
+// 1.4/f, ... that no IEEE Std 952 term follows.
+#pragma once
+
+#include <vector>
+
+namespace foglab {
+
+struct SpectralLine {
+  double frequency_hz = 0.0;             ///< [Hz] the power-weighted centre of its bins
+  double width_hz = 0.0;                 ///< [Hz] from its lowest to its highest bin
+  double variance = 0.0;                 ///< [(deg/h)^2] the sum of bin_variance
+  double peak_ratio = 0.0;               ///< the highest bin's PSD over the noise floor there
+  std::vector<double> bin_frequency_hz;  ///< [Hz]
+  std::vector<double> bin_variance;      ///< [(deg/h)^2]
+};
+
+/// The line's Allan variance [(deg/h)^2] at tau [s] for samples every
+/// `sample_interval_s` (tau0) [s].
+double line_allan_variance(const SpectralLine& line, double tau_s, double sample_interval_s);
+
+}  // namespace foglab

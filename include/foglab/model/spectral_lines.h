@@ -1,0 +1,29 @@
+// foglab — finding the narrow-band disturbances of a record (spectral lines,
+// core/spectral_line.h) in its Welch PSD, so that the noise fit can take
+// their Allan variance as known instead of bending its terms around them.
+//
+// The noise floor is the running median of the PSD over 0.2 decade either
+// side (taken every 1/20 decade, interpolated log-linearly). A line is a run
+// of bins (gaps of up to two bins closed) where the PSD, averaged over 0.5 %
+// of f, stands more than 3 times above the floor, 4 times at its highest,
+// and whose excess over the floor is more than 10 times its own standard
+// error (the floor times sqrt(bins / segments): a Welch average of K
+// segments scatters by about 1/sqrt(K)). Only bins from 64 times the
+// resolution up are searched. The line's bins carry their excess,
+// 2 (S - floor) df each (both signs of f). A resonance hump a few hertz
+// wide is a line in this sense: its bins are summed as they are.
+#pragma once
+
+#include <vector>
+
+#include "foglab/core/spectral_line.h"
+#include "foglab/stats/psd.h"
+
+namespace foglab::model {
+
+/// The lines of `psd` (two-sided, stats::welch_psd()), strongest first, at
+/// most `max_lines`.
+std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd,
+                                              std::size_t max_lines = 8);
+
+}  // namespace foglab::model

@@ -1,0 +1,121 @@
+// foglab — spectral lines in a Welch PSD (spectral_lines.h).
+#include "foglab/model/spectral_lines.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foglab::model {
+namespace {
+
+constexpr double kBandsPerDecade = 20.0;
+constexpr double kFloorHalfWidth = 0.2;  // decades either side of a band's centre
+constexpr double kSmoothing = 0.005;     // moving-average width, relative to f
+constexpr double kBinRatio = 3.0;        // a line's smoothed bins stand this far above the floor
+constexpr double kPeakRatio = 4.0;       // its highest smoothed bin this far
+constexpr double kSignificance = 10.0;   // its excess this many standard errors
+constexpr std::size_t kLowestBin = 64;   // in resolutions
+constexpr std::size_t kClosedGap = 2;    // bins
+
+// The noise floor at every bin: at the centre of each band of 1/20 decade,
+// the median of the PSD within 0.2 decade either side (wide enough that a
+// resonance hump a quarter of its frequency wide does not lift it),
+// interpolated in log-log between the centres.
+std::vector<double> noise_floor(const stats::PsdResult& psd) {
+  const std::vector<double>& f = psd.frequency_hz;
+  const std::size_t n = f.size();
+  const double step = std::pow(10.0, 1.0 / kBandsPerDecade);
+  const double half = std::pow(10.0, kFloorHalfWidth);
+  std::vector<double> centre, level, window;
+  for (double fc = f.front(); fc <= f.back() * step; fc *= step) {
+    const auto lo = std::lower_bound(f.begin(), f.end(), fc / half);
+    const auto hi = std::upper_bound(f.begin(), f.end(), fc * half);
+    if (hi - lo < 8) continue;
+    window.assign(psd.psd.begin() + (lo - f.begin()), psd.psd.begin() + (hi - f.begin()));
+    const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+    std::nth_element(window.begin(), mid, window.end());
+    centre.push_back(std::log(fc));
+    level.push_back(std::log(std::max(*mid, 1e-300)));
+  }
+  std::vector<double> floor(n, 0.0);
+  if (centre.empty()) return floor;
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double x = std::log(f[k]);
+    while (j + 1 < centre.size() && centre[j + 1] < x) ++j;
+    double y = level[j];
+    if (j + 1 < centre.size() && x > centre[j]) {
+      const double w = (x - centre[j]) / (centre[j + 1] - centre[j]);
+      y = (1.0 - w) * level[j] + w * level[j + 1];
+    }
+    floor[k] = std::exp(y);
+  }
+  return floor;
+}
+
+// The PSD averaged over a window 0.5 % of f wide (at least 3 bins), which
+// takes the Welch estimate's scatter off a broad hump.
+std::vector<double> smoothed(const stats::PsdResult& psd) {
+  const std::size_t n = psd.psd.size();
+  std::vector<double> prefix(n + 1, 0.0);
+  for (std::size_t k = 0; k < n; ++k) prefix[k + 1] = prefix[k] + psd.psd[k];
+  std::vector<double> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto h =
+        static_cast<std::size_t>(std::max(1.0, 0.5 * kSmoothing * static_cast<double>(k)));
+    const std::size_t a = k >= h ? k - h : 0, b = std::min(n, k + h + 1);
+    out[k] = (prefix[b] - prefix[a]) / static_cast<double>(b - a);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::size_t max_lines) {
+  std::vector<SpectralLine> lines;
+  const std::size_t n = psd.psd.size();
+  if (n < 2 * kLowestBin || psd.segments == 0 || !(psd.resolution_hz > 0.0)) return lines;
+  const std::vector<double> floor = noise_floor(psd);
+  const std::vector<double> smooth = smoothed(psd);
+  const double df = psd.resolution_hz;
+  const double segments = static_cast<double>(psd.segments);
+
+  std::size_t k = kLowestBin;
+  while (k < n) {
+    if (!(smooth[k] > kBinRatio * floor[k])) {
+      ++k;
+      continue;
+    }
+    // A run of high bins, gaps of up to kClosedGap closed.
+    std::size_t end = k + 1, last = k;
+    while (end < n && end <= last + kClosedGap + 1) {
+      if (smooth[end] > kBinRatio * floor[end]) last = end;
+      ++end;
+    }
+    SpectralLine line;
+    double excess = 0.0, floor_sum = 0.0, weighted_f = 0.0;
+    for (std::size_t b = k; b <= last; ++b) {
+      const double e = std::max(0.0, psd.psd[b] - floor[b]);
+      line.bin_frequency_hz.push_back(psd.frequency_hz[b]);
+      line.bin_variance.push_back(2.0 * e * df);
+      line.peak_ratio = std::max(line.peak_ratio, smooth[b] / floor[b]);
+      excess += e;
+      floor_sum += floor[b];
+      weighted_f += e * psd.frequency_hz[b];
+    }
+    const double bins = static_cast<double>(last - k + 1);
+    const double standard_error = floor_sum / bins * std::sqrt(bins / segments);
+    if (excess > kSignificance * standard_error && line.peak_ratio > kPeakRatio) {
+      line.frequency_hz = weighted_f / excess;
+      line.width_hz = psd.frequency_hz[last] - psd.frequency_hz[k];
+      line.variance = 2.0 * excess * df;
+      lines.push_back(std::move(line));
+    }
+    k = last + 1;
+  }
+  std::sort(lines.begin(), lines.end(),
+            [](const SpectralLine& a, const SpectralLine& b) { return a.variance > b.variance; });
+  if (lines.size() > max_lines) lines.resize(max_lines);
+  return lines;
+}
+
+}  // namespace foglab::model
