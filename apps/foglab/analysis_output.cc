@@ -165,6 +165,21 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
           {"at_search_bound", b.at_search_bound}};
 }
 
+nlohmann::json quantisation_json(const model::AnalysisResult& r) {
+  const model::OutputQuantisation& q = r.output_quantisation;
+  nlohmann::json j = {{"detected", q.detected},
+                      {"distinct_values", q.distinct_values},
+                      {"samples_examined", q.samples_examined}};
+  if (!q.detected) return j;
+  const double n = r.noise.model.N;
+  j["lsb_deg_h"] = number(q.lsb_deg_h);
+  j["white_level_deg_h_sqrt_hz"] = number(q.white_level_deg_h_sqrt_hz);
+  j["share_of_white_variance"] =
+      number(n > 0 ? std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : std::nan(""));
+  j["sample_sd_deg_h"] = number(q.sample_sd_deg_h);
+  return j;
+}
+
 nlohmann::json lines_json(const model::NoiseFitResult& f) {
   nlohmann::json lines = nlohmann::json::array();
   for (const SpectralLine& line : f.lines) {
@@ -194,6 +209,10 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
 nlohmann::json units_json() {
   nlohmann::json units = {
       {"input.sample_rate_hz", "Hz"},
+      {"output_quantisation.lsb_deg_h", "deg/h"},
+      {"output_quantisation.white_level_deg_h_sqrt_hz", "deg/h/sqrt(Hz)"},
+      {"output_quantisation.share_of_white_variance", "1 (of N^2)"},
+      {"output_quantisation.sample_sd_deg_h", "deg/h"},
       {"spectral_lines[].frequency_hz", "Hz"},
       {"spectral_lines[].width_hz", "Hz"},
       {"spectral_lines[].rms_deg_h", "deg/h"},
@@ -286,6 +305,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"noise_model", noise},
           {"sensor_bandwidth", bandwidth_json(r.noise.bandwidth)},
           {"spectral_lines", lines_json(r.noise)},
+          {"output_quantisation", quantisation_json(r)},
           {"arw_deg_per_sqrt_h", number(r.arw_deg_sqrt_h)},
           {"bias_instability_deg_h", number(r.bias_instability_deg_h)},
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},

@@ -266,6 +266,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         rate_deg_h.size()));
   }
   AnalysisResult r;
+  r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
   r.sample_rate_hz = sample_rate_hz;
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());
   r.duration_s = static_cast<double>(rate_deg_h.size()) / sample_rate_hz;
@@ -301,6 +302,19 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     set_standard_errors(*fit, *record, for_errors);
     r.notes.push_back(fit->note);
     r.systematic = std::move(fit);
+  }
+  if (const OutputQuantisation& q = r.output_quantisation; q.detected) {
+    const double n = s.noise.model.N;
+    r.notes.push_back(fmt::format(
+        "the output is quantised in steps of {:.6g} deg/h ({} distinct values in the first {} "
+        "samples); rounding adds white noise of level {:.4g} deg/h/sqrt(Hz), {:.3g} % of N^2, "
+        "which the fitted N includes{}",
+        q.lsb_deg_h, q.distinct_values, q.samples_examined, q.white_level_deg_h_sqrt_hz,
+        n > 0 ? 100.0 * std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : kNaN,
+        q.lsb_deg_h > q.sample_sd_deg_h
+            ? "; the step is larger than the samples' spread, so the rounding is not noise-like "
+              "and the short-tau statistics are distorted"
+            : ""));
   }
   r.evidence = evidence_of(s);
   r.psd = std::move(s.psd);

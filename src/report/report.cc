@@ -266,6 +266,12 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
   row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
   row("spectral lines", lines_sentence(r.noise));
+  row("output quantisation",
+      r.output_quantisation.detected
+          ? fmt::format("steps of {} deg/h (LSB); rounding noise {} deg/h/sqrt(Hz), inside N",
+                        g(r.output_quantisation.lsb_deg_h),
+                        g(r.output_quantisation.white_level_deg_h_sqrt_hz))
+          : std::string("none seen in the samples"));
   row("bias instability (ADEV minimum)",
       fmt::format("{} deg/h at tau = {} s{}", g(r.bias_instability_deg_h),
                   g(r.bias_instability_tau_s),

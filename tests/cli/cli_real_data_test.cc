@@ -74,6 +74,9 @@ TEST_P(RealGyro, WhiteLevelBandwidthAndClass) {
   } else {
     EXPECT_TRUE(lines.empty()) << lines.dump();
   }
+  // The output word: 0.05 deg/s = 180 deg/h per LSB.
+  ASSERT_TRUE(j["output_quantisation"]["detected"].get<bool>());
+  EXPECT_NEAR(j["output_quantisation"]["lsb_deg_h"].get<double>(), 180.0, 1e-6);
   EXPECT_EQ(j["accuracy_class"], "consumer");
   EXPECT_EQ(j["fit"]["status"], "converged");
 }

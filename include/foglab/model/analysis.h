@@ -21,6 +21,7 @@
 
 #include "foglab/core/accuracy_class.h"
 #include "foglab/model/noise_fit.h"
+#include "foglab/model/output_quantisation.h"
 #include "foglab/model/readings.h"
 #include "foglab/model/systematic.h"
 #include "foglab/stats/allan.h"
@@ -72,6 +73,7 @@ struct AnalysisResult {
   double bias_instability_tau_s = 0.0;    ///< [s]
   bool bias_instability_at_edge = false;  ///< minimum at the end of the tau range
   RandomBiasEvidence evidence;
+  OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
   ClassVerdict verdict;
   std::vector<std::string> notes;  ///< what the program decided and why
 };

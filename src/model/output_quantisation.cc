@@ -1,0 +1,54 @@
+// foglab — the output word's LSB (output_quantisation.h).
+#include "foglab/model/output_quantisation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace foglab::model {
+
+OutputQuantisation find_output_quantisation(std::span<const double> rate_deg_h,
+                                            double sample_rate_hz, std::size_t max_samples) {
+  OutputQuantisation q;
+  std::vector<double> values;
+  values.reserve(std::min(rate_deg_h.size(), max_samples));
+  for (double v : rate_deg_h.first(std::min(rate_deg_h.size(), max_samples))) {
+    if (std::isfinite(v)) values.push_back(v);
+  }
+  q.samples_examined = static_cast<std::int64_t>(values.size());
+  if (values.size() < 100 || !(sample_rate_hz > 0.0)) return q;
+  double mean = 0.0;
+  for (double v : values) mean += v;
+  mean /= static_cast<double>(values.size());
+  double ss = 0.0;
+  for (double v : values) ss += (v - mean) * (v - mean);
+  q.sample_sd_deg_h = std::sqrt(ss / static_cast<double>(values.size() - 1));
+
+  std::sort(values.begin(), values.end());
+  // Distinct values, merging those equal to 1e-9 of the record's scale
+  // (a unit conversion leaves the last bits of a whole LSB count uneven).
+  const double scale = std::max(std::fabs(values.front()), std::fabs(values.back()));
+  const double same = 1e-9 * std::max(scale, 1e-300);
+  std::vector<double> distinct;
+  for (double v : values) {
+    if (distinct.empty() || v - distinct.back() > same) distinct.push_back(v);
+  }
+  q.distinct_values = static_cast<std::int64_t>(distinct.size());
+  if (distinct.size() < 3 || distinct.size() * 4 > values.size()) return q;
+  std::vector<double> gaps(distinct.size() - 1);
+  for (std::size_t k = 1; k < distinct.size(); ++k) gaps[k - 1] = distinct[k] - distinct[k - 1];
+  const double lsb = *std::min_element(gaps.begin(), gaps.end());
+  if (!(lsb > same)) return q;
+  std::size_t whole = 0;
+  for (double g : gaps) {
+    const double multiple = g / lsb;
+    if (std::fabs(multiple - std::round(multiple)) < 1e-6 * std::max(1.0, multiple)) ++whole;
+  }
+  if (whole * 100 < gaps.size() * 99) return q;
+  q.detected = true;
+  q.lsb_deg_h = lsb;
+  q.white_level_deg_h_sqrt_hz = lsb / std::sqrt(12.0 * sample_rate_hz);
+  return q;
+}
+
+}  // namespace foglab::model
