@@ -154,8 +154,11 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
             {"deviance_drop", number(b.deviance_drop)},
             {"at_search_bound", b.at_search_bound}};
   }
+  const bool ma = b.bandwidth.moving_average();
   return {{"resolved", true},
-          {"time_constant_s", number(b.bandwidth.time_constant_s)},
+          {"kind", ma ? "moving_average" : "first_order"},
+          {"moving_average_samples", b.bandwidth.moving_average_samples},
+          {"time_constant_s", ma ? nlohmann::json(nullptr) : number(b.bandwidth.time_constant_s)},
           {"cutoff_hz", number(b.cutoff_hz)},
           {"filtered_fraction", number(b.bandwidth.filtered_fraction)},
           {"lag1_correlation", number(b.lag1_correlation)},

@@ -153,6 +153,12 @@ constexpr FlagOfField kFlagsOfFields[] = {
     {R"(TauGrid::min_clusters)", "--min-clusters"},
     {R"(TauGrid::taus_s)", "--taus"},
     {R"re(parse_tau_grid\("([^"]*)"\))re", "--taus '$1'"},
+    {R"(SensorOutput::sinusoids\[\]\.\w+)", "--sine"},
+    {R"(SensorOutput::steps\[\]\.\w+)", "--step"},
+    {R"(SensorOutput::moving_average_samples)", "--moving-average"},
+    {R"(SensorOutput::filter_time_constant_s)", "--filter-tc"},
+    {R"(SensorOutput::spike_(rate_per_hour|size_deg_h))", "--spikes"},
+    {R"(SensorOutput::lsb_deg_h)", "--lsb"},
 };
 
 }  // namespace

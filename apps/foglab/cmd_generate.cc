@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include "cli_common.h"
@@ -32,7 +33,89 @@ struct GenerateCommand {
   std::string temperature = "const";
   std::string out;
   std::string truth;
+  // The sensor's output chain (sim/sensor_output.h).
+  std::optional<double> filter_tc;
+  int moving_average = 1;
+  std::vector<std::string> sines, steps;
+  std::string spikes;
+  std::optional<double> lsb;
 };
+
+// "A:B[:C]" as numbers, naming the option and what was expected.
+std::vector<double> numbers_of(const std::string& option, const std::string& text,
+                               std::size_t min_count, std::size_t max_count,
+                               const std::string& expected) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t colon = text.find(':', start);
+    const std::string item =
+        text.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
+      throw UsageError(
+          fmt::format("{} '{}': '{}' is not a number (expected {})", option, text, item, expected));
+    }
+    out.push_back(v);
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (out.size() < min_count || out.size() > max_count) {
+    throw UsageError(fmt::format("{} '{}': expected {}", option, text, expected));
+  }
+  return out;
+}
+
+sim::SensorOutput sensor_output_of(const GenerateCommand& c) {
+  sim::SensorOutput o;
+  for (const std::string& text : c.sines) {
+    const auto v = numbers_of("--sine", text, 2, 3, "F:A or F:A:PHASE (Hz, deg/h peak, rad)");
+    o.sinusoids.push_back({v[0], v[1], v.size() > 2 ? v[2] : 0.0});
+  }
+  for (const std::string& text : c.steps) {
+    const auto v = numbers_of("--step", text, 2, 2, "T:S (time in s, size in deg/h)");
+    o.steps.push_back({v[0], v[1]});
+  }
+  if (!c.spikes.empty()) {
+    const auto v = numbers_of("--spikes", c.spikes, 2, 2, "RATE:SIZE (per hour, deg/h)");
+    o.spike_rate_per_hour = v[0];
+    o.spike_size_deg_h = v[1];
+  }
+  o.moving_average_samples = c.moving_average;
+  if (c.filter_tc) o.filter_time_constant_s = *c.filter_tc;
+  if (c.lsb) o.lsb_deg_h = *c.lsb;
+  return o;
+}
+
+nlohmann::json sensor_output_json(const sim::SensorOutput& o, const sim::GeneratorOptions& g,
+                                  std::int64_t samples) {
+  nlohmann::json sines = nlohmann::json::array(), steps = nlohmann::json::array();
+  for (const sim::Sinusoid& s : o.sinusoids) {
+    const double gain = sim::output_filter_gain(o, s.frequency_hz, g.sample_rate_hz);
+    sines.push_back({{"frequency_hz", s.frequency_hz},
+                     {"amplitude_deg_h", s.amplitude_deg_h},
+                     {"rms_deg_h", s.amplitude_deg_h / std::sqrt(2.0)},
+                     {"filter_gain", gain},
+                     {"rms_in_output_deg_h", gain * s.amplitude_deg_h / std::sqrt(2.0)},
+                     {"phase_rad", s.phase_rad}});
+  }
+  for (const sim::BiasStep& s : o.steps) {
+    steps.push_back({{"time_s", s.time_s}, {"size_deg_h", s.size_deg_h}});
+  }
+  const double tc = o.filter_time_constant_s;
+  return {{"sinusoids", sines},
+          {"steps", steps},
+          {"moving_average_samples", o.moving_average_samples},
+          {"filter_time_constant_s", tc},
+          {"filter_cutoff_hz",
+           tc > 0 ? nlohmann::json(1.0 / (2.0 * std::numbers::pi * tc)) : nlohmann::json(nullptr)},
+          {"filter_lag1", tc > 0 ? std::exp(-1.0 / (g.sample_rate_hz * tc)) : 0.0},
+          {"spike_rate_per_hour", o.spike_rate_per_hour},
+          {"spike_size_deg_h", o.spike_size_deg_h},
+          {"spike_times_s", sim::spike_times_s(o, g.sample_rate_hz, g.seed, g.stream, samples)},
+          {"lsb_deg_h", o.lsb_deg_h}};
+}
 
 enum class OutFormat { mat, csv, f32, f64 };
 
@@ -111,6 +194,7 @@ void run(const GenerateCommand& c) {
   apply(c.bias, model.bias);
   apply(c.input_rate, model.input_rate);
   if (!c.temp_coefs.empty()) model.temp_coefs = parse_coefs(c.temp_coefs);
+  model.output = sensor_output_of(c);
 
   sim::GeneratorOptions options;
   if (c.sample_rate_hz) {
@@ -187,6 +271,7 @@ void run(const GenerateCommand& c) {
         {"foglab_version", std::string(version())},
         {"preset", c.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.preset)},
         {"model", model_json(model)},
+        {"sensor_output", sensor_output_json(model.output, options, samples)},
         {"units", units_json()},
         {"arw_deg_per_sqrt_h", arw},
         {"temperature", temp},
@@ -247,6 +332,16 @@ std::function<void()> register_generate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", c->out, "output: FILE.mat, FILE.csv, FILE.f32 or FILE.f64")->required();
   cmd->add_option("--truth", c->truth, "write the truth as JSON ('-' for stdout)");
+  cmd->add_option("--filter-tc", c->filter_tc,
+                  "sensor bandwidth: first-order low-pass time constant on the output [s]");
+  cmd->add_option("--moving-average", c->moving_average,
+                  "sensor bandwidth: moving average over this many samples")
+      ->capture_default_str();
+  cmd->add_option("--sine", c->sines,
+                  "sinusoidal disturbance F:A[:PHASE] (Hz, deg/h peak, rad); repeatable");
+  cmd->add_option("--step", c->steps, "bias step T:S (from time s on, size deg/h); repeatable");
+  cmd->add_option("--spikes", c->spikes, "spikes RATE:SIZE (mean per hour, deg/h each)");
+  cmd->add_option("--lsb", c->lsb, "output word: round each sample to this step [deg/h]");
   return [c] { run(*c); };
 }
 

@@ -1,18 +1,64 @@
 // foglab — a sensor's output bandwidth in the Allan variance (sensor_bandwidth.h).
 #include "foglab/core/sensor_bandwidth.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
 namespace foglab {
 
-double cutoff_hz(const SensorBandwidth& bandwidth) {
+namespace {
+
+// The moving average over k samples of unit white level: r_j = (k - |j|) / k^2.
+double ma_autocovariance(int k, std::int64_t lag) {
+  const std::int64_t a = lag < 0 ? -lag : lag;
+  return a < k ? static_cast<double>(k - a) / (static_cast<double>(k) * k) : 0.0;
+}
+
+// m AVAR(m) of the moving average's samples with unit white level: the
+// variance of an m-average less the covariance of two neighbouring ones.
+double ma_allan_factor(int k, std::int64_t m) {
+  double var = 0.0, cov = 0.0;
+  for (std::int64_t j = -(m - 1); j <= m - 1; ++j) {
+    if (j <= -k || j >= k) continue;
+    var += static_cast<double>(m - (j < 0 ? -j : j)) * ma_autocovariance(k, j);
+  }
+  for (std::int64_t j = 1; j <= 2 * m - 1 && j < k; ++j) {
+    const std::int64_t d = j - m;
+    cov += static_cast<double>(m - (d < 0 ? -d : d)) * ma_autocovariance(k, j);
+  }
+  return (var - cov) / static_cast<double>(m);
+}
+
+}  // namespace
+
+double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  if (bandwidth.moving_average()) {
+    if (!(sample_interval_s > 0.0)) return std::numeric_limits<double>::infinity();
+    // |sin(pi f k tau0) / (k sin(pi f tau0))| = 1/sqrt(2), by bisection on f.
+    const int k = bandwidth.moving_average_samples;
+    auto gain = [&](double f) {
+      const double x = std::numbers::pi * f * sample_interval_s;
+      return std::fabs(std::sin(k * x) / (k * std::sin(x)));
+    };
+    double lo = 0.0, hi = 1.0 / (k * sample_interval_s);  // the first zero
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (gain(mid) > std::numbers::sqrt2 / 2.0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
   if (!(bandwidth.time_constant_s > 0.0)) return std::numeric_limits<double>::infinity();
   return 1.0 / (2.0 * std::numbers::pi * bandwidth.time_constant_s);
 }
 
 double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  if (bandwidth.moving_average()) {
+    return static_cast<double>(bandwidth.moving_average_samples - 1) /
+           bandwidth.moving_average_samples;
+  }
   if (!(bandwidth.time_constant_s > 0.0)) return 0.0;
   return std::exp(-sample_interval_s / bandwidth.time_constant_s);
 }
@@ -20,6 +66,11 @@ double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s)
 double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
                           double sample_interval_s) {
   if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
+  if (bandwidth.moving_average()) {
+    const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
+    const double g = ma_allan_factor(bandwidth.moving_average_samples, m);
+    return 1.0 - bandwidth.filtered_fraction * (1.0 - g);
+  }
   const double rho = filtered_lag1(bandwidth, sample_interval_s);
   const double m = tau_s / sample_interval_s;
   // 1 - rho^m and 1 - rho^2 by expm1, which keeps them exact for rho near 1.
@@ -31,6 +82,11 @@ double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
 
 double white_lag1_correlation(const SensorBandwidth& bandwidth, double sample_interval_s) {
   if (!bandwidth.any()) return 0.0;
+  if (bandwidth.moving_average()) {
+    const int k = bandwidth.moving_average_samples;
+    const double phi = bandwidth.filtered_fraction;
+    return phi * ma_autocovariance(k, 1) / ((1.0 - phi) + phi * ma_autocovariance(k, 0));
+  }
   // White level S = phi S + (1 - phi) S; the filtered part's variance is
   // phi S (1 - rho) / (1 + rho), its lag-1 covariance rho times that; the
   // unfiltered part's variance is (1 - phi) S.

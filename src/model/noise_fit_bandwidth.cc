@@ -10,10 +10,11 @@
 // The bandwidth is looked for with a large model that has no Gauss-Markov
 // process (N, B, K and R, as many as the points allow): its
 // deviance is profiled over the filtered fraction phi and the time constant
-// T (tau0 / 20 .. 10 tau0), on a grid and then by coordinate golden-section
-// steps. The bandwidth is resolved when adding it lowers that deviance by
-// more than its two parameters cost in the selection criterion (2 x the
-// penalty, times the dispersion) and it takes at least 0.5 % from the first
+// T (tau0 / 20 .. 10 tau0) of a first-order low-pass, on a grid and then by
+// coordinate golden-section steps, and over phi and the length k (2 .. 32
+// samples) of a moving average; the better of the two kinds is taken. The bandwidth is resolved
+// when adding it lowers that deviance by more than its two parameters cost in the selection
+// criterion (2 x the penalty, times the dispersion) and it takes at least 0.5 % from the first
 // point's Allan variance. Its phi and T are then held for every candidate.
 #include <algorithm>
 #include <cmath>
@@ -27,6 +28,7 @@ constexpr double kShortestT = 1.0 / 20.0;  // in tau0
 constexpr double kLongestT = 10.0;         // in tau0
 constexpr int kTSteps = 16;
 constexpr int kFractionSteps = 20;
+constexpr int kLongestMovingAverage = 32;  // samples
 constexpr double kSmallestEffect = 0.005;
 
 // The reference model: white noise, flicker, random walk and ramp, as many
@@ -46,16 +48,23 @@ NoiseTermSet reference_terms(const Points& p) {
 // The 95 % point of chi-square with two degrees of freedom.
 constexpr double kTwoParameters95 = 5.991464547107979;
 
+// One (phi, T) of the first-order filter, or (phi, k) of the moving average.
 struct Trial {
   double fraction = 0.0, log_t = 0.0, deviance = kInf;
+  int k = 1;  // > 1: a moving average over k samples
 };
 
 class Search {
  public:
   Search(Points& p, NoiseTermSet terms) : p_(p), terms_(terms), tau0_(p.sample_interval_s()) {}
 
-  double deviance(double fraction, double log_t) {
-    set_shape({fraction, tau0_ * std::exp(log_t)});
+  SensorBandwidth bandwidth_of(double fraction, double log_t, int k) const {
+    return k > 1 ? SensorBandwidth{fraction, 0.0, k}
+                 : SensorBandwidth{fraction, tau0_ * std::exp(log_t), 1};
+  }
+
+  double deviance(double fraction, double log_t, int k = 1) {
+    set_shape(bandwidth_of(fraction, log_t, k));
     return fit_subset(p_, terms_, 1.0, std::nullopt, NonPositive::drop_term).deviance;
   }
 
@@ -84,9 +93,9 @@ class Search {
 
   std::vector<Trial> trials;  // every (phi, T) tried
 
-  double tried(double fraction, double log_t) {
-    const double d = deviance(fraction, log_t);
-    trials.push_back({fraction, log_t, d});
+  double tried(double fraction, double log_t, int k = 1) {
+    const double d = deviance(fraction, log_t, k);
+    trials.push_back({fraction, log_t, d, k});
     return d;
   }
 
@@ -101,7 +110,23 @@ class Search {
         if (d < best.deviance) best = {trial.fraction, trial.log_t, d};
       }
     }
-    if (!std::isfinite(best.deviance)) return best;
+    // The moving averages.
+    Trial best_ma;
+    for (int k = 2; k <= kLongestMovingAverage; ++k) {
+      for (int f = 1; f <= kFractionSteps; ++f) {
+        const double fraction = static_cast<double>(f) / kFractionSteps;
+        const double d = tried(fraction, 0.0, k);
+        if (d < best_ma.deviance) best_ma = {fraction, 0.0, d, k};
+      }
+    }
+    if (std::isfinite(best_ma.deviance)) {
+      const double f_step = 1.0 / kFractionSteps;
+      const auto [fraction, d_f] = golden([&](double x) { return tried(x, 0.0, best_ma.k); },
+                                          std::max(0.0, best_ma.fraction - f_step),
+                                          std::min(1.0, best_ma.fraction + f_step));
+      if (d_f < best_ma.deviance) best_ma = {fraction, 0.0, d_f, best_ma.k};
+    }
+    if (!std::isfinite(best.deviance)) return best_ma;
     // Coordinate refinement within one grid step.
     for (int round = 0; round < 3; ++round) {
       const auto [log_t, d_t] =
@@ -114,7 +139,7 @@ class Search {
                  std::max(0.0, best.fraction - f_step), std::min(1.0, best.fraction + f_step));
       if (d_f < best.deviance) best = {fraction, best.log_t, d_f};
     }
-    return best;
+    return best_ma.deviance < best.deviance ? best_ma : best;
   }
 
  private:
@@ -139,7 +164,7 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options) {
   p.white_shape.clear();
   if (!std::isfinite(best.deviance) || !std::isfinite(plain.deviance)) return result;
 
-  const SensorBandwidth bandwidth{best.fraction, e.sample_interval_s * std::exp(best.log_t)};
+  const SensorBandwidth bandwidth = search.bandwidth_of(best.fraction, best.log_t, best.k);
   const double reduction = 1.0 - white_allan_factor(bandwidth, p.tau.front(), e.sample_interval_s);
   const int spare = static_cast<int>(p.y.size()) - terms.parameter_count() - 2;
   const double dispersion = std::max(1.0, best.deviance / std::max(1, spare));
@@ -147,19 +172,20 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options) {
   // At the longest T searched the data want a correlation longer than a
   // filter's: a random-bias process the reference model lacks (a Gauss-
   // Markov hump) bends the first taus, and that is left to the candidates.
-  e.at_search_bound = best.log_t >= std::log(kLongestT) - 1e-3;
+  e.at_search_bound =
+      best.k > 1 ? best.k == kLongestMovingAverage : best.log_t >= std::log(kLongestT) - 1e-3;
   if (!(e.deviance_drop > 2.0 * options.penalty * dispersion) || reduction < kSmallestEffect ||
       e.at_search_bound) {
     return result;
   }
   e.resolved = true;
   e.bandwidth = bandwidth;
-  e.cutoff_hz = cutoff_hz(bandwidth);
+  e.cutoff_hz = cutoff_hz(bandwidth, e.sample_interval_s);
   e.lag1_correlation = white_lag1_correlation(bandwidth, e.sample_interval_s);
   e.first_tau_reduction = reduction;
   for (const Trial& t : search.trials) {
     if (t.deviance <= best.deviance + kTwoParameters95 * dispersion) {
-      result.near.push_back({t.fraction, e.sample_interval_s * std::exp(t.log_t)});
+      result.near.push_back(search.bandwidth_of(t.fraction, t.log_t, t.k));
     }
   }
   search.set_shape(bandwidth);

@@ -67,6 +67,15 @@ std::string bandwidth_sentence(const model::BandwidthEstimate& b) {
     return "none resolved (the first taus follow N/sqrt(tau): the samples' white noise is not "
            "visibly filtered)";
   }
+  if (b.bandwidth.moving_average()) {
+    return fmt::format(
+        "a moving average over {} samples (cut-off {} Hz), on {} % of the white noise (lag-1 "
+        "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, "
+        "and N is the white level above it",
+        b.bandwidth.moving_average_samples, g(b.cutoff_hz),
+        g(100.0 * b.bandwidth.filtered_fraction), g(b.lag1_correlation),
+        g(100.0 * b.first_tau_reduction));
+  }
   return fmt::format(
       "time constant {} s, first-order cut-off {} Hz, on {} % of the white noise (lag-1 "
       "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, and "

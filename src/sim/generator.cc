@@ -528,6 +528,8 @@ void Engine::add_slow_flicker(std::size_t begin, std::size_t len, double* rate) 
 void generate(const ErrorModel& model, const TemperatureProfile& temperature,
               const GeneratorOptions& options, const std::function<void(const Block&)>& sink) {
   Engine engine(model, temperature, options);
+  OutputChain chain(model.output, options.sample_rate_hz, options.seed, options.stream);
+  const bool chained = model.output.any();
   const std::int64_t total = engine.samples();
   const std::size_t buffer = std::min<std::size_t>(kBlockSamples, static_cast<std::size_t>(total));
   // Two sets of buffers: while the sink handles block b (on a helper thread,
@@ -549,6 +551,7 @@ void generate(const ErrorModel& model, const TemperatureProfile& temperature,
           std::min<std::int64_t>(static_cast<std::int64_t>(kBlockSamples), total - first));
       auto& set = buffers[static_cast<std::size_t>(which)];
       engine.block(first, count, set[0].data(), set[1].data(), set[2].data());
+      if (chained) chain.apply(first, set[1].data(), count);
       finish_sink();  // the previous block, whose buffers are reused next
       Block block;
       block.first_index = first;
@@ -574,6 +577,7 @@ void generate(const ErrorModel& model, const TemperatureProfile& temperature,
 Recording generate(const ErrorModel& model, const TemperatureProfile& temperature,
                    const GeneratorOptions& options) {
   Engine engine(model, temperature, options);
+  OutputChain chain(model.output, options.sample_rate_hz, options.seed, options.stream);
   const auto total = static_cast<std::size_t>(engine.samples());
   Recording r;
   r.sample_rate_hz = options.sample_rate_hz;
@@ -584,6 +588,9 @@ Recording generate(const ErrorModel& model, const TemperatureProfile& temperatur
     const std::size_t count = std::min(kBlockSamples, total - first);
     engine.block(static_cast<std::int64_t>(first), count, r.time_s.data() + first,
                  r.rate_deg_h.data() + first, r.temperature_c.data() + first);
+    if (model.output.any()) {
+      chain.apply(static_cast<std::int64_t>(first), r.rate_deg_h.data() + first, count);
+    }
   }
   return r;
 }

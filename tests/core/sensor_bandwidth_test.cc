@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace foglab {
 namespace {
@@ -51,6 +52,44 @@ TEST(SensorBandwidth, AllanFactorEqualsTheSumOverTheAutocovariance) {
                   autocovariance(phi, rho, 1) / autocovariance(phi, rho, 0), 1e-14);
     }
   }
+}
+
+// The moving average over k samples of white noise (unit white level), by
+// brute force: the m-averages of the k-averages, as weights on the white
+// samples, and the variance of the difference of two neighbouring ones.
+double moving_average_allan_by_weights(int k, int m) {
+  // Output y_i = (x_i + ... + x_(i-k+1)) / k; block a = y_0..y_(m-1), b = y_m..y_(2m-1).
+  std::vector<double> w(static_cast<std::size_t>(2 * m + k), 0.0);  // weight on x_(j - k + 1)
+  for (int i = 0; i < 2 * m; ++i) {
+    const double sign = i < m ? -1.0 : 1.0;
+    for (int j = 0; j < k; ++j) w[static_cast<std::size_t>(i - j + k - 1)] += sign / (k * m);
+  }
+  double ss = 0.0;
+  for (double v : w) ss += v * v;
+  return 0.5 * ss;  // unit-variance white samples
+}
+
+TEST(SensorBandwidth, MovingAverageFactorEqualsTheWeightsSum) {
+  const double tau0 = 0.01;
+  for (int k : {2, 3, 8}) {
+    for (double phi : {0.5, 1.0}) {
+      const SensorBandwidth bw{phi, 0.0, k};
+      for (int m : {1, 2, 3, 7, 8, 9, 40}) {
+        const double filtered = moving_average_allan_by_weights(k, m) * m;
+        EXPECT_NEAR(white_allan_factor(bw, m * tau0, tau0), 1.0 - phi * (1.0 - filtered), 1e-12)
+            << "k " << k << ", phi " << phi << ", m " << m;
+      }
+      // Lag 1: (k - 1) / k^2 over the sample variance (1 - phi) + phi / k.
+      EXPECT_NEAR(white_lag1_correlation(bw, tau0),
+                  phi * (k - 1.0) / (k * k) / ((1.0 - phi) + phi / k), 1e-14);
+    }
+  }
+  // The response of a 4-sample boxcar at 100 Hz is 1/sqrt(2) at the cut-off,
+  // 11.385 Hz (below the first zero, 25 Hz).
+  const double fc = cutoff_hz(SensorBandwidth{1.0, 0.0, 4}, tau0);
+  const double x = std::numbers::pi * fc * tau0;
+  EXPECT_NEAR(std::fabs(std::sin(4.0 * x) / (4.0 * std::sin(x))), std::sqrt(0.5), 1e-9);
+  EXPECT_NEAR(fc, 11.385, 0.001);
 }
 
 TEST(SensorBandwidth, FactorTendsToTheContinuousFilterAndToOne) {

@@ -18,10 +18,15 @@
 // (the variance of an m-average of the sequence less the covariance of two
 // neighbouring ones, from its autocovariance r_k = r_0 rho^k). For large m
 // the correction is 3 phi rho / (m (1 - rho^2)) = 1.5 phi T / tau when
-// T >> tau0, the continuous filter's. Other short filters (a moving average
-// over a few samples, a second-order low-pass) give other first points and
-// the same 1 / tau^2 decay; the two parameters phi and T follow them closely
-// enough to keep N the white level (docs/validation.md).
+// T >> tau0, the continuous filter's.
+//
+// A moving average over k samples (a boxcar decimation filter) is the other
+// kind: its samples are correlated over k - 1 lags exactly, r_j = (k - |j|)
+// / k^2 of the white level per sample, and its Allan variance follows from
+// those sums (the variance of an m-average less the covariance of two
+// neighbouring ones), also exactly. A second-order low-pass lies between the
+// two; the two kinds follow it closely enough to keep N the white level
+// (docs/validation.md).
 #pragma once
 
 namespace foglab {
@@ -29,15 +34,23 @@ namespace foglab {
 struct SensorBandwidth {
   double filtered_fraction = 0.0;  ///< phi in [0, 1]: the part of N^2 that is filtered
   double time_constant_s = 0.0;    ///< [s] T of the first-order low-pass (0: none)
+  /// k > 1: the filter is a moving average over k samples instead (T unused).
+  int moving_average_samples = 1;
 
-  /// Whether it changes anything (phi > 0 and T > 0).
-  bool any() const { return filtered_fraction > 0.0 && time_constant_s > 0.0; }
+  bool moving_average() const { return moving_average_samples > 1; }
+  /// Whether it changes anything.
+  bool any() const {
+    return filtered_fraction > 0.0 && (moving_average() || time_constant_s > 0.0);
+  }
 };
 
-/// The first-order cut-off 1 / (2 pi T) [Hz] (infinite for T = 0).
-double cutoff_hz(const SensorBandwidth& bandwidth);
+/// The cut-off [Hz]: 1 / (2 pi T) of the first-order low-pass, or where the
+/// moving average's response falls to 1/sqrt(2) (0.443 fs / k for large k);
+/// infinite without a filter. `sample_interval_s` serves the moving average.
+double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s = 0.0);
 
-/// The lag-1 correlation exp(-tau0 / T) of the filtered part's samples.
+/// The lag-1 correlation of the filtered part's samples: exp(-tau0 / T), or
+/// (k - 1) / k for the moving average.
 double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s);
 
 /// The factor on the white term's Allan variance N^2 / tau at tau [s] (an
@@ -46,7 +59,8 @@ double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s)
 double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s, double sample_interval_s);
 
 /// The lag-1 autocorrelation of the white noise's samples with this
-/// bandwidth: phi rho (1 - rho) / (1 + rho - 2 phi rho) (0 without one).
+/// bandwidth (0 without one); for the first-order filter
+/// phi rho (1 - rho) / (1 + rho - 2 phi rho).
 double white_lag1_correlation(const SensorBandwidth& bandwidth, double sample_interval_s);
 
 }  // namespace foglab

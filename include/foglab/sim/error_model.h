@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "foglab/core/noise_model.h"
+#include "foglab/sim/sensor_output.h"
 
 namespace foglab::sim {
 
@@ -36,6 +37,9 @@ struct ErrorModel {
   /// Temperature sensitivity c_1, c_2, ... [deg/h/degC^k] of the bias, as a
   /// polynomial in (T - T_ref), T_ref the profile's nominal mean temperature.
   std::vector<double> temp_coefs;
+  /// What the sensor's output chain does after the model: bandwidth,
+  /// disturbances, spikes, steps, the output word (sim/sensor_output.h).
+  SensorOutput output;
 };
 
 /// How the temperature evolves during a run.

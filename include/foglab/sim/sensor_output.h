@@ -1,0 +1,89 @@
+// foglab — the truth of a real sensor's output chain: what happens to the
+// rate after the error model (sim/error_model.h), as gyro electronics and
+// their surroundings do it. Each effect is exact and seeded like the rest of
+// the generator; the answer key (generate --truth) records every one.
+//
+// In order, per sample k (tau0 = 1/fs, t_k = k tau0):
+//   1. disturbances added to the model's rate: sinusoids A sin(2 pi f t + p)
+//      (mains pickup, dither, a resonance) and bias steps (a jump of s deg/h
+//      from time t on: a power glitch, a mode change);
+//   2. the sensor's bandwidth: a moving average over the last k samples
+//      and/or a first-order low-pass y_k = rho y_(k-1) + (1 - rho) x_k with
+//      rho = exp(-tau0 / T) (unit gain at DC; on white noise exactly the
+//      process of core/sensor_bandwidth.h with the whole of it filtered);
+//   3. spikes: isolated outliers of +-size at a mean rate per hour, at
+//      samples drawn independently (a bit error, a vibration knock);
+//   4. the output word: each sample rounded to a whole number of LSBs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace foglab::sim {
+
+struct Sinusoid {
+  double frequency_hz = 0.0;     ///< [Hz] > 0
+  double amplitude_deg_h = 0.0;  ///< [deg/h] peak (rms = amplitude / sqrt(2))
+  double phase_rad = 0.0;
+};
+
+struct BiasStep {
+  double time_s = 0.0;      ///< [s] from here on
+  double size_deg_h = 0.0;  ///< [deg/h]
+};
+
+struct SensorOutput {
+  std::vector<Sinusoid> sinusoids;
+  std::vector<BiasStep> steps;
+  int moving_average_samples = 1;       ///< k >= 1 (1: none)
+  double filter_time_constant_s = 0.0;  ///< [s] T of the first-order low-pass (0: none)
+  double spike_rate_per_hour = 0.0;     ///< mean number of spikes per hour
+  double spike_size_deg_h = 0.0;        ///< [deg/h] each spike's magnitude (random sign)
+  double lsb_deg_h = 0.0;               ///< [deg/h] output step (0: not rounded)
+
+  /// Whether any effect is on.
+  bool any() const;
+};
+
+/// Throws UsageError naming the field for a negative or non-finite value,
+/// k < 1 or a sinusoid at or above the Nyquist frequency.
+void validate(const SensorOutput& output, double sample_rate_hz);
+
+/// The magnitude of the bandwidth filters' response at frequency f [Hz]
+/// (a sinusoid there comes out this much smaller): the moving average's
+/// |sin(pi f k / fs) / (k sin(pi f / fs))| times the low-pass's
+/// (1 - rho) / |1 - rho e^(-i 2 pi f / fs)|.
+double output_filter_gain(const SensorOutput& output, double frequency_hz, double sample_rate_hz);
+
+/// The times [s] of the spikes the chain puts into a record of `samples`
+/// samples (the same draws as OutputChain's).
+std::vector<double> spike_times_s(const SensorOutput& output, double sample_rate_hz,
+                                  std::uint64_t seed, std::uint64_t stream, std::int64_t samples);
+
+/// The chain of one record, applied block by block in order: it carries the
+/// filters' state from one block to the next. Spikes come from the same
+/// counter-based generator as the rest (a pure function of seed, stream and
+/// sample index).
+class OutputChain {
+ public:
+  OutputChain(const SensorOutput& output, double sample_rate_hz, std::uint64_t seed,
+              std::uint64_t stream);
+  /// Applies the chain to the rates of samples first .. first + count - 1.
+  void apply(std::int64_t first, double* rate_deg_h, std::size_t count);
+  /// The sample indices where spikes were put so far.
+  const std::vector<std::int64_t>& spike_indices() const { return spikes_; }
+
+ private:
+  SensorOutput output_;
+  double fs_;
+  std::uint64_t key_spike_, key_sign_;
+  double rho_ = 0.0, filtered_ = 0.0;
+  bool started_ = false;
+  std::vector<double> window_;  // the last k - 1 inputs of the moving average
+  std::size_t next_ = 0;
+  double window_sum_ = 0.0;
+  std::vector<std::int64_t> spikes_;
+};
+
+}  // namespace foglab::sim

@@ -1,0 +1,146 @@
+// foglab — the sensor's output chain (sensor_output.h).
+#include "foglab/sim/sensor_output.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "foglab/core/error.h"
+#include "generator_internal.h"
+
+namespace foglab::sim {
+namespace {
+
+// Process ids of the counter-based generator for the output chain (beside
+// generator.cc's; never reuse or renumber).
+constexpr std::uint64_t kSpike = 9;
+constexpr std::uint64_t kSpikeSign = 10;
+
+void check(bool ok, std::string_view field, double value, std::string_view expected) {
+  if (!ok) {
+    throw UsageError(fmt::format("SensorOutput::{} = {}: expected {}", field, value, expected));
+  }
+}
+
+}  // namespace
+
+bool SensorOutput::any() const {
+  return !sinusoids.empty() || !steps.empty() || moving_average_samples > 1 ||
+         filter_time_constant_s > 0.0 || spike_rate_per_hour > 0.0 || lsb_deg_h > 0.0;
+}
+
+void validate(const SensorOutput& o, double sample_rate_hz) {
+  for (const Sinusoid& s : o.sinusoids) {
+    check(std::isfinite(s.frequency_hz) && s.frequency_hz > 0.0 &&
+              s.frequency_hz < 0.5 * sample_rate_hz,
+          "sinusoids[].frequency_hz", s.frequency_hz, "> 0 and below half the sample rate");
+    check(std::isfinite(s.amplitude_deg_h) && s.amplitude_deg_h >= 0.0,
+          "sinusoids[].amplitude_deg_h", s.amplitude_deg_h, "a finite number >= 0");
+    check(std::isfinite(s.phase_rad), "sinusoids[].phase_rad", s.phase_rad, "a finite number");
+  }
+  for (const BiasStep& s : o.steps) {
+    check(std::isfinite(s.time_s) && s.time_s >= 0.0, "steps[].time_s", s.time_s,
+          "a finite time >= 0");
+    check(std::isfinite(s.size_deg_h), "steps[].size_deg_h", s.size_deg_h, "a finite number");
+  }
+  check(o.moving_average_samples >= 1 && o.moving_average_samples <= 100000,
+        "moving_average_samples", o.moving_average_samples, "1 .. 100000");
+  check(std::isfinite(o.filter_time_constant_s) && o.filter_time_constant_s >= 0.0,
+        "filter_time_constant_s", o.filter_time_constant_s, "a finite number >= 0");
+  check(std::isfinite(o.spike_rate_per_hour) && o.spike_rate_per_hour >= 0.0, "spike_rate_per_hour",
+        o.spike_rate_per_hour, "a finite number >= 0");
+  check(std::isfinite(o.spike_size_deg_h) && o.spike_size_deg_h >= 0.0, "spike_size_deg_h",
+        o.spike_size_deg_h, "a finite number >= 0");
+  check(std::isfinite(o.lsb_deg_h) && o.lsb_deg_h >= 0.0, "lsb_deg_h", o.lsb_deg_h,
+        "a finite number >= 0");
+}
+
+double output_filter_gain(const SensorOutput& output, double frequency_hz, double sample_rate_hz) {
+  const double w = 2.0 * std::numbers::pi * frequency_hz / sample_rate_hz;
+  double gain = 1.0;
+  const int k = output.moving_average_samples;
+  if (k > 1 && std::sin(0.5 * w) != 0.0) {
+    gain *= std::fabs(std::sin(0.5 * w * k) / (k * std::sin(0.5 * w)));
+  }
+  if (output.filter_time_constant_s > 0.0) {
+    const double rho = std::exp(-1.0 / (sample_rate_hz * output.filter_time_constant_s));
+    const double re = 1.0 - rho * std::cos(w), im = rho * std::sin(w);
+    gain *= (1.0 - rho) / std::sqrt(re * re + im * im);
+  }
+  return gain;
+}
+
+std::vector<double> spike_times_s(const SensorOutput& output, double sample_rate_hz,
+                                  std::uint64_t seed, std::uint64_t stream, std::int64_t samples) {
+  std::vector<double> times;
+  const double p = output.spike_rate_per_hour / (3600.0 * sample_rate_hz);
+  if (!(p > 0.0)) return times;
+  const std::uint64_t key = detail::process_key(seed, stream, kSpike);
+  for (std::int64_t k = 0; k < samples; ++k) {
+    if (detail::uniform_of(detail::word_at(key, static_cast<std::uint64_t>(k))) < p) {
+      times.push_back(static_cast<double>(k) / sample_rate_hz);
+    }
+  }
+  return times;
+}
+
+OutputChain::OutputChain(const SensorOutput& output, double sample_rate_hz, std::uint64_t seed,
+                         std::uint64_t stream)
+    : output_(output),
+      fs_(sample_rate_hz),
+      key_spike_(detail::process_key(seed, stream, kSpike)),
+      key_sign_(detail::process_key(seed, stream, kSpikeSign)) {
+  validate(output_, sample_rate_hz);
+  if (output_.filter_time_constant_s > 0.0) {
+    rho_ = std::exp(-1.0 / (sample_rate_hz * output_.filter_time_constant_s));
+  }
+  window_.assign(static_cast<std::size_t>(output_.moving_average_samples - 1), 0.0);
+}
+
+void OutputChain::apply(std::int64_t first, double* rate, std::size_t count) {
+  const double spike_probability = output_.spike_rate_per_hour / (3600.0 * fs_);
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::int64_t index = first + static_cast<std::int64_t>(k);
+    const double t = static_cast<double>(index) / fs_;
+    double x = rate[k];
+    // 1. Disturbances.
+    for (const Sinusoid& s : output_.sinusoids) {
+      x += s.amplitude_deg_h * std::sin(2.0 * std::numbers::pi * s.frequency_hz * t + s.phase_rad);
+    }
+    for (const BiasStep& s : output_.steps) {
+      if (t >= s.time_s) x += s.size_deg_h;
+    }
+    // 2. Bandwidth: the moving average (the first samples average what
+    // there is so far), then the first-order low-pass (started at its input).
+    if (!window_.empty()) {
+      const std::size_t have =
+          std::min<std::size_t>(window_.size(), static_cast<std::size_t>(index));
+      const double sum = window_sum_ + x;
+      const double mean = sum / static_cast<double>(have + 1);
+      window_sum_ += x - (have == window_.size() ? window_[next_] : 0.0);
+      window_[next_] = x;
+      next_ = (next_ + 1) % window_.size();
+      x = mean;
+    }
+    if (rho_ > 0.0) {
+      filtered_ = started_ ? rho_ * filtered_ + (1.0 - rho_) * x : x;
+      started_ = true;
+      x = filtered_;
+    }
+    // 3. Spikes.
+    if (spike_probability > 0.0 &&
+        detail::uniform_of(detail::word_at(key_spike_, static_cast<std::uint64_t>(index))) <
+            spike_probability) {
+      const bool up =
+          detail::uniform_of(detail::word_at(key_sign_, static_cast<std::uint64_t>(index))) < 0.5;
+      x += up ? output_.spike_size_deg_h : -output_.spike_size_deg_h;
+      spikes_.push_back(index);
+    }
+    // 4. The output word.
+    if (output_.lsb_deg_h > 0.0) x = std::round(x / output_.lsb_deg_h) * output_.lsb_deg_h;
+    rate[k] = x;
+  }
+}
+
+}  // namespace foglab::sim

@@ -1,0 +1,105 @@
+// Real-sensor effects end to end: `foglab generate` puts them into a
+// recording with their truth (--truth: sensor_output), `foglab analyze`
+// must find each and keep it out of the noise terms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/cli.h"
+#include "support/files.h"
+
+namespace foglab {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+struct Generated {
+  json truth, analysis;
+};
+
+Generated generate_and_analyze(const fs::path& dir, const std::string& model, int seed) {
+  const fs::path mat = dir / ("rec" + std::to_string(seed) + ".mat");
+  const fs::path truth = dir / ("truth" + std::to_string(seed) + ".json");
+  const test::CliRun g =
+      test::run_foglab("generate " + model + " --seed " + std::to_string(seed) + " --out " +
+                       test::quote(mat) + " --truth " + test::quote(truth));
+  EXPECT_EQ(g.exit_code, 0) << g.err;
+  const test::CliRun a = test::run_foglab("analyze " + test::quote(mat) + " --json -");
+  EXPECT_EQ(a.exit_code, 0) << a.err;
+  if (g.exit_code != 0 || a.exit_code != 0) return {};
+  return {read_json(truth), json::parse(a.out)};
+}
+
+TEST(SensorEffects, FilteredQuantisedOutputWithALineIsTakenApart) {
+  // An ADIS16405-like axis: white noise through a 5.4 ms low-pass, a 20 Hz
+  // disturbance, 0.05 deg/s output steps, flicker 30 deg/h.
+  const test::TempDir dir;
+  const std::string model =
+      "--N 150 --B 30 --fs 100 --hours 2.78 --filter-tc 0.0054 --sine 20:1200 --lsb 180";
+  for (int seed = 1; seed <= 2; ++seed) {
+    const Generated r = generate_and_analyze(dir.path(), model, seed);
+    ASSERT_TRUE(r.analysis.is_object());
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    const json& out = r.truth["sensor_output"];
+    const json& nm = r.analysis["noise_model"];
+    EXPECT_NEAR(nm["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
+    EXPECT_EQ(nm["B"]["status"], "resolved");
+    const json& bw = r.analysis["sensor_bandwidth"];
+    ASSERT_TRUE(bw["resolved"].get<bool>());
+    EXPECT_NEAR(bw["lag1_correlation"].get<double>() / out["filter_lag1"].get<double>(), 1.0, 0.1);
+    const json& lines = r.analysis["spectral_lines"];
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NEAR(lines[0]["frequency_hz"].get<double>(), 20.0, 0.05);
+    EXPECT_NEAR(lines[0]["rms_deg_h"].get<double>() /
+                    out["sinusoids"][0]["rms_in_output_deg_h"].get<double>(),
+                1.0, 0.05);
+    const json& q = r.analysis["output_quantisation"];
+    ASSERT_TRUE(q["detected"].get<bool>());
+    EXPECT_NEAR(q["lsb_deg_h"].get<double>(), out["lsb_deg_h"].get<double>(), 1e-6);
+    if (nm["gm_tc"]["status"] == "resolved") {
+      EXPECT_GT(nm["gm_tc"]["value"].get<double>(), 1.0);
+    }
+  }
+}
+
+TEST(SensorEffects, MovingAverageIsFoundWithItsLength) {
+  const test::TempDir dir;
+  const Generated r =
+      generate_and_analyze(dir.path(), "--N 150 --B 30 --fs 100 --hours 2 --moving-average 4", 3);
+  ASSERT_TRUE(r.analysis.is_object());
+  const json& bw = r.analysis["sensor_bandwidth"];
+  ASSERT_TRUE(bw["resolved"].get<bool>());
+  EXPECT_EQ(bw["kind"], "moving_average");
+  EXPECT_EQ(bw["moving_average_samples"], 4);
+  EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
+}
+
+TEST(SensorEffects, BadEffectOptionsAreUsageErrorsNamingTheFlag) {
+  const test::TempDir dir;
+  const std::string out = " --out " + test::quote(dir.path() / "x.mat");
+  for (const auto& [args, flag] :
+       std::vector<std::pair<std::string, std::string>>{{"--sine 6:1", "--sine"},
+                                                        {"--sine 1:x", "--sine"},
+                                                        {"--moving-average 0", "--moving-average"},
+                                                        {"--spikes 3", "--spikes"},
+                                                        {"--lsb -1", "--lsb"},
+                                                        {"--step 10", "--step"}}) {
+    const test::CliRun r = test::run_foglab("generate --N 1 --fs 10 --hours 0.1 " + args + out);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(flag), std::string::npos) << args << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "x.mat")) << args;
+  }
+}
+
+}  // namespace
+}  // namespace foglab

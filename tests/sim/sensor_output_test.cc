@@ -1,0 +1,125 @@
+// The sensor's output chain (sim/sensor_output.h) on its own: each effect
+// against its definition.
+#include "foglab/sim/sensor_output.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "foglab/core/error.h"
+
+namespace foglab::sim {
+namespace {
+
+std::vector<double> white(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal;
+  std::vector<double> y(n);
+  for (double& v : y) v = normal(engine);
+  return y;
+}
+
+double lag1(const std::vector<double>& y) {
+  double mean = 0.0;
+  for (double v : y) mean += v;
+  mean /= static_cast<double>(y.size());
+  double c0 = 0.0, c1 = 0.0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    c0 += (y[k] - mean) * (y[k] - mean);
+    if (k > 0) c1 += (y[k] - mean) * (y[k - 1] - mean);
+  }
+  return c1 / c0;
+}
+
+TEST(SensorOutput, LowPassGivesTheLagOneCorrelationItsTimeConstantImplies) {
+  SensorOutput o;
+  o.filter_time_constant_s = 0.0054;
+  const double fs = 100.0;
+  std::vector<double> y = white(400000, 1);
+  OutputChain chain(o, fs, 1, 0);
+  // In two blocks: the state carries across.
+  chain.apply(0, y.data(), 150000);
+  chain.apply(150000, y.data() + 150000, y.size() - 150000);
+  const double rho = std::exp(-1.0 / (fs * o.filter_time_constant_s));
+  EXPECT_NEAR(lag1(y), rho, 4.0 / std::sqrt(400000.0));
+}
+
+TEST(SensorOutput, MovingAverageIsTheMeanOfTheLastKSamples) {
+  SensorOutput o;
+  o.moving_average_samples = 4;
+  std::vector<double> x = white(1000, 2), y = x;
+  OutputChain chain(o, 10.0, 1, 0);
+  chain.apply(0, y.data(), 500);
+  chain.apply(500, y.data() + 500, 500);
+  for (std::size_t k = 3; k < x.size(); ++k) {
+    EXPECT_NEAR(y[k], (x[k] + x[k - 1] + x[k - 2] + x[k - 3]) / 4.0, 1e-12) << k;
+  }
+  EXPECT_NEAR(y[1], (x[0] + x[1]) / 2.0, 1e-12);
+}
+
+TEST(SensorOutput, SinusoidStepsSpikesAndTheOutputWord) {
+  SensorOutput o;
+  o.sinusoids = {{2.5, 3.0, 0.4}};
+  o.steps = {{50.0, 7.0}};
+  o.spike_rate_per_hour = 360.0;  // 0.1 per second
+  o.spike_size_deg_h = 1000.0;
+  o.lsb_deg_h = 0.25;
+  const double fs = 20.0;
+  const std::size_t n = 4000;  // 200 s
+  std::vector<double> y(n, 0.0);
+  OutputChain chain(o, fs, 5, 2);
+  chain.apply(0, y.data(), n);
+  const std::vector<double> spikes = spike_times_s(o, fs, 5, 2, static_cast<std::int64_t>(n));
+  ASSERT_EQ(spikes.size(), chain.spike_indices().size());
+  // About 20 spikes in 200 s (Poisson: within 4 sd).
+  EXPECT_NEAR(static_cast<double>(spikes.size()), 20.0, 4.0 * std::sqrt(20.0));
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / fs;
+    double expected =
+        3.0 * std::sin(2.0 * std::numbers::pi * 2.5 * t + 0.4) + (t >= 50.0 ? 7.0 : 0.0);
+    for (double s : spikes) {
+      if (std::fabs(s - t) < 1e-9) expected += (y[k] > expected ? 1000.0 : -1000.0);
+    }
+    EXPECT_NEAR(y[k], std::round(expected / 0.25) * 0.25, 1e-9) << "t " << t;
+    EXPECT_NEAR(std::remainder(y[k], 0.25), 0.0, 1e-9);
+  }
+}
+
+TEST(SensorOutput, FilterGainAtTheLineFrequency) {
+  SensorOutput o;
+  o.filter_time_constant_s = 0.0054;
+  o.moving_average_samples = 3;
+  const double fs = 100.0, f = 20.0;
+  const std::size_t n = 20000;
+  std::vector<double> y(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    y[k] = std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) / fs);
+  }
+  OutputChain chain(o, fs, 1, 0);
+  chain.apply(0, y.data(), n);
+  double ss = 0.0;
+  for (std::size_t k = 1000; k < n; ++k) ss += y[k] * y[k];
+  const double rms = std::sqrt(ss / static_cast<double>(n - 1000));
+  EXPECT_NEAR(rms * std::sqrt(2.0), output_filter_gain(o, f, fs), 1e-3);
+}
+
+TEST(SensorOutput, BadFieldsAreNamed) {
+  SensorOutput o;
+  o.sinusoids = {{60.0, 1.0, 0.0}};
+  try {
+    validate(o, 100.0);
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("SensorOutput::sinusoids[].frequency_hz"),
+              std::string::npos);
+  }
+  o = {};
+  o.moving_average_samples = 0;
+  EXPECT_THROW(validate(o, 100.0), UsageError);
+}
+
+}  // namespace
+}  // namespace foglab::sim
