@@ -168,6 +168,18 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
           {"at_search_bound", b.at_search_bound}};
 }
 
+nlohmann::json spikes_json(const model::AnalysisResult& r) {
+  const model::Spikes& s = r.spikes;
+  std::vector<double> times;
+  for (std::int64_t k : s.indices) times.push_back(static_cast<double>(k) / r.sample_rate_hz);
+  return {{"count", s.count},
+          {"removed", s.removed},
+          {"robust_sd_deg_h", number(s.robust_sd_deg_h)},
+          {"threshold_deg_h", number(s.threshold_deg_h)},
+          {"times_s", times},
+          {"sizes_deg_h", numbers(s.sizes_deg_h)}};
+}
+
 nlohmann::json quantisation_json(const model::AnalysisResult& r) {
   const model::OutputQuantisation& q = r.output_quantisation;
   nlohmann::json j = {{"detected", q.detected},
@@ -212,6 +224,10 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
 nlohmann::json units_json() {
   nlohmann::json units = {
       {"input.sample_rate_hz", "Hz"},
+      {"spikes.robust_sd_deg_h", "deg/h"},
+      {"spikes.threshold_deg_h", "deg/h"},
+      {"spikes.times_s", "s"},
+      {"spikes.sizes_deg_h", "deg/h"},
       {"output_quantisation.lsb_deg_h", "deg/h"},
       {"output_quantisation.white_level_deg_h_sqrt_hz", "deg/h/sqrt(Hz)"},
       {"output_quantisation.share_of_white_variance", "1 (of N^2)"},
@@ -309,6 +325,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"sensor_bandwidth", bandwidth_json(r.noise.bandwidth)},
           {"spectral_lines", lines_json(r.noise)},
           {"output_quantisation", quantisation_json(r)},
+          {"spikes", spikes_json(r)},
           {"arw_deg_per_sqrt_h", number(r.arw_deg_sqrt_h)},
           {"bias_instability_deg_h", number(r.bias_instability_deg_h)},
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},

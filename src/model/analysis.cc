@@ -267,6 +267,15 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   }
   AnalysisResult r;
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
+  r.spikes = find_spikes(rate_deg_h, options.spikes);
+  if (r.spikes.count > 0) {
+    r.notes.push_back(fmt::format(
+        "{} spike(s): isolated samples departing from the mean of their neighbours by more than "
+        "{:.4g} deg/h ({:g} robust standard deviations); {}",
+        r.spikes.count, r.spikes.threshold_deg_h, options.spikes.threshold,
+        r.spikes.removed ? "each was replaced by the mean of its neighbours before the analysis"
+                         : "they were left in (not removed)"));
+  }
   r.sample_rate_hz = sample_rate_hz;
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());
   r.duration_s = static_cast<double>(rate_deg_h.size()) / sample_rate_hz;

@@ -275,6 +275,11 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
   row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
   row("spectral lines", lines_sentence(r.noise));
+  row("spikes", r.spikes.count == 0
+                    ? std::string("none")
+                    : fmt::format("{} (beyond {} deg/h from their neighbours' mean){}",
+                                  r.spikes.count, g(r.spikes.threshold_deg_h),
+                                  r.spikes.removed ? ", replaced by that mean" : ", left in"));
   row("output quantisation",
       r.output_quantisation.detected
           ? fmt::format("steps of {} deg/h (LSB); rounding noise {} deg/h/sqrt(Hz), inside N",

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/cli.h"
 #include "support/files.h"
@@ -69,6 +70,26 @@ TEST(SensorEffects, FilteredQuantisedOutputWithALineIsTakenApart) {
     if (nm["gm_tc"]["status"] == "resolved") {
       EXPECT_GT(nm["gm_tc"]["value"].get<double>(), 1.0);
     }
+  }
+}
+
+TEST(SensorEffects, SpikesAreFoundAtTheirTimesAndTakenOut) {
+  // 3 spikes an hour of 20,000 deg/h (about 16 sample sd) on a filtered,
+  // quantised output: each found at its sample, none invented, N unharmed.
+  const test::TempDir dir;
+  for (int seed = 7; seed <= 8; ++seed) {
+    const Generated r = generate_and_analyze(
+        dir.path(),
+        "--N 150 --B 30 --fs 100 --hours 2.78 --filter-tc 0.0054 --lsb 180 --spikes 3:20000", seed);
+    ASSERT_TRUE(r.analysis.is_object());
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    const auto truth = r.truth["sensor_output"]["spike_times_s"].get<std::vector<double>>();
+    const auto found = r.analysis["spikes"]["times_s"].get<std::vector<double>>();
+    ASSERT_GT(truth.size(), 2u);
+    ASSERT_EQ(found.size(), truth.size());
+    for (std::size_t k = 0; k < truth.size(); ++k) EXPECT_NEAR(found[k], truth[k], 1e-6);
+    EXPECT_TRUE(r.analysis["spikes"]["removed"].get<bool>());
+    EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
   }
 }
 

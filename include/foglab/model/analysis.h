@@ -23,6 +23,7 @@
 #include "foglab/model/noise_fit.h"
 #include "foglab/model/output_quantisation.h"
 #include "foglab/model/readings.h"
+#include "foglab/model/spikes.h"
 #include "foglab/model/systematic.h"
 #include "foglab/stats/allan.h"
 #include "foglab/stats/psd.h"
@@ -40,6 +41,7 @@ struct AnalysisOptions {
   std::int64_t fit_min_clusters = 3;
   /// Block means used for the detrending factors (systematic.h).
   int detrend_blocks = 512;
+  SpikeOptions spikes;  ///< isolated outliers, found and replaced first (spikes.h)
 };
 
 /// The evidence behind the random-bias answer.
@@ -73,6 +75,7 @@ struct AnalysisResult {
   double bias_instability_tau_s = 0.0;    ///< [s]
   bool bias_instability_at_edge = false;  ///< minimum at the end of the tau range
   RandomBiasEvidence evidence;
+  Spikes spikes;                           ///< what was found (and replaced) before the analysis
   OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
   ClassVerdict verdict;
   std::vector<std::string> notes;  ///< what the program decided and why

@@ -1,0 +1,43 @@
+// foglab — spikes: isolated outliers in a rate record (a bit error, a
+// knock), found and taken out before the statistics, with what was done
+// stated.
+//
+// A sample is a spike when it departs from the mean of its two neighbours,
+// h_k = y_k - (y_(k-1) + y_(k+1)) / 2, by more than `threshold` robust
+// standard deviations of h (1.4826 times the median absolute deviation of
+// h, which a few spikes do not move; with an output word whose steps make
+// that median 0, the standard deviation of the samples within 3 MADs
+// stands in). For Gaussian noise 8 of them is a false alarm about once in
+// 10^15 samples. Each spike is replaced by the mean of its neighbours (a
+// single sample's noise is lost, nothing is interpolated over a stretch);
+// a spike's neighbours must each depart from their own neighbours by minus
+// half of it, to within half the threshold, so a bias step or a run of two
+// or more outlying samples is not a spike and is left alone.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace foglab::model {
+
+struct SpikeOptions {
+  bool remove = true;               ///< replace them (else only report them)
+  double threshold = 8.0;           ///< robust standard deviations of h
+  std::size_t max_reported = 1000;  ///< spikes listed individually
+};
+
+struct Spikes {
+  std::int64_t count = 0;
+  double robust_sd_deg_h = 0.0;       ///< [deg/h] of h, the scale of the threshold
+  double threshold_deg_h = 0.0;       ///< [deg/h] threshold times that
+  std::vector<std::int64_t> indices;  ///< the first max_reported, in order
+  std::vector<double> sizes_deg_h;    ///< [deg/h] h at each
+  bool removed = false;
+};
+
+/// Finds the spikes of `rate_deg_h` and, with options.remove, replaces
+/// each by the mean of its neighbours in place.
+Spikes find_spikes(std::span<double> rate_deg_h, const SpikeOptions& options = {});
+
+}  // namespace foglab::model
