@@ -180,6 +180,18 @@ nlohmann::json spikes_json(const model::AnalysisResult& r) {
           {"sizes_deg_h", numbers(s.sizes_deg_h)}};
 }
 
+nlohmann::json steps_json(const model::AnalysisResult& r) {
+  const model::BiasSteps& s = r.steps;
+  std::vector<double> times;
+  for (std::int64_t k : s.indices) times.push_back(static_cast<double>(k) / r.sample_rate_hz);
+  return {{"count", s.indices.size()},
+          {"removed", s.removed},
+          {"times_s", times},
+          {"sizes_deg_h", numbers(s.sizes_deg_h)},
+          {"window_samples", s.window_samples},
+          {"significance", numbers(s.significance)}};
+}
+
 nlohmann::json quantisation_json(const model::AnalysisResult& r) {
   const model::OutputQuantisation& q = r.output_quantisation;
   nlohmann::json j = {{"detected", q.detected},
@@ -224,6 +236,10 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
 nlohmann::json units_json() {
   nlohmann::json units = {
       {"input.sample_rate_hz", "Hz"},
+      {"steps.times_s", "s"},
+      {"steps.sizes_deg_h", "deg/h"},
+      {"steps.window_samples", "samples"},
+      {"steps.significance", "1 (robust spreads)"},
       {"spikes.robust_sd_deg_h", "deg/h"},
       {"spikes.threshold_deg_h", "deg/h"},
       {"spikes.times_s", "s"},
@@ -326,6 +342,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"spectral_lines", lines_json(r.noise)},
           {"output_quantisation", quantisation_json(r)},
           {"spikes", spikes_json(r)},
+          {"steps", steps_json(r)},
           {"arw_deg_per_sqrt_h", number(r.arw_deg_sqrt_h)},
           {"bias_instability_deg_h", number(r.bias_instability_deg_h)},
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},

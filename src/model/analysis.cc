@@ -268,6 +268,21 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   AnalysisResult r;
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
   r.spikes = find_spikes(rate_deg_h, options.spikes);
+  r.steps = find_steps(rate_deg_h, options.steps);
+  if (!r.steps.indices.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
+      list += fmt::format("{}{:+.4g} deg/h at {:.6g} s", i ? ", " : "", r.steps.sizes_deg_h[i],
+                          static_cast<double>(r.steps.indices[i]) / sample_rate_hz);
+    }
+    r.notes.push_back(fmt::format(
+        "{} bias step(s): {} (each beyond {:g} robust spreads of the difference of the window "
+        "means on either side); {}",
+        r.steps.indices.size(), list, options.steps.threshold,
+        r.steps.removed ? "the record was levelled (each size subtracted from the samples after "
+                          "it) before the analysis"
+                        : "they were left in (not levelled)"));
+  }
   if (r.spikes.count > 0) {
     r.notes.push_back(fmt::format(
         "{} spike(s): isolated samples departing from the mean of their neighbours by more than "

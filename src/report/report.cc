@@ -275,6 +275,12 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
   row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
   row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
   row("spectral lines", lines_sentence(r.noise));
+  row("bias steps",
+      r.steps.indices.empty()
+          ? std::string("none")
+          : fmt::format("{}{}", r.steps.indices.size(),
+                        r.steps.removed ? ", levelled before the analysis (the notes list them)"
+                                        : ", left in"));
   row("spikes", r.spikes.count == 0
                     ? std::string("none")
                     : fmt::format("{} (beyond {} deg/h from their neighbours' mean){}",

@@ -93,6 +93,26 @@ TEST(SensorEffects, SpikesAreFoundAtTheirTimesAndTakenOut) {
   }
 }
 
+TEST(SensorEffects, BiasStepsAreFoundAndLevelled) {
+  // Two steps of 600 and -400 deg/h (about 20 and 14 times the Allan
+  // deviation's floor) on the ADIS16405-like axis.
+  const test::TempDir dir;
+  const Generated r = generate_and_analyze(
+      dir.path(),
+      "--N 150 --B 30 --fs 100 --hours 2.78 --filter-tc 0.0054 --lsb 180 --step 3000:600 "
+      "--step 7000:-400",
+      9);
+  ASSERT_TRUE(r.analysis.is_object());
+  const json& s = r.analysis["steps"];
+  ASSERT_EQ(s["count"], 2);
+  EXPECT_NEAR(s["times_s"][0].get<double>(), 3000.0, 2.0);
+  EXPECT_NEAR(s["times_s"][1].get<double>(), 7000.0, 2.0);
+  EXPECT_NEAR(s["sizes_deg_h"][0].get<double>() / 600.0, 1.0, 0.25);
+  EXPECT_NEAR(s["sizes_deg_h"][1].get<double>() / -400.0, 1.0, 0.25);
+  EXPECT_TRUE(s["removed"].get<bool>());
+  EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
+}
+
 TEST(SensorEffects, MovingAverageIsFoundWithItsLength) {
   const test::TempDir dir;
   const Generated r =

@@ -24,6 +24,7 @@
 #include "foglab/model/output_quantisation.h"
 #include "foglab/model/readings.h"
 #include "foglab/model/spikes.h"
+#include "foglab/model/steps.h"
 #include "foglab/model/systematic.h"
 #include "foglab/stats/allan.h"
 #include "foglab/stats/psd.h"
@@ -42,6 +43,7 @@ struct AnalysisOptions {
   /// Block means used for the detrending factors (systematic.h).
   int detrend_blocks = 512;
   SpikeOptions spikes;  ///< isolated outliers, found and replaced first (spikes.h)
+  StepOptions steps;    ///< bias steps, found and levelled next (steps.h)
 };
 
 /// The evidence behind the random-bias answer.
@@ -76,6 +78,7 @@ struct AnalysisResult {
   bool bias_instability_at_edge = false;  ///< minimum at the end of the tau range
   RandomBiasEvidence evidence;
   Spikes spikes;                           ///< what was found (and replaced) before the analysis
+  BiasSteps steps;                         ///< the same for bias steps (levelled)
   OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
   ClassVerdict verdict;
   std::vector<std::string> notes;  ///< what the program decided and why

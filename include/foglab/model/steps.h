@@ -1,0 +1,42 @@
+// foglab — bias steps: jumps of the bias at an instant (a power glitch, a
+// mode change, a knock that shifts the sensor), found and levelled before
+// the statistics, with what was done stated.
+//
+// At window lengths W = 64, 128, ... samples (up to a sixteenth of the
+// record) the difference D(k) between the means of the W samples after k
+// and the W before is compared with its own robust spread (1.4826 times the
+// median absolute deviation from the median of D over the record, which a
+// few steps do not move, and which a steady drift does not enter: it moves
+// the median). The largest |D - median| beyond `threshold` spreads, at any
+// length, is a step; its sample is the best single change point of the
+// stretch W either side (the largest |mean after - mean before| sqrt(l r /
+// (l + r))), its size the difference of the means over up to 4 W either
+// side of it. It is levelled (its size subtracted from every
+// later sample) and the search repeats, up to `max_steps` times.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace foglab::model {
+
+struct StepOptions {
+  bool remove = true;      ///< level them (else only report them)
+  double threshold = 6.0;  ///< robust spreads of D
+  int max_steps = 20;
+};
+
+struct BiasSteps {
+  std::vector<std::int64_t> indices;         ///< the first sample after each step, in time order
+  std::vector<double> sizes_deg_h;           ///< [deg/h]
+  std::vector<std::int64_t> window_samples;  ///< W at which each was found
+  std::vector<double> significance;          ///< |D - median| / spread there
+  bool removed = false;
+};
+
+/// Finds the bias steps of `rate_deg_h` and, with options.remove, levels
+/// the record in place.
+BiasSteps find_steps(std::span<double> rate_deg_h, const StepOptions& options = {});
+
+}  // namespace foglab::model

@@ -1,0 +1,119 @@
+// foglab — bias steps (steps.h).
+#include "foglab/model/steps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace foglab::model {
+namespace {
+
+struct Candidate {
+  std::int64_t index = -1;
+  double size = 0.0, z = 0.0;
+  std::int64_t window = 0;
+};
+
+double median_of(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// The most significant step at window length w, from prefix sums p.
+Candidate best_at(const std::vector<double>& p, std::int64_t w) {
+  const auto n = static_cast<std::int64_t>(p.size()) - 1;
+  auto d = [&](std::int64_t k) {
+    return (p[static_cast<std::size_t>(k + w)] - p[static_cast<std::size_t>(k)] -
+            (p[static_cast<std::size_t>(k)] - p[static_cast<std::size_t>(k - w)])) /
+           static_cast<double>(w);
+  };
+  const std::int64_t stride = std::max<std::int64_t>(1, w / 8);
+  std::vector<double> values;
+  for (std::int64_t k = w; k + w <= n; k += stride) values.push_back(d(k));
+  Candidate c;
+  if (values.size() < 16) return c;
+  const double centre = median_of(values);
+  std::vector<double> dev(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) dev[i] = std::fabs(values[i] - centre);
+  const double spread = 1.4826 * median_of(dev);
+  if (!(spread > 0.0)) return c;
+  const auto top = static_cast<std::size_t>(std::max_element(dev.begin(), dev.end()) - dev.begin());
+  const std::int64_t coarse = w + static_cast<std::int64_t>(top) * stride;
+  // The sample: the single change point of the stretch W either side,
+  // where |mean after - mean before| sqrt(l r / (l + r)) peaks (l, r the
+  // samples on either side): it uses the whole stretch, so it lands within
+  // (sd / size)^2 samples of the step, not within the triangle's width.
+  const std::int64_t a = std::max<std::int64_t>(0, coarse - w);
+  const std::int64_t b = std::min(n, coarse + w);
+  std::int64_t best = coarse;
+  double best_stat = -1.0, best_size = 0.0;
+  const double sum = p[static_cast<std::size_t>(b)] - p[static_cast<std::size_t>(a)];
+  for (std::int64_t k = a + 1; k < b; ++k) {
+    const double l = static_cast<double>(k - a), r = static_cast<double>(b - k);
+    const double left = (p[static_cast<std::size_t>(k)] - p[static_cast<std::size_t>(a)]) / l;
+    const double right = (sum - left * l) / r;
+    const double stat = std::fabs(right - left) * std::sqrt(l * r / (l + r));
+    if (stat > best_stat) best_stat = stat, best = k, best_size = right - left;
+  }
+  const double best_dev = std::fabs(d(std::clamp(best, w, n - w)) - centre);
+  // Its size from up to 4 W either side (four times the samples of the
+  // stretch that found it: half the scatter, where the noise is white).
+  const std::int64_t lo = std::max<std::int64_t>(0, best - 4 * w);
+  const std::int64_t hi = std::min(n, best + 4 * w);
+  best_size = (p[static_cast<std::size_t>(hi)] - p[static_cast<std::size_t>(best)]) /
+                  static_cast<double>(hi - best) -
+              (p[static_cast<std::size_t>(best)] - p[static_cast<std::size_t>(lo)]) /
+                  static_cast<double>(best - lo);
+  c.index = best;
+  c.size = best_size;
+  c.z = std::max(best_dev, dev[top]) / spread;
+  c.window = w;
+  return c;
+}
+
+}  // namespace
+
+BiasSteps find_steps(std::span<double> y, const StepOptions& options) {
+  BiasSteps steps;
+  const auto n = static_cast<std::int64_t>(y.size());
+  std::vector<double> work(y.begin(), y.end());
+  for (double& v : work) {
+    if (!std::isfinite(v)) return steps;  // the readers refuse these; nothing to do
+  }
+  std::vector<double> p(y.size() + 1);
+  for (int round = 0; round < options.max_steps; ++round) {
+    p[0] = 0.0;
+    std::partial_sum(work.begin(), work.end(), p.begin() + 1);
+    Candidate best;
+    for (std::int64_t w = 64; 64 * w <= n; w *= 2) {
+      const Candidate c = best_at(p, w);
+      if (c.index >= 0 && c.z > best.z) best = c;
+    }
+    if (best.index < 0 || !(best.z > options.threshold)) break;
+    for (std::int64_t k = best.index; k < n; ++k) work[static_cast<std::size_t>(k)] -= best.size;
+    steps.indices.push_back(best.index);
+    steps.sizes_deg_h.push_back(best.size);
+    steps.window_samples.push_back(best.window);
+    steps.significance.push_back(best.z);
+  }
+  // Time order.
+  std::vector<std::size_t> order(steps.indices.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return steps.indices[a] < steps.indices[b]; });
+  BiasSteps sorted;
+  for (std::size_t i : order) {
+    sorted.indices.push_back(steps.indices[i]);
+    sorted.sizes_deg_h.push_back(steps.sizes_deg_h[i]);
+    sorted.window_samples.push_back(steps.window_samples[i]);
+    sorted.significance.push_back(steps.significance[i]);
+  }
+  if (options.remove && !sorted.indices.empty()) {
+    std::copy(work.begin(), work.end(), y.begin());
+    sorted.removed = true;
+  }
+  return sorted;
+}
+
+}  // namespace foglab::model

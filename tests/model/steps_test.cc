@@ -1,0 +1,55 @@
+// Bias steps (model/steps.h): found where they are, levelled, and not
+// invented by drift or random walk.
+#include "foglab/model/steps.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace foglab::model {
+namespace {
+
+std::vector<double> white(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal(5.0, 1.0);
+  std::vector<double> y(n);
+  for (double& v : y) v = normal(engine);
+  return y;
+}
+
+TEST(Steps, TwoStepsAreFoundAndLevelled) {
+  std::vector<double> y = white(400000, 1);
+  for (std::size_t k = 100000; k < y.size(); ++k) y[k] += 0.3;  // 0.3 sample sd
+  for (std::size_t k = 300000; k < y.size(); ++k) y[k] -= 0.5;
+  const BiasSteps s = find_steps(y);
+  ASSERT_EQ(s.indices.size(), 2u);
+  EXPECT_NEAR(static_cast<double>(s.indices[0]), 100000.0, 200.0);
+  EXPECT_NEAR(static_cast<double>(s.indices[1]), 300000.0, 200.0);
+  EXPECT_NEAR(s.sizes_deg_h[0], 0.3, 0.05);
+  EXPECT_NEAR(s.sizes_deg_h[1], -0.5, 0.05);
+  EXPECT_TRUE(s.removed);
+  // Levelled: the mean of the last quarter is the first quarter's again.
+  double a = 0.0, b = 0.0;
+  for (std::size_t k = 0; k < 100000; ++k) a += y[k], b += y[300000 + k];
+  EXPECT_NEAR(a / 1e5, b / 1e5, 0.05);
+}
+
+TEST(Steps, NoneInWhiteNoiseADriftOrARandomWalk) {
+  std::vector<double> y = white(1000000, 2);
+  std::mt19937_64 engine(3);
+  std::normal_distribution<double> normal;
+  double walk = 0.0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    walk += 0.002 * normal(engine);                // a random walk
+    y[k] += walk + 1e-6 * static_cast<double>(k);  // and a drift
+  }
+  const std::vector<double> before = y;
+  const BiasSteps s = find_steps(y);
+  EXPECT_TRUE(s.indices.empty()) << s.indices.size() << " at " << s.indices.front();
+  EXPECT_EQ(y, before);
+}
+
+}  // namespace
+}  // namespace foglab::model
