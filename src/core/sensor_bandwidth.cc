@@ -21,8 +21,8 @@ double ma_autocovariance(int k, std::int64_t lag) {
 // variance of an m-average less the covariance of two neighbouring ones.
 double ma_allan_factor(int k, std::int64_t m) {
   double var = 0.0, cov = 0.0;
-  for (std::int64_t j = -(m - 1); j <= m - 1; ++j) {
-    if (j <= -k || j >= k) continue;
+  const std::int64_t reach = std::min<std::int64_t>(m - 1, k - 1);  // r_j = 0 beyond k - 1
+  for (std::int64_t j = -reach; j <= reach; ++j) {
     var += static_cast<double>(m - (j < 0 ? -j : j)) * ma_autocovariance(k, j);
   }
   for (std::int64_t j = 1; j <= 2 * m - 1 && j < k; ++j) {

@@ -77,25 +77,36 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
 BiasSteps find_steps(std::span<double> y, const StepOptions& options) {
   BiasSteps steps;
   const auto n = static_cast<std::int64_t>(y.size());
-  std::vector<double> work(y.begin(), y.end());
-  for (double& v : work) {
+  double mean = 0.0;
+  for (double v : y) {
     if (!std::isfinite(v)) return steps;  // the readers refuse these; nothing to do
+    mean += v;
   }
+  mean /= static_cast<double>(std::max<std::int64_t>(1, n));
+  // Prefix sums of y - mean (one array beside the record; the steps are
+  // levelled in y itself and put back when they are only to be reported).
   std::vector<double> p(y.size() + 1);
   for (int round = 0; round < options.max_steps; ++round) {
     p[0] = 0.0;
-    std::partial_sum(work.begin(), work.end(), p.begin() + 1);
+    for (std::size_t k = 0; k < y.size(); ++k) p[k + 1] = p[k] + (y[k] - mean);
     Candidate best;
     for (std::int64_t w = 64; 64 * w <= n; w *= 2) {
       const Candidate c = best_at(p, w);
       if (c.index >= 0 && c.z > best.z) best = c;
     }
     if (best.index < 0 || !(best.z > options.threshold)) break;
-    for (std::int64_t k = best.index; k < n; ++k) work[static_cast<std::size_t>(k)] -= best.size;
+    for (std::int64_t k = best.index; k < n; ++k) y[static_cast<std::size_t>(k)] -= best.size;
     steps.indices.push_back(best.index);
     steps.sizes_deg_h.push_back(best.size);
     steps.window_samples.push_back(best.window);
     steps.significance.push_back(best.z);
+  }
+  if (!options.remove) {
+    for (std::size_t i = 0; i < steps.indices.size(); ++i) {
+      for (std::int64_t k = steps.indices[i]; k < n; ++k) {
+        y[static_cast<std::size_t>(k)] += steps.sizes_deg_h[i];
+      }
+    }
   }
   // Time order.
   std::vector<std::size_t> order(steps.indices.size());
@@ -109,10 +120,7 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options) {
     sorted.window_samples.push_back(steps.window_samples[i]);
     sorted.significance.push_back(steps.significance[i]);
   }
-  if (options.remove && !sorted.indices.empty()) {
-    std::copy(work.begin(), work.end(), y.begin());
-    sorted.removed = true;
-  }
+  sorted.removed = options.remove && !sorted.indices.empty();
   return sorted;
 }
 
