@@ -5,17 +5,19 @@
 // N^2 / tau. Without a model of it the fit reaches for what else bends the
 // short taus down: a Gauss-Markov term with Tc below the first tau and a
 // large sigma (a random bias that is really the filter), and a white level
-// below what the record shows (issue: ADIS16405 records, N 40 % low).
+// below what the record shows (on the ADIS16405 records N came out 40 %
+// low; docs/validation.md).
 //
 // The bandwidth is looked for with a large model that has no Gauss-Markov
-// process (N, B, K and R, as many as the points allow): its
-// deviance is profiled over the filtered fraction phi and the time constant
-// T (tau0 / 20 .. 10 tau0) of a first-order low-pass, on a grid and then by
+// process (N, B, K and R, as many as the points allow): its deviance is
+// profiled over the filtered fraction phi and the time constant T
+// (tau0 / 20 .. 10 tau0) of a first-order low-pass, on a grid and then by
 // coordinate golden-section steps, and over phi and the length k (2 .. 32
-// samples) of a moving average; the better of the two kinds is taken. The bandwidth is resolved
-// when adding it lowers that deviance by more than its two parameters cost in the selection
-// criterion (2 x the penalty, times the dispersion) and it takes at least 0.5 % from the first
-// point's Allan variance. Its phi and T are then held for every candidate.
+// samples) of a moving average; the better of the two kinds is taken. It is
+// resolved when it lowers that deviance by more than its two parameters
+// cost in the selection criterion (2 x the penalty, times the dispersion),
+// takes at least 0.5 % from the first point's Allan variance and does not
+// sit at the longest T or k searched. It is then held for every candidate.
 #include <algorithm>
 #include <cmath>
 
