@@ -42,7 +42,60 @@ double polynomial(const model::SystematicFit& s, double t_c) {
 
 // ---- the four plots ----------------------------------------------------------
 
-Plot time_plot(const ReportInput& in, const std::string& title) {
+// The bias steps (vertical lines over the rate's span) and spikes (a mark at
+// the edge of their preview block) the analysis found.
+void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const RecordPreview& p,
+                           const std::vector<double>& hours) {
+  if (hours.empty() || !(r.sample_rate_hz > 0.0)) return;
+  const auto [lo, hi] = [&] {
+    double a = 0.0, b = 0.0;
+    bool any = false;
+    for (std::size_t k = 0; k < hours.size(); ++k) {
+      const double l = p.block_samples > 1 ? p.rate_min_deg_h[k] : p.rate_mean_deg_h[k];
+      const double h = p.block_samples > 1 ? p.rate_max_deg_h[k] : p.rate_mean_deg_h[k];
+      if (!std::isfinite(l) || !std::isfinite(h)) continue;
+      a = any ? std::min(a, l) : l;
+      b = any ? std::max(b, h) : h;
+      any = true;
+    }
+    return std::pair{a, b};
+  }();
+  for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
+    Series step;
+    step.title = i == 0 ? fmt::format("bias step ({} found, levelled)", r.steps.indices.size())
+                        : std::string();
+    const double t = static_cast<double>(r.steps.indices[i]) / r.sample_rate_hz / kSecondsPerHour;
+    step.x = {t, t};
+    step.y = {lo, hi};
+    step.color = kOrange;
+    step.dash_type = 2;
+    step.line_width = 1.5;
+    step.sets_range = false;
+    plot.series.push_back(std::move(step));
+  }
+  if (r.spikes.indices.empty()) return;
+  Series spikes;
+  spikes.title = fmt::format("spike ({} found, replaced)", r.spikes.count);
+  spikes.style = SeriesStyle::points;
+  spikes.color = kPurple;
+  spikes.point_type = 9;  // a filled triangle
+  spikes.point_size = 1.0;
+  spikes.sets_range = false;
+  const double block_h = hours.size() > 1 ? hours[1] - hours[0] : 1.0;
+  for (std::size_t i = 0; i < r.spikes.indices.size(); ++i) {
+    const double t = static_cast<double>(r.spikes.indices[i]) / r.sample_rate_hz / kSecondsPerHour;
+    const auto k = static_cast<std::size_t>(std::clamp(std::round((t - hours.front()) / block_h),
+                                                       0.0, static_cast<double>(hours.size() - 1)));
+    const bool up = r.spikes.sizes_deg_h[i] > 0.0;
+    const double y = p.block_samples > 1 ? (up ? p.rate_max_deg_h[k] : p.rate_min_deg_h[k])
+                                         : p.rate_mean_deg_h[k];
+    spikes.x.push_back(t);
+    spikes.y.push_back(std::isfinite(y) ? y : (up ? hi : lo));
+  }
+  plot.series.push_back(std::move(spikes));
+}
+
+Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std::string& title) {
   const RecordPreview& p = in.preview;
   Plot plot;
   plot.title = title + ": rate and temperature";
@@ -82,6 +135,7 @@ Plot time_plot(const ReportInput& in, const std::string& title) {
     t.y2 = true;
     plot.series.push_back(std::move(t));
   }
+  mark_steps_and_spikes(plot, r, p, hours);
   return plot;
 }
 
@@ -239,6 +293,28 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
     band.y_high = a.ci95_high;
     plot.series.push_back(std::move(band));
   }
+  if (r.noise.bandwidth.resolved && !a.tau_s.empty()) {
+    // Where the filter takes more than 1 % off the white level's Allan
+    // variance: from the first tau to the end of that region.
+    const model::BandwidthEstimate& b = r.noise.bandwidth;
+    double end = a.tau_s.front();
+    while (end < a.tau_s.back() &&
+           1.0 - white_allan_factor(b.bandwidth, end, b.sample_interval_s) > 0.01) {
+      end *= 1.05;
+    }
+    if (end > a.tau_s.front()) {
+      Series region;
+      region.title = "sensor bandwidth (white level lowered > 1 %)";
+      region.style = SeriesStyle::band;
+      region.color = kGrey;
+      region.fill_opacity = 0.12;
+      region.sets_range = false;
+      region.x = {a.tau_s.front(), end};
+      region.y_low = {1e-30, 1e-30};
+      region.y_high = {1e30, 1e30};
+      plot.series.push_back(std::move(region));
+    }
+  }
   Series dev;
   dev.title = "OADEV";
   dev.style = SeriesStyle::linespoints;
@@ -366,7 +442,7 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
                                const ReportOptions& options) {
   const std::string title = record_title(input);
   std::vector<Plot> plots;
-  plots.push_back(time_plot(input, title));
+  plots.push_back(time_plot(input, result, title));
   if (result.systematic && !input.preview.temperature_c.empty()) {
     plots.push_back(bias_plot(*result.systematic, input, title, options.bias_points));
   }

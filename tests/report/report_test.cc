@@ -218,6 +218,55 @@ TEST(Report, WithoutTemperatureThereIsNoBiasPlot) {
   EXPECT_EQ(rep.figures[2].name, "adev");
 }
 
+TEST(Report, PlotsMarkStepsSpikesAndTheBandwidth) {
+  // A filtered record with a step and two spikes: the time plot draws the
+  // step at its time and a mark at each spike, the Allan plot shades where
+  // the filter lowers the white level by more than 1 %.
+  sim::ErrorModel m;
+  m.noise.N = 150.0;
+  m.output.filter_time_constant_s = 0.01;
+  m.output.steps = {{1000.0, 2000.0}};
+  sim::GeneratorOptions g;
+  g.sample_rate_hz = 100.0;
+  g.duration_s = 3600.0;
+  g.seed = 2;
+  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, g);
+  rec.rate_deg_h[50000] += 60000.0;
+  rec.rate_deg_h[200000] -= 60000.0;
+  ReportInput in;
+  in.file_name = "effects.mat";
+  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz);
+  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz);
+  ASSERT_EQ(r.steps.indices.size(), 1u);
+  ASSERT_EQ(r.spikes.count, 2);
+  ASSERT_TRUE(r.noise.bandwidth.resolved);
+  const std::vector<Plot> plots = report_plots(r, in);
+  ASSERT_EQ(plots.size(), 3u);
+  auto find = [](const Plot& plot, const std::string& start) -> const Series* {
+    for (const Series& s : plot.series) {
+      if (s.title.rfind(start, 0) == 0) return &s;
+    }
+    return nullptr;
+  };
+  const Series* step = find(plots[0], "bias step");
+  ASSERT_NE(step, nullptr);
+  EXPECT_NEAR(step->x.front(), 1000.0 / 3600.0, 1.0 / 3600.0);
+  const Series* spikes = find(plots[0], "spike");
+  ASSERT_NE(spikes, nullptr);
+  ASSERT_EQ(spikes->x.size(), 2u);
+  EXPECT_NEAR(spikes->x[0], 500.0 / 3600.0, 1e-9);
+  EXPECT_NEAR(spikes->x[1], 2000.0 / 3600.0, 1e-9);
+  const Series* region = find(plots[2], "sensor bandwidth");
+  ASSERT_NE(region, nullptr);
+  EXPECT_DOUBLE_EQ(region->x.front(), r.allan.tau_s.front());
+  // The filter's effect at the region's end is 1 % (to the 5 % grid step).
+  const double end = region->x.back();
+  const double lowered = 1.0 - white_allan_factor(r.noise.bandwidth.bandwidth, end,
+                                                  r.noise.bandwidth.sample_interval_s);
+  EXPECT_LE(lowered, 0.01);
+  EXPECT_GT(lowered, 0.01 / 1.1);
+}
+
 TEST(Report, BiasPlotFollowsTheFittedPolynomial) {
   const Analysed& a = analysed();
   const std::vector<Plot> plots = report_plots(a.result, a.input);
