@@ -31,8 +31,9 @@ double robust_sd(std::span<const double> y) {
   for (double& v : work) v = std::fabs(v - centre);
   const double mad = median_of(work);
   if (mad > 0.0) return 1.4826 * mad;
-  // A coarse output word: most h are 0. The spread of the samples within
-  // reach of the bulk instead.
+  // A coarse output word: most h are 0 and so is their MAD. The root mean
+  // square of h stands in (a few spikes raise it, so it errs towards
+  // finding fewer).
   double ss = 0.0, bulk = 0.0;
   for (double v : h) {
     ss += v * v;

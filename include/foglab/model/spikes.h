@@ -5,9 +5,8 @@
 // A sample is a spike when it departs from the mean of its two neighbours,
 // h_k = y_k - (y_(k-1) + y_(k+1)) / 2, by more than `threshold` robust
 // standard deviations of h (1.4826 times the median absolute deviation of
-// h, which a few spikes do not move; with an output word whose steps make
-// that median 0, the standard deviation of the samples within 3 MADs
-// stands in). For Gaussian noise 8 of them is a false alarm about once in
+// h, which a few spikes do not move; with an output word so coarse that
+// this median is 0, the root mean square of h stands in). For Gaussian noise 8 of them is a false alarm about once in
 // 10^15 samples. Each spike is replaced by the mean of its neighbours (a
 // single sample's noise is lost, nothing is interpolated over a stretch);
 // a spike's neighbours must each depart from their own neighbours by minus
