@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -41,16 +42,17 @@ struct GenerateCommand {
   std::optional<double> lsb;
 };
 
-// "A:B[:C]" as numbers, naming the option and what was expected.
+// `text` split at `separator` into numbers, naming the option and what was
+// expected; between min_count and max_count of them.
 std::vector<double> numbers_of(const std::string& option, const std::string& text,
-                               std::size_t min_count, std::size_t max_count,
+                               char separator, std::size_t min_count, std::size_t max_count,
                                const std::string& expected) {
   std::vector<double> out;
   std::size_t start = 0;
   while (true) {
-    const std::size_t colon = text.find(':', start);
+    const std::size_t at = text.find(separator, start);
     const std::string item =
-        text.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+        text.substr(start, at == std::string::npos ? std::string::npos : at - start);
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
@@ -58,8 +60,8 @@ std::vector<double> numbers_of(const std::string& option, const std::string& tex
           fmt::format("{} '{}': '{}' is not a number (expected {})", option, text, item, expected));
     }
     out.push_back(v);
-    if (colon == std::string::npos) break;
-    start = colon + 1;
+    if (at == std::string::npos) break;
+    start = at + 1;
   }
   if (out.size() < min_count || out.size() > max_count) {
     throw UsageError(fmt::format("{} '{}': expected {}", option, text, expected));
@@ -70,15 +72,15 @@ std::vector<double> numbers_of(const std::string& option, const std::string& tex
 sim::SensorOutput sensor_output_of(const GenerateCommand& c) {
   sim::SensorOutput o;
   for (const std::string& text : c.sines) {
-    const auto v = numbers_of("--sine", text, 2, 3, "F:A or F:A:PHASE (Hz, deg/h peak, rad)");
+    const auto v = numbers_of("--sine", text, ':', 2, 3, "F:A or F:A:PHASE (Hz, deg/h peak, rad)");
     o.sinusoids.push_back({v[0], v[1], v.size() > 2 ? v[2] : 0.0});
   }
   for (const std::string& text : c.steps) {
-    const auto v = numbers_of("--step", text, 2, 2, "T:S (time in s, size in deg/h)");
+    const auto v = numbers_of("--step", text, ':', 2, 2, "T:S (time in s, size in deg/h)");
     o.steps.push_back({v[0], v[1]});
   }
   if (!c.spikes.empty()) {
-    const auto v = numbers_of("--spikes", c.spikes, 2, 2, "RATE:SIZE (per hour, deg/h)");
+    const auto v = numbers_of("--spikes", c.spikes, ':', 2, 2, "RATE:SIZE (per hour, deg/h)");
     o.spike_rate_per_hour = v[0];
     o.spike_size_deg_h = v[1];
   }
@@ -144,25 +146,9 @@ std::string_view to_string(OutFormat f) {
 }
 
 std::vector<double> parse_coefs(const std::string& text) {
-  std::vector<double> out;
-  if (text.empty()) return out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', start);
-    const std::string item =
-        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
-      throw UsageError(
-          fmt::format("--temp-coef '{}': '{}' is not a number (expected c1,c2,... in deg/h/degC^k)",
-                      text, item));
-    }
-    out.push_back(v);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
+  if (text.empty()) return {};
+  return numbers_of("--temp-coef", text, ',', 1, std::numeric_limits<std::size_t>::max(),
+                    "c1,c2,... in deg/h/degC^k");
 }
 
 nlohmann::json units_json() {
