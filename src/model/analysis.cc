@@ -145,9 +145,10 @@ stats::AllanResult without_intervals(stats::AllanResult all) {
 // statistics of its residual; `rate` is consumed (it ends as the residual).
 // The degree needs the noise model, the noise model a residual: the residual
 // of the highest degree (the cubic), in a second array (the record stays),
-// gives its OADEV with intervals, and from its deviations alone a quick first
-// noise model for the degree criterion. Whenever the criterion keeps the
-// cubic, that OADEV is the final one and its full noise fit the final model,
+// gives its PSD (whose spectral lines every fit takes as known) and its
+// OADEV with intervals, and from its deviations alone a quick first noise
+// model for the degree criterion. Whenever the criterion keeps the cubic,
+// that PSD and OADEV are the final ones and its full noise fit the final model,
 // so that fit runs on a second thread alongside the quick one. Otherwise the
 // second array takes the final residual for its OADEV, and the noise fit runs
 // alongside the Welch PSD. The results do not depend on the threads.
@@ -155,12 +156,12 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
                                   std::vector<double>& rate, std::span<const double> temperature,
                                   double fs, const AnalysisOptions& options) {
   const int cubic_degree = fit.degree;
-  // The lines from the record's own PSD: a polynomial in temperature moves
-  // only the lowest bins, below where lines are looked for.
-  stats::WelchOptions welch;
-  welch.segment_length = options.psd_segment;
-  const std::vector<SpectralLine> lines = find_spectral_lines(stats::welch_psd(rate, fs, welch));
   std::vector<double> residual = temperature_fit_residual(fit, rate, temperature);
+  // The cubic residual's PSD, before its OADEV consumes it: the spectral
+  // lines the noise fits need, and the final PSD when the cubic stays.
+  Statistics s;
+  add_psd(s, residual, fs, options);
+  const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
   const stats::AllanResult cubic_allan = residual_allan(residual, fs, options);
   if (cubic_allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -177,10 +178,8 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   fit = choose_temperature_degree(fit, record, look.model, options.systematic);
   subtract_temperature_fit(fit, rate, temperature);
 
-  Statistics s;
   if (fit.degree == cubic_degree) {
     residual = {};  // the second array is not needed any more (peak memory)
-    add_psd(s, rate, fs, options);
     add_reported_allan(s, cubic_allan, fs, options);
     s.noise = cubic_noise.get();
     return s;
@@ -191,7 +190,7 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   std::future<NoiseFitResult> noise = std::async(std::launch::async, [&] {
     return residual_noise_model(all, options, &record, fit.degree, lines);
   });
-  add_psd(s, rate, fs, options);
+  add_psd(s, rate, fs, options);  // the final residual's
   add_reported_allan(s, all, fs, options);
   s.noise = noise.get();
   return s;
