@@ -17,6 +17,18 @@ namespace {
 constexpr std::uint64_t kSpike = 9;
 constexpr std::uint64_t kSpikeSign = 10;
 
+// Whether sample `index` carries a spike: one draw of the counter-based
+// generator under the spike process's key, below the per-sample probability
+// (OutputChain and spike_times_s draw the same way).
+bool spike_at(std::uint64_t key, std::int64_t index, double probability) {
+  return probability > 0.0 &&
+         detail::uniform_of(detail::word_at(key, static_cast<std::uint64_t>(index))) < probability;
+}
+
+double spike_probability(const SensorOutput& output, double sample_rate_hz) {
+  return output.spike_rate_per_hour / (3600.0 * sample_rate_hz);
+}
+
 void check(bool ok, std::string_view field, double value, std::string_view expected) {
   if (!ok) {
     throw UsageError(fmt::format("SensorOutput::{} = {}: expected {}", field, value, expected));
@@ -74,13 +86,10 @@ double output_filter_gain(const SensorOutput& output, double frequency_hz, doubl
 std::vector<double> spike_times_s(const SensorOutput& output, double sample_rate_hz,
                                   std::uint64_t seed, std::uint64_t stream, std::int64_t samples) {
   std::vector<double> times;
-  const double p = output.spike_rate_per_hour / (3600.0 * sample_rate_hz);
-  if (!(p > 0.0)) return times;
+  const double p = spike_probability(output, sample_rate_hz);
   const std::uint64_t key = detail::process_key(seed, stream, kSpike);
-  for (std::int64_t k = 0; k < samples; ++k) {
-    if (detail::uniform_of(detail::word_at(key, static_cast<std::uint64_t>(k))) < p) {
-      times.push_back(static_cast<double>(k) / sample_rate_hz);
-    }
+  for (std::int64_t k = 0; p > 0.0 && k < samples; ++k) {
+    if (spike_at(key, k, p)) times.push_back(static_cast<double>(k) / sample_rate_hz);
   }
   return times;
 }
@@ -99,7 +108,7 @@ OutputChain::OutputChain(const SensorOutput& output, double sample_rate_hz, std:
 }
 
 void OutputChain::apply(std::int64_t first, double* rate, std::size_t count) {
-  const double spike_probability = output_.spike_rate_per_hour / (3600.0 * fs_);
+  const double p_spike = spike_probability(output_, fs_);
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t index = first + static_cast<std::int64_t>(k);
     const double t = static_cast<double>(index) / fs_;
@@ -129,9 +138,7 @@ void OutputChain::apply(std::int64_t first, double* rate, std::size_t count) {
       x = filtered_;
     }
     // 3. Spikes.
-    if (spike_probability > 0.0 &&
-        detail::uniform_of(detail::word_at(key_spike_, static_cast<std::uint64_t>(index))) <
-            spike_probability) {
+    if (spike_at(key_spike_, index, p_spike)) {
       const bool up =
           detail::uniform_of(detail::word_at(key_sign_, static_cast<std::uint64_t>(index))) < 0.5;
       x += up ? output_.spike_size_deg_h : -output_.spike_size_deg_h;
