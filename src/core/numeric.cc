@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace foglab {
@@ -83,6 +84,21 @@ double compensated_sum(std::span<const double> values) {
 double compensated_mean(std::span<const double> values) {
   if (values.empty()) return 0.0;
   return compensated_sum(values) / static_cast<double>(values.size());
+}
+
+double median_in_place(std::span<double> values) {
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+RobustSpread robust_spread(std::span<const double> values) {
+  std::vector<double> work(values.begin(), values.end());
+  RobustSpread r;
+  r.centre = median_in_place(work);
+  for (std::size_t i = 0; i < work.size(); ++i) work[i] = std::fabs(values[i] - r.centre);
+  r.spread = 1.4826 * median_in_place(work);
+  return r;
 }
 
 }  // namespace foglab

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "foglab/core/numeric.h"
+
 namespace foglab::model {
 namespace {
 
@@ -31,10 +33,8 @@ std::vector<double> noise_floor(const stats::PsdResult& psd) {
     const auto hi = std::upper_bound(f.begin(), f.end(), fc * half);
     if (hi - lo < 8) continue;
     window.assign(psd.psd.begin() + (lo - f.begin()), psd.psd.begin() + (hi - f.begin()));
-    const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
-    std::nth_element(window.begin(), mid, window.end());
     centre.push_back(std::log(fc));
-    level.push_back(std::log(std::max(*mid, 1e-300)));
+    level.push_back(std::log(std::max(median_in_place(window), 1e-300)));
   }
   std::vector<double> floor(n, 0.0);
   if (centre.empty()) return floor;

@@ -4,14 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "foglab/core/numeric.h"
+
 namespace foglab::model {
 namespace {
-
-double median_of(std::vector<double>& v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 double h_at(std::span<const double> y, std::size_t k) { return y[k] - 0.5 * (y[k - 1] + y[k + 1]); }
 
@@ -26,11 +22,8 @@ double robust_sd(std::span<const double> y) {
     if (std::isfinite(v)) h.push_back(v);
   }
   if (h.size() < 8) return 0.0;
-  std::vector<double> work = h;
-  const double centre = median_of(work);
-  for (double& v : work) v = std::fabs(v - centre);
-  const double mad = median_of(work);
-  if (mad > 0.0) return 1.4826 * mad;
+  const double spread = robust_spread(h).spread;
+  if (spread > 0.0) return spread;
   // A coarse output word: most h are 0 and so is their MAD. The root mean
   // square of h stands in (a few spikes raise it, so it errs towards
   // finding fewer).

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "foglab/core/numeric.h"
+
 namespace foglab::model {
 namespace {
 
@@ -13,12 +15,6 @@ struct Candidate {
   double size = 0.0, z = 0.0;
   std::int64_t window = 0;
 };
-
-double median_of(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 // The most significant step at window length w, from prefix sums p.
 Candidate best_at(const std::vector<double>& p, std::int64_t w) {
@@ -33,12 +29,13 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
   for (std::int64_t k = w; k + w <= n; k += stride) values.push_back(d(k));
   Candidate c;
   if (values.size() < 16) return c;
-  const double centre = median_of(values);
-  std::vector<double> dev(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) dev[i] = std::fabs(values[i] - centre);
-  const double spread = 1.4826 * median_of(dev);
+  const auto [centre, spread] = robust_spread(values);
   if (!(spread > 0.0)) return c;
-  const auto top = static_cast<std::size_t>(std::max_element(dev.begin(), dev.end()) - dev.begin());
+  std::size_t top = 0;
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    if (std::fabs(values[i] - centre) > std::fabs(values[top] - centre)) top = i;
+  }
+  const double top_dev = std::fabs(values[top] - centre);
   const std::int64_t coarse = w + static_cast<std::int64_t>(top) * stride;
   // The sample: the single change point of the stretch W either side,
   // where |mean after - mean before| sqrt(l r / (l + r)) peaks (l, r the
@@ -67,7 +64,7 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
                   static_cast<double>(best - lo);
   c.index = best;
   c.size = best_size;
-  c.z = std::max(best_dev, dev[top]) / spread;
+  c.z = std::max(best_dev, top_dev) / spread;
   c.window = w;
   return c;
 }

@@ -37,3 +37,22 @@ TEST(CompensatedSum, IsIndependentOfTheNumberOfThreads) {
 
 }  // namespace
 }  // namespace foglab
+
+namespace foglab {
+namespace {
+
+TEST(RobustSpread, MedianAndScaledMadIgnoreAFewOutliers) {
+  std::vector<double> odd = {5.0, 1.0, 4.0, 2.0, 3.0};
+  EXPECT_EQ(median_in_place(odd), 3.0);
+  std::vector<double> even = {4.0, 1.0, 3.0, 2.0};
+  EXPECT_EQ(median_in_place(even), 3.0);  // the upper middle
+  // 1..9 with one wild value: median 5, deviations 0,1,1,2,2,3,3,4,1e6-5 -> MAD 2.
+  const std::vector<double> v = {1, 2, 3, 4, 5, 6, 7, 8, 1e6};
+  const RobustSpread r = robust_spread(v);
+  EXPECT_EQ(r.centre, 5.0);
+  EXPECT_DOUBLE_EQ(r.spread, 1.4826 * 2.0);
+  EXPECT_EQ(robust_spread(std::vector<double>{2, 2, 2, 7}).spread, 0.0);
+}
+
+}  // namespace
+}  // namespace foglab

@@ -53,6 +53,21 @@ double compensated_sum(std::span<const double> values);
 /// Compensated arithmetic mean of `values` (0 for an empty span).
 double compensated_mean(std::span<const double> values);
 
+/// The median of `values` (of an even count, the upper of the middle two),
+/// found by reordering them in place (std::nth_element). Not empty.
+double median_in_place(std::span<double> values);
+
+/// A robust location and scale: the median and 1.4826 times the median
+/// absolute deviation from it, the standard deviation for Gaussian data,
+/// which a few outliers do not move (0 when more than half the values are
+/// equal).
+struct RobustSpread {
+  double centre = 0.0;
+  double spread = 0.0;
+};
+/// The robust centre and spread of `values` (not empty).
+RobustSpread robust_spread(std::span<const double> values);
+
 /// A vector of `size` copies of `fill` with room for `capacity` elements
 /// (at least `size`), for records of up to 10^9 samples. On Linux the
 /// memory is advised for transparent huge pages before it is first touched:
