@@ -171,7 +171,7 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
 nlohmann::json spikes_json(const model::AnalysisResult& r) {
   const model::Spikes& s = r.spikes;
   std::vector<double> times;
-  for (std::int64_t k : s.indices) times.push_back(static_cast<double>(k) / r.sample_rate_hz);
+  for (std::int64_t k : s.indices) times.push_back(elapsed_s(k, r.gaps, r.sample_rate_hz));
   return {{"count", s.count},
           {"removed", s.removed},
           {"robust_sd_deg_h", number(s.robust_sd_deg_h)},
@@ -183,7 +183,7 @@ nlohmann::json spikes_json(const model::AnalysisResult& r) {
 nlohmann::json steps_json(const model::AnalysisResult& r) {
   const model::BiasSteps& s = r.steps;
   std::vector<double> times;
-  for (std::int64_t k : s.indices) times.push_back(static_cast<double>(k) / r.sample_rate_hz);
+  for (std::int64_t k : s.indices) times.push_back(elapsed_s(k, r.gaps, r.sample_rate_hz));
   return {{"count", s.indices.size()},
           {"removed", s.removed},
           {"times_s", times},
@@ -201,9 +201,10 @@ nlohmann::json quantisation_json(const model::AnalysisResult& r) {
   const double n = r.noise.model.N;
   j["lsb_deg_h"] = number(q.lsb_deg_h);
   j["white_level_deg_h_sqrt_hz"] = number(q.white_level_deg_h_sqrt_hz);
-  j["share_of_white_variance"] =
-      number(n > 0 ? std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : std::nan(""));
+  j["share_of_white_variance"] = number(n > 0 ? std::pow(q.white_level_deg_h_sqrt_hz / n, 2)
+                                              : std::nan(""));  // of the sensor's
   j["sample_sd_deg_h"] = number(q.sample_sd_deg_h);
+  j["taken_out_of_N"] = r.noise.known_white_deg_h_sqrt_hz > 0.0;
   return j;
 }
 

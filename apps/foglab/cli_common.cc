@@ -75,6 +75,15 @@ io::Series load_input(const InputOptions& options) {
   read.max_magnitude = io::kMaxSampleMagnitude;  // 1e308 overflows the statistics
   io::Series series = io::read_series(options.path, read);
   for (const std::string& text : series.notes) note(text);
+  if (!series.gaps.empty()) {
+    const std::int64_t missing = missing_samples(series.gaps);
+    note(
+        fmt::format("'{}': the time axis has {} gap(s), {} sample(s) ({:.6g} s) missing; the "
+                    "statistics use the contiguous stretches between them (nothing is "
+                    "interpolated)",
+                    options.path, series.gaps.size(), missing,
+                    static_cast<double>(missing) / series.sample_rate_hz));
+  }
   if (options.channel.empty() && series.available_channels.size() > 1) {
     note(fmt::format("'{}' has channels {}; using '{}' (choose with --channel)", options.path,
                      fmt::join(series.available_channels, ", "), series.channel));
@@ -129,12 +138,34 @@ std::string sample_rate_source_text(const io::Series& series) {
   return "";
 }
 
+nlohmann::json gaps_json(const io::Series& series) {
+  const double fs = series.sample_rate_hz;
+  nlohmann::json list = nlohmann::json::array();
+  for (const Gap& gap : series.gaps) {
+    list.push_back({{"before_sample", gap.before_sample},
+                    {"missing_samples", gap.missing_samples},
+                    {"start_s", elapsed_s(gap.before_sample - 1, series.gaps, fs)},
+                    {"end_s", elapsed_s(gap.before_sample, series.gaps, fs)}});
+  }
+  const std::int64_t missing = missing_samples(series.gaps);
+  return {{"count", series.gaps.size()},
+          {"missing_samples", missing},
+          {"missing_s", static_cast<double>(missing) / fs},
+          {"first_sample_time_s", series.start_time_s},
+          {"treatment", series.gaps.empty() ? "none"
+                                            : "contiguous stretches: Allan terms and Welch "
+                                              "segments spanning a gap are left out; nothing is "
+                                              "interpolated"},
+          {"list", list}};
+}
+
 nlohmann::json input_json(const io::Series& series) {
   return {{"path", series.path},
           {"channel", series.channel},
           {"sample_rate_hz", series.sample_rate_hz},
           {"sample_rate_source", sample_rate_source_text(series)},
-          {"samples", series.values.size()}};
+          {"samples", series.values.size()},
+          {"gaps", gaps_json(series)}};
 }
 
 namespace {

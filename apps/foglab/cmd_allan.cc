@@ -98,7 +98,8 @@ void run(const AllanCommand& c) {
                        options.confidence ? " with noise identification and intervals" : ""));
   // In place: the record becomes the angle record, so memory holds one copy.
   const stats::AllanResult result = naming_the_input(series, [&] {
-    return stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options);
+    return stats::allan_deviation_in_place(series.values, series.sample_rate_hz, input, options,
+                                           series.gaps);
   });
   series.values.resize(samples);  // only the count is used below
   // Render everything first, then write: a failure never leaves half the outputs.

@@ -191,13 +191,14 @@ void run(const AnalyzeCommand& c) {
   report_input.notes = notes;
   if (temperature.channel.empty()) report_input.record_mean_deg_h = record_mean_deg_h;
   if (!c.report_path.empty()) {
-    report_input.preview =
-        report::preview_record(series.values, temperature.values_c, series.sample_rate_hz);
+    report_input.preview = report::preview_record(series.values, temperature.values_c,
+                                                  series.sample_rate_hz, 2000, series.gaps);
   }
 
   progress(fmt::format("analysing {} samples", samples));
   model::AnalysisResult result = naming_the_input(series, [&] {
-    return model::analyze(series.values, temperature.values_c, series.sample_rate_hz, options);
+    return model::analyze(series.values, temperature.values_c, series.sample_rate_hz, options,
+                          series.gaps);
   });
   series.values.clear();
   series.values.shrink_to_fit();

@@ -40,6 +40,7 @@ struct GenerateCommand {
   std::vector<std::string> sines, steps;
   std::string spikes;
   std::optional<double> lsb;
+  std::vector<std::string> drops;
 };
 
 // `text` split at `separator` into numbers, naming the option and what was
@@ -87,7 +88,26 @@ sim::SensorOutput sensor_output_of(const GenerateCommand& c) {
   o.moving_average_samples = c.moving_average;
   if (c.filter_tc) o.filter_time_constant_s = *c.filter_tc;
   if (c.lsb) o.lsb_deg_h = *c.lsb;
+  for (const std::string& text : c.drops) {
+    const auto v = numbers_of("--drop", text, ':', 2, 2, "T:D (start and duration in s)");
+    o.dropouts.push_back({v[0], v[1]});
+  }
   return o;
+}
+
+// The dropouts and the gaps they leave (indices among the samples written).
+nlohmann::json dropouts_json(const sim::SensorOutput& o, const sim::GeneratorOptions& g,
+                             std::int64_t samples) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const sim::Dropout& d : o.dropouts) {
+    list.push_back({{"start_s", d.start_s}, {"duration_s", d.duration_s}});
+  }
+  nlohmann::json gaps = nlohmann::json::array();
+  for (const Gap& gap : sim::dropout_gaps(o, g.sample_rate_hz, samples)) {
+    gaps.push_back(
+        {{"before_sample", gap.before_sample}, {"missing_samples", gap.missing_samples}});
+  }
+  return {{"asked", list}, {"gaps", gaps}};
 }
 
 nlohmann::json sensor_output_json(const sim::SensorOutput& o, const sim::GeneratorOptions& g,
@@ -116,7 +136,8 @@ nlohmann::json sensor_output_json(const sim::SensorOutput& o, const sim::Generat
           {"spike_rate_per_hour", o.spike_rate_per_hour},
           {"spike_size_deg_h", o.spike_size_deg_h},
           {"spike_times_s", sim::spike_times_s(o, g.sample_rate_hz, g.seed, g.stream, samples)},
-          {"lsb_deg_h", o.lsb_deg_h}};
+          {"lsb_deg_h", o.lsb_deg_h},
+          {"dropouts", dropouts_json(o, g, samples)}};
 }
 
 enum class OutFormat { mat, csv, f32, f64 };
@@ -213,7 +234,14 @@ void run(const GenerateCommand& c) {
                        options.sample_rate_hz));
 
   std::vector<std::string> variables;
-  if (format == OutFormat::f32 || format == OutFormat::f64) {
+  const bool raw = format == OutFormat::f32 || format == OutFormat::f64;
+  if (raw && !model.output.dropouts.empty()) {
+    throw UsageError(
+        fmt::format("--drop: '{}' is a raw file, which has no time column to show "
+                    "the gaps; write a .mat or .csv file",
+                    c.out));
+  }
+  if (raw) {
     // streamed block by block: constant memory whatever the length
     io::RawFileWriter writer(c.out, format == OutFormat::f32 ? io::RawType::f32 : io::RawType::f64);
     sim::generate(model, temperature, options,
@@ -221,7 +249,8 @@ void run(const GenerateCommand& c) {
     writer.commit();
     variables = {"rate"};
   } else {
-    const sim::Recording rec = sim::generate(model, temperature, options);
+    sim::Recording rec = sim::generate(model, temperature, options);
+    sim::remove_dropouts(rec, model.output);
     if (format == OutFormat::mat) {
       const double f = rec.sample_rate_hz;
       const std::vector<io::NamedVector> vars = {
@@ -328,6 +357,9 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--step", c->steps, "bias step T:S (from time s on, size deg/h); repeatable");
   cmd->add_option("--spikes", c->spikes, "spikes RATE:SIZE (mean per hour, deg/h each)");
   cmd->add_option("--lsb", c->lsb, "output word: round each sample to this step [deg/h]");
+  cmd->add_option("--drop", c->drops,
+                  "dropped samples T:D (from time s on, for D s; the time column shows the gap); "
+                  "repeatable");
   return [c] { run(*c); };
 }
 

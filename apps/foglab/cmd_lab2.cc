@@ -47,6 +47,7 @@ struct PendingRun {
   report::Lab2Run run;
   std::vector<double> rate_deg_h;
   std::vector<double> temperature_c;
+  std::vector<Gap> gaps;  ///< of the rate's time axis
   double sample_rate_hz = 0.0;
   AnalysisJsonInput json;
   std::string stem;  ///< output file names: "<stem>.json", "<stem>_allan.csv"
@@ -189,6 +190,7 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
       }
       p.sample_rate_hz = rate.sample_rate_hz;
       p.rate_deg_h = std::move(rate.values);
+      p.gaps = std::move(rate.gaps);
       p.stem = fmt::format("{}_{}", std::filesystem::path(path).stem().string(), rate.channel);
       runs.push_back(std::move(p));
     }
@@ -238,11 +240,11 @@ void run(const Lab2Command& c) {
     PendingRun& p = pending[k];
     const double fs = p.sample_rate_hz;
     progress(fmt::format("[{}/{}] analysing {}", k + 1, pending.size(), p.run.input.title));
-    p.run.input.preview = report::preview_record(p.rate_deg_h, p.temperature_c, fs);
+    p.run.input.preview = report::preview_record(p.rate_deg_h, p.temperature_c, fs, 2000, p.gaps);
     if (p.temperature_c.empty()) p.run.input.record_mean_deg_h = compensated_mean(p.rate_deg_h);
     p.json.record_mean_deg_h = p.run.input.record_mean_deg_h.value_or(0.0);
     try {
-      p.run.result = model::analyze(p.rate_deg_h, p.temperature_c, fs, options);
+      p.run.result = model::analyze(p.rate_deg_h, p.temperature_c, fs, options, p.gaps);
     } catch (const DataError& e) {
       throw DataError(
           fmt::format("'{}' {}: {}", p.run.input.file_name, p.run.input.channel, e.what()));

@@ -44,8 +44,9 @@ void run(const PsdCommand& c) {
         fmt::format("'{}' channel {}: the record has {} sample(s); the PSD needs at least {}",
                     series.path, series.channel, series.values.size(), kMinSamples));
   }
-  const stats::PsdResult psd = naming_the_input(
-      series, [&] { return stats::welch_psd(series.values, series.sample_rate_hz, options); });
+  const stats::PsdResult psd = naming_the_input(series, [&] {
+    return stats::welch_psd(series.values, series.sample_rate_hz, options, series.gaps);
+  });
   const stats::PsdResult smooth =
       naming_the_input(series, [&] { return stats::log_smooth(psd, c.smooth_per_decade); });
 

@@ -490,8 +490,8 @@ const VarInfo& choose_channel(const std::string& path, const MatFile& file,
                                      join_names(names)));
 }
 
-double rate_from_time_variable(const std::string& path, MatFile& file, const VarInfo& time,
-                               const VarInfo& channel) {
+TimeAxis time_axis_variable(const std::string& path, MatFile& file, const VarInfo& time,
+                            const VarInfo& channel) {
   if (!time.readable()) throw_data_error(path, unreadable_reason(time));
   if (time.numel() != channel.numel()) {
     throw_data_error(path,
@@ -505,7 +505,7 @@ double rate_from_time_variable(const std::string& path, MatFile& file, const Var
     resolution_s =
         4.0 * FLT_EPSILON * std::max(std::fabs(time_s.front()), std::fabs(time_s.back()));
   }
-  return sample_rate_from_time(path, time.name, time_s, resolution_s);
+  return time_axis_of(path, time.name, time_s, resolution_s);
 }
 
 }  // namespace
@@ -545,12 +545,17 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
       series.sample_rate_hz = rate_hz;
       series.sample_rate_source = SampleRateSource::variable_f;
       // A time vector beside f must agree with the channel too: a record
-      // with a gap or of another length is not analysed as if continuous.
+      // of another length is refused, and its gaps are the record's.
       if (time != nullptr && time != &channel && time->readable() && time->numel() >= 2) {
-        rate_from_time_variable(path, file, *time, channel);
+        TimeAxis axis = time_axis_variable(path, file, *time, channel);
+        series.gaps = std::move(axis.gaps);
+        series.start_time_s = axis.start_s;
       }
     } else if (time != nullptr) {
-      series.sample_rate_hz = rate_from_time_variable(path, file, *time, channel);
+      TimeAxis axis = time_axis_variable(path, file, *time, channel);
+      series.sample_rate_hz = axis.rate_hz;
+      series.gaps = std::move(axis.gaps);
+      series.start_time_s = axis.start_s;
       series.sample_rate_source = SampleRateSource::time_channel;
       series.sample_rate_channel = time->name;
     } else {

@@ -105,10 +105,22 @@ void TimeAxisCheck::add(double time_s, std::size_t line, double resolution_s) {
     const double rounding_s = resolution_s_ < 0.5 * reference_s_ ? resolution_s_ : 0.0;
     const double tolerance_s =
         0.01 * reference_s_ + rounding_s + 8.0 * std::numeric_limits<double>::epsilon() * magnitude;
-    if (std::fabs(step - reference_s_) > tolerance_s) {
+    if (step >= 1.5 * reference_s_) {
+      const double steps = step / reference_s_;
+      if (!(steps < 1e15)) {
+        throw_data_error(
+            path_, fmt::format("time jumps by {} s at {} ({} s -> {} s), {} sample "
+                               "steps of {} s: not a gap in one record{}",
+                               format_value(step), where(index, line), format_value(previous_s_),
+                               format_value(time_s), format_value(steps),
+                               format_value(reference_s_), kIgnoreTimeHint));
+      }
+      gaps_.push_back({static_cast<std::int64_t>(index), std::llround(steps) - 1});
+    } else if (std::fabs(step - reference_s_) > tolerance_s) {
       throw_data_error(
           path_, fmt::format("time is not uniformly sampled at {}: step {} s ({} s "
-                             "-> {} s), expected {} s (a gap or an irregular step){}",
+                             "-> {} s), expected {} s (an irregular step; a gap would be at least "
+                             "1.5 steps){}",
                              where(index, line), format_value(step), format_value(previous_s_),
                              format_value(time_s), format_value(reference_s_), kIgnoreTimeHint));
     }
@@ -138,7 +150,7 @@ void TimeAxisCheck::settle_reference() {
   count_ = count;
 }
 
-double TimeAxisCheck::rate_hz() {
+TimeAxis TimeAxisCheck::result() {
   if (count_ < 2) {
     throw_data_error(path_,
                      fmt::format("time column '{}' has {} sample(s); at least 2 are "
@@ -146,16 +158,21 @@ double TimeAxisCheck::rate_hz() {
                                  name_, count_));
   }
   if (!settled_) settle_reference();
-  const double rate_hz = static_cast<double>(count_ - 1) / (previous_s_ - first_s_);
-  check_file_sample_rate(path_, rate_hz, fmt::format("time column {}", name_));
-  return rate_hz;
+  TimeAxis axis;
+  axis.rate_hz =
+      static_cast<double>(static_cast<std::int64_t>(count_) - 1 + missing_samples(gaps_)) /
+      (previous_s_ - first_s_);
+  check_file_sample_rate(path_, axis.rate_hz, fmt::format("time column {}", name_));
+  axis.gaps = gaps_;
+  axis.start_s = first_s_;
+  return axis;
 }
 
-double sample_rate_from_time(const std::string& path, std::string_view name,
-                             std::span<const double> time_s, double resolution_s) {
+TimeAxis time_axis_of(const std::string& path, std::string_view name,
+                      std::span<const double> time_s, double resolution_s) {
   TimeAxisCheck check(path, std::string(name), resolution_s);
   for (const double t : time_s) check.add(t);
-  return check.rate_hz();
+  return check.result();
 }
 
 void check_file_sample_rate(const std::string& path, double rate_hz, std::string_view source) {

@@ -44,11 +44,19 @@ std::string format_value(double value);
 /// to proceed past a bad time axis, appended to its messages.
 extern const char* const kIgnoreTimeHint;
 
+/// What a time axis says: the sample rate, the gaps, the first time.
+struct TimeAxis {
+  double rate_hz = 0.0;   ///< [Hz]
+  std::vector<Gap> gaps;  ///< core/gaps.h
+  double start_s = 0.0;   ///< [s]
+};
+
 /// Checks a time axis sample by sample, so that a text reader need not keep
 /// the time column: every time must be finite, every step positive (else
-/// "time is not increasing") and within 1% of the reference step plus the
-/// time's resolution (else "not uniformly sampled ... a gap or an irregular
-/// step"). The reference step is the median of the first 64 steps, so one
+/// "time is not increasing") and either within 1% of the reference step plus
+/// the time's resolution or at least 1.5 reference steps: a gap, of
+/// round(step / reference) - 1 missing samples (else "not uniformly sampled
+/// ... an irregular step"). The reference step is the median of the first 64 steps, so one
 /// odd step at the start does not make every regular step look wrong. The
 /// resolution is that of the stored or printed times (single precision,
 /// "%.3f"): rounding each time moves a step by up to one resolution unit.
@@ -62,9 +70,9 @@ class TimeAxisCheck {
   /// The next time [s]; `line` (0: none) is quoted in messages;
   /// `resolution_s` raises the resolution for this and later samples.
   void add(double time_s, std::size_t line = 0, double resolution_s = 0.0);
-  /// [Hz] (n - 1) / (t[n-1] - t[0]) once all samples are in; at least two
-  /// are needed.
-  double rate_hz();
+  /// Once all samples are in: the rate (n - 1 + missing) / (t[n-1] - t[0])
+  /// [Hz], the gaps and the first time; at least two samples are needed.
+  TimeAxis result();
 
  private:
   static constexpr std::size_t kHeadSteps = 64;
@@ -83,11 +91,12 @@ class TimeAxisCheck {
   std::vector<std::size_t> head_lines_;
   bool settled_ = false;
   double reference_s_ = 0.0;
+  std::vector<Gap> gaps_;
 };
 
-/// The rate [Hz] of a whole time vector, checked as by TimeAxisCheck.
-double sample_rate_from_time(const std::string& path, std::string_view name,
-                             std::span<const double> time_s, double resolution_s);
+/// A whole time vector, checked as by TimeAxisCheck.
+TimeAxis time_axis_of(const std::string& path, std::string_view name,
+                      std::span<const double> time_s, double resolution_s);
 
 /// Throws DataError unless a rate read from the file is finite and > 0.
 void check_file_sample_rate(const std::string& path, double rate_hz, std::string_view source);

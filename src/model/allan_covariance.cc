@@ -182,4 +182,37 @@ Eigen::MatrixXd allan_variance_covariance(const NoiseModel& model, double tau0_s
   return cov;
 }
 
+Eigen::MatrixXd pooled_allan_variance_covariance(const NoiseModel& model, double tau0_s,
+                                                 std::span<const std::int64_t> m,
+                                                 std::span<const std::int64_t> segment_points) {
+  if (segment_points.size() == 1) {
+    return allan_variance_covariance(model, tau0_s, m, segment_points.front());
+  }
+  const auto count = static_cast<Eigen::Index>(m.size());
+  auto terms = [&](std::int64_t points) {
+    Eigen::VectorXd n(count);
+    for (Eigen::Index i = 0; i < count; ++i) {
+      n(i) = static_cast<double>(
+          std::max<std::int64_t>(0, points - 2 * m[static_cast<std::size_t>(i)]));
+    }
+    return n;
+  };
+  Eigen::VectorXd total = Eigen::VectorXd::Zero(count);
+  for (const std::int64_t points : segment_points) total += terms(points);
+  std::vector<std::int64_t> lengths(segment_points.begin(), segment_points.end());
+  std::sort(lengths.begin(), lengths.end());
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(count, count);
+  for (std::size_t k = 0; k < lengths.size();) {
+    std::size_t same = k;
+    while (same < lengths.size() && lengths[same] == lengths[k]) ++same;
+    const Eigen::VectorXd w = terms(lengths[k]).cwiseQuotient(total.cwiseMax(1.0));
+    if (w.maxCoeff() > 0.0) {
+      cov += static_cast<double>(same - k) * w.asDiagonal() *
+             allan_variance_covariance(model, tau0_s, m, lengths[k]) * w.asDiagonal();
+    }
+    k = same;
+  }
+  return cov;
+}
+
 }  // namespace foglab::model::detail

@@ -81,19 +81,19 @@ struct Statistics {
 
 // Welch PSD of the residual and its log-smoothed form.
 void add_psd(Statistics& s, std::span<const double> residual, double fs,
-             const AnalysisOptions& options) {
+             const AnalysisOptions& options, std::span<const Gap> gaps) {
   stats::WelchOptions welch;
   welch.segment_length = options.psd_segment;
-  s.psd = stats::welch_psd(residual, fs, welch);
+  s.psd = stats::welch_psd(residual, fs, welch, gaps);
   s.smoothed = stats::log_smooth(s.psd, options.psd_bins_per_decade);
 }
 
 // The OADEV with intervals at all the fit's taus of a residual (consumed: it
 // becomes the angle record).
 stats::AllanResult residual_allan(std::vector<double>& residual, double fs,
-                                  const AnalysisOptions& options) {
+                                  const AnalysisOptions& options, std::span<const Gap> gaps) {
   return stats::allan_deviation_in_place(residual, fs, InputKind::rate,
-                                         fit_allan_options(options, true));
+                                         fit_allan_options(options, true), gaps);
 }
 
 // The reported part of the OADEV `all`, which the noise model needs 3 points of.
@@ -124,11 +124,11 @@ NoiseFitResult residual_noise_model(const stats::AllanResult& all, const Analysi
 // PSD, OADEV and the noise fit of the residual (consumed: it becomes the
 // angle record), one after the other.
 Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOptions& options,
-                      const TemperatureRecord* record, int degree) {
+                      std::span<const Gap> gaps, const TemperatureRecord* record, int degree) {
   Statistics s;
-  add_psd(s, residual, fs, options);
+  add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
-  const stats::AllanResult all = residual_allan(residual, fs, options);
+  const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
   add_reported_allan(s, all, fs, options);
   s.noise = residual_noise_model(all, options, record, degree, lines);
   return s;
@@ -154,15 +154,16 @@ stats::AllanResult without_intervals(stats::AllanResult all) {
 // alongside the Welch PSD. The results do not depend on the threads.
 Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& record,
                                   std::vector<double>& rate, std::span<const double> temperature,
-                                  double fs, const AnalysisOptions& options) {
+                                  double fs, const AnalysisOptions& options,
+                                  std::span<const Gap> gaps) {
   const int cubic_degree = fit.degree;
   std::vector<double> residual = temperature_fit_residual(fit, rate, temperature);
   // The cubic residual's PSD, before its OADEV consumes it: the spectral
   // lines the noise fits need, and the final PSD when the cubic stays.
   Statistics s;
-  add_psd(s, residual, fs, options);
+  add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
-  const stats::AllanResult cubic_allan = residual_allan(residual, fs, options);
+  const stats::AllanResult cubic_allan = residual_allan(residual, fs, options, gaps);
   if (cubic_allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
         "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s); the noise "
@@ -185,12 +186,12 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
     return s;
   }
   residual.assign(rate.begin(), rate.end());  // the capacity (n + 1) stays
-  const stats::AllanResult all = residual_allan(residual, fs, options);
+  const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
   residual = {};
   std::future<NoiseFitResult> noise = std::async(std::launch::async, [&] {
     return residual_noise_model(all, options, &record, fit.degree, lines);
   });
-  add_psd(s, rate, fs, options);  // the final residual's
+  add_psd(s, rate, fs, options, gaps);  // the final residual's
   add_reported_allan(s, all, fs, options);
   s.noise = noise.get();
   return s;
@@ -246,10 +247,29 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
   return e;
 }
 
+// What the analysis did with the gaps of a record of `samples` present samples.
+std::string gap_note(std::size_t samples, std::span<const Gap> gaps, double fs) {
+  const std::int64_t missing = missing_samples(gaps);
+  const std::vector<Stretch> stretches =
+      contiguous_stretches(static_cast<std::int64_t>(samples), gaps);
+  std::int64_t longest = 0;
+  for (const Stretch& s : stretches) longest = std::max(longest, s.size());
+  return fmt::format(
+      "{} gap(s) in the time axis, {} samples ({:.6g} s, {:.3g} % of the span) missing; the record "
+      "was analysed as its {} contiguous stretches (longest {:.6g} s): the Allan deviation pools "
+      "the terms inside each stretch and the PSD the Welch segments inside each stretch (terms "
+      "and segments spanning a gap are left out); nothing was interpolated",
+      gaps.size(), missing, static_cast<double>(missing) / fs,
+      100.0 * static_cast<double>(missing) /
+          static_cast<double>(missing + static_cast<std::int64_t>(samples)),
+      stretches.size(), static_cast<double>(longest) / fs);
+}
+
 }  // namespace
 
 AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> temperature_c,
-                       double sample_rate_hz, const AnalysisOptions& options) {
+                       double sample_rate_hz, const AnalysisOptions& options,
+                       std::span<const Gap> gaps) {
   if (!(sample_rate_hz > 0) || !std::isfinite(sample_rate_hz)) {
     throw UsageError(fmt::format("sample rate {} Hz must be positive", sample_rate_hz));
   }
@@ -264,7 +284,10 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         "meaningful noise model)",
         rate_deg_h.size()));
   }
+  check_gaps(gaps, static_cast<std::int64_t>(rate_deg_h.size()), "analyze");
   AnalysisResult r;
+  r.gaps.assign(gaps.begin(), gaps.end());
+  if (!gaps.empty()) r.notes.push_back(gap_note(rate_deg_h.size(), gaps, sample_rate_hz));
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
   r.spikes = find_spikes(rate_deg_h, options.spikes);
   r.steps = find_steps(rate_deg_h, options.steps);
@@ -272,7 +295,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     std::string list;
     for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
       list += fmt::format("{}{:+.4g} deg/h at {:.6g} s", i ? ", " : "", r.steps.sizes_deg_h[i],
-                          static_cast<double>(r.steps.indices[i]) / sample_rate_hz);
+                          elapsed_s(r.steps.indices[i], gaps, sample_rate_hz));
     }
     r.notes.push_back(fmt::format(
         "{} bias step(s): {} (each beyond {:g} robust spreads of the difference of the window "
@@ -290,9 +313,17 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         r.spikes.removed ? "each was replaced by the mean of its neighbours before the analysis"
                          : "they were left in (not removed)"));
   }
+  // The output word's rounding, when noise-like (a step below the samples'
+  // spread), is white noise of a known level: the fit takes it as known, so
+  // that N is the sensor's own.
+  AnalysisOptions local = options;
+  if (const OutputQuantisation& q = r.output_quantisation;
+      q.detected && q.lsb_deg_h < q.sample_sd_deg_h) {
+    local.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
+  }
   r.sample_rate_hz = sample_rate_hz;
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());
-  r.duration_s = static_cast<double>(rate_deg_h.size()) / sample_rate_hz;
+  r.duration_s = static_cast<double>(r.samples + missing_samples(gaps)) / sample_rate_hz;
 
   std::optional<TemperatureRecord> record;
   std::optional<SystematicFit> fit;
@@ -300,17 +331,18 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   if (!temperature_c.empty()) {
     record.emplace(rate_deg_h, temperature_c, sample_rate_hz, options.systematic.blocks,
                    options.detrend_blocks);
-    fit = fit_temperature(*record, options.systematic);
+    fit = fit_temperature(*record, local.systematic);
     if (fit->degree_chosen) {
-      s = auto_degree_statistics(*fit, *record, rate_deg_h, temperature_c, sample_rate_hz, options);
+      s = auto_degree_statistics(*fit, *record, rate_deg_h, temperature_c, sample_rate_hz, local,
+                                 gaps);
     } else {
       subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
-      s = statistics(rate_deg_h, sample_rate_hz, options, &*record, fit->degree);
+      s = statistics(rate_deg_h, sample_rate_hz, local, gaps, &*record, fit->degree);
     }
   } else {
     r.notes.push_back(
         "no temperature: the systematic part is the mean rate only (removed by the statistics)");
-    s = statistics(rate_deg_h, sample_rate_hz, options, nullptr, 0);
+    s = statistics(rate_deg_h, sample_rate_hz, local, gaps, nullptr, 0);
   }
   if (fit) {
     // Standard errors with the noise model of the final residual. A random
@@ -331,13 +363,13 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     r.notes.push_back(fmt::format(
         "the output is quantised in steps of {:.6g} deg/h ({} distinct values in the first {} "
         "samples); rounding adds white noise of level {:.4g} deg/h/sqrt(Hz), {:.3g} % of N^2, "
-        "which the fitted N includes{}",
+        "{}",
         q.lsb_deg_h, q.distinct_values, q.samples_examined, q.white_level_deg_h_sqrt_hz,
         n > 0 ? 100.0 * std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : kNaN,
-        q.lsb_deg_h > q.sample_sd_deg_h
-            ? "; the step is larger than the samples' spread, so the rounding is not noise-like "
-              "and the short-tau statistics are distorted"
-            : ""));
+        q.lsb_deg_h < q.sample_sd_deg_h
+            ? "which the fit takes as known: N is the sensor's own white level"
+            : "which the fitted N includes: the step is not below the samples' spread, so the "
+              "rounding is not noise-like and the short-tau statistics are distorted"));
   }
   r.evidence = evidence_of(s);
   r.psd = std::move(s.psd);

@@ -62,16 +62,25 @@ NoiseFitResult degenerate(const detail::Points& p) {
 
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
-                        std::int64_t phase_points, const NoiseFitOptions& options,
-                        const DetrendFactors* detrend, std::span<const SpectralLine> lines) {
+                        std::span<const std::int64_t> segment_points,
+                        const NoiseFitOptions& options, const DetrendFactors* detrend,
+                        std::span<const SpectralLine> lines) {
   // 1. The points, the known Allan variance of the spectral lines, and the
   // sensor bandwidth they show.
   detail::Points p =
-      detail::gather_points(tau_s, adev_deg_h, edf, factors, phase_points, options, detrend);
+      detail::gather_points(tau_s, adev_deg_h, edf, factors, segment_points, options, detrend);
   const double tau0 = p.sample_interval_s();
-  if (!lines.empty() && tau0 > 0.0) {
+  const bool with_lines = !lines.empty() && tau0 > 0.0;
+  const double known_white = options.known_white_deg_h_sqrt_hz;
+  if (!(known_white >= 0.0) || !std::isfinite(known_white)) {
+    throw UsageError(fmt::format(
+        "NoiseFitOptions::known_white_deg_h_sqrt_hz must be finite and >= 0, got {}", known_white));
+  }
+  if (with_lines || known_white > 0.0) {
     p.fixed_avar.assign(p.tau.size(), 0.0);
     for (std::size_t i = 0; i < p.tau.size(); ++i) {
+      p.fixed_avar[i] += known_white * known_white / p.tau[i];
+      if (!with_lines) continue;
       for (const SpectralLine& line : lines) {
         p.fixed_avar[i] += line_allan_variance(line, p.tau[i], tau0);
       }
@@ -86,7 +95,8 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   set_status(chosen, fits, options, r);
   r.model = detail::to_model(chosen);
   r.bandwidth = bandwidth.estimate;
-  if (!p.fixed_avar.empty()) r.lines.assign(lines.begin(), lines.end());
+  if (with_lines) r.lines.assign(lines.begin(), lines.end());
+  r.known_white_deg_h_sqrt_hz = known_white;
   r.terms = chosen.terms;
   r.deviance = chosen.deviance;
   r.points = static_cast<int>(p.y.size());
@@ -161,7 +171,8 @@ double lines_allan_variance(const NoiseFitResult& fit, double tau_s) {
 }
 
 double fitted_allan_variance(const NoiseFitResult& fit, double tau_s) {
-  double sum = lines_allan_variance(fit, tau_s);
+  double sum = lines_allan_variance(fit, tau_s) +
+               fit.known_white_deg_h_sqrt_hz * fit.known_white_deg_h_sqrt_hz / tau_s;
   for (NoiseTerm t : kNoiseTerms) sum += fitted_allan_variance(fit, t, tau_s);
   return sum;
 }
@@ -180,7 +191,7 @@ double DetrendFactors::factor(NoiseTerm term, std::size_t index, double tc_s) co
 NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                                std::span<const double> edf, const NoiseFitOptions& options,
                                const DetrendFactors* detrend) {
-  return fit_impl(tau_s, adev_deg_h, edf, {}, 0, options, detrend, {});
+  return fit_impl(tau_s, adev_deg_h, edf, {}, {}, options, detrend, {});
 }
 
 NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOptions& options,
@@ -188,17 +199,20 @@ NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOp
   if (allan.kind != stats::AllanKind::oadev || allan.m.size() != allan.dev.size()) {
     throw UsageError("noise-model fit: needs an overlapping Allan deviation (oadev) result");
   }
+  // An AllanResult made before segment_points existed is one stretch.
+  const std::vector<std::int64_t> segments = allan.segment_points.empty()
+                                                 ? std::vector<std::int64_t>{allan.phase_points}
+                                                 : allan.segment_points;
   // Without intervals the edf come from the models alone (white noise's
   // stand in until the first model is fitted).
   std::vector<double> edf = allan.edf;
   edf.resize(allan.dev.size(), kNaN);
   for (std::size_t i = 0; i < edf.size(); ++i) {
     if (!std::isfinite(edf[i])) {
-      edf[i] = stats::greenhall_edf(0, allan.m[i], allan.phase_points);
+      edf[i] = stats::pooled_edf(0, allan.m[i], segments);
     }
   }
-  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, allan.phase_points, options, detrend,
-                  lines);
+  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, segments, options, detrend, lines);
 }
 
 }  // namespace foglab::model

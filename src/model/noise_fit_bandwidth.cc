@@ -65,9 +65,14 @@ class Search {
                  : SensorBandwidth{fraction, tau0_ * std::exp(log_t), 1};
   }
 
+  // The reference model's deviance with this bandwidth; infinite when the
+  // fit fails or leaves out the white term (a shape that removes the white
+  // noise it describes; with every term dropped the deviance can even be 0).
   double deviance(double fraction, double log_t, int k = 1) {
     set_shape(bandwidth_of(fraction, log_t, k));
-    return fit_subset(p_, terms_, 1.0, std::nullopt, NonPositive::drop_term).deviance;
+    const SubsetFit f = fit_subset(p_, terms_, 1.0, std::nullopt, NonPositive::drop_term);
+    if (!f.feasible || !f.terms.contains(NoiseTerm::white) || !(f.deviance > 0.0)) return kInf;
+    return f.deviance;
   }
 
   void set_shape(const SensorBandwidth& bandwidth) {

@@ -54,10 +54,11 @@ struct Points {
   /// (random walk), -1 (flicker), 0 (white) and +2 (white phase); empty when
   /// the averaging factors are unknown (the data's own edf is used then).
   std::vector<std::array<double, 4>> edf_by_alpha;
-  /// The averaging factors of the points and the record's angle samples
-  /// (empty and 0 when unknown: no correlation across tau can be modelled).
+  /// The averaging factors of the points and the angle samples of each of
+  /// the record's contiguous stretches (one entry without gaps; both empty
+  /// when unknown: no correlation across tau can be modelled).
   std::vector<std::int64_t> factors;
-  std::int64_t phase_points = 0;
+  std::vector<std::int64_t> segment_points;
   /// How every fit on these points iterates.
   IterationControl control;
   /// The known Allan variance at each point (the spectral lines'), added
@@ -113,12 +114,12 @@ enum class NonPositive {
 // --- 1. points (noise_fit_points.cc) ----------------------------------------
 
 /// The usable points (edf >= options.min_edf) of the caller's Allan
-/// deviations; `factors` and `phase_points`, when known, give each point's
+/// deviations; `factors` and `segment_points`, when known, give each point's
 /// edf for the candidate models' noise types. Throws UsageError for
 /// mismatched sizes, non-positive values or fewer than 3 usable points.
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
-                     std::int64_t phase_points, const NoiseFitOptions& options,
+                     std::span<const std::int64_t> segment_points, const NoiseFitOptions& options,
                      const DetrendFactors* detrend);
 
 // --- 1b. the sensor bandwidth (noise_fit_bandwidth.cc) ----------------------

@@ -60,7 +60,7 @@ Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
   NoiseModel model = to_model(f);
   const double ramp = model.R;
   model.R = 0.0;
-  Eigen::MatrixXd c = allan_variance_covariance(model, tau0, p.factors, p.phase_points);
+  Eigen::MatrixXd c = pooled_allan_variance_covariance(model, tau0, p.factors, p.segment_points);
   const auto n = c.rows();
   Eigen::VectorXd scale(n);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -72,7 +72,7 @@ Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
   c = scale.asDiagonal() * c * scale.asDiagonal();
   if (ramp > 0) {
     const Eigen::MatrixXd walk =
-        allan_variance_covariance({.K = 1.0}, tau0, p.factors, p.phase_points);
+        pooled_allan_variance_covariance({.K = 1.0}, tau0, p.factors, p.segment_points);
     for (Eigen::Index i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       const double share = ramp * ramp * p.basis_at(NoiseTerm::ramp, k, f.tc);  // mu_R

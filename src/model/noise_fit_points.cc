@@ -11,7 +11,7 @@ namespace foglab::model::detail {
 
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
-                     std::int64_t phase_points, const NoiseFitOptions& options,
+                     std::span<const std::int64_t> segment_points, const NoiseFitOptions& options,
                      const DetrendFactors* detrend) {
   if (options.max_iterations < 1) {
     throw UsageError(fmt::format("NoiseFitOptions::max_iterations must be >= 1, got {}",
@@ -47,14 +47,14 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
       std::array<double, 4> e{};
       const int alphas[] = {-2, -1, 0, 2};
       for (int a = 0; a < 4; ++a) {
-        e[static_cast<std::size_t>(a)] = stats::greenhall_edf(alphas[a], factors[i], phase_points);
+        e[static_cast<std::size_t>(a)] = stats::pooled_edf(alphas[a], factors[i], segment_points);
       }
       p.edf_by_alpha.push_back(e);
       p.factors.push_back(factors[i]);
     }
   }
   p.detrend = detrend;
-  p.phase_points = phase_points;
+  p.segment_points.assign(segment_points.begin(), segment_points.end());
   p.control = {options.tolerance, options.max_iterations};
   if (p.y.size() < 3) {
     throw UsageError(fmt::format(

@@ -383,11 +383,15 @@ std::string html_escape(std::string_view text) {
 
 std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& in) {
   std::string md = fmt::format("## {}\n\n", record_title(in));
-  md +=
-      fmt::format("Recording `{}`, channel {}, temperature {}: {} samples at {} Hz ({:.3g} h).\n\n",
-                  in.file_name.empty() ? "-" : in.file_name, in.channel.empty() ? "-" : in.channel,
-                  in.temperature_channel.empty() ? "none" : in.temperature_channel, r.samples,
-                  g(r.sample_rate_hz), r.duration_s / kSecondsPerHour);
+  md += fmt::format(
+      "Recording `{}`, channel {}, temperature {}: {} samples at {} Hz ({:.3g} h){}.\n\n",
+      in.file_name.empty() ? "-" : in.file_name, in.channel.empty() ? "-" : in.channel,
+      in.temperature_channel.empty() ? "none" : in.temperature_channel, r.samples,
+      g(r.sample_rate_hz), r.duration_s / kSecondsPerHour,
+      r.gaps.empty() ? std::string()
+                     : fmt::format(", {} gap(s) with {} samples missing "
+                                   "(analysed by contiguous stretches)",
+                                   r.gaps.size(), missing_samples(r.gaps)));
 
   md += "### Systematic part\n\n";
   if (r.systematic) {

@@ -42,6 +42,26 @@ double polynomial(const model::SystematicFit& s, double t_c) {
 
 // ---- the four plots ----------------------------------------------------------
 
+// The gaps of the time axis, shaded over the whole height.
+void mark_gaps(Plot& plot, const model::AnalysisResult& r) {
+  for (std::size_t i = 0; i < r.gaps.size(); ++i) {
+    const Gap& gap = r.gaps[i];
+    Series region;
+    region.title =
+        i == 0 ? fmt::format("gap ({} found, nothing interpolated)", r.gaps.size()) : std::string();
+    region.style = SeriesStyle::band;
+    region.color = kGrey;
+    region.fill_opacity = 0.25;
+    region.sets_range = false;
+    const double from = elapsed_s(gap.before_sample - 1, r.gaps, r.sample_rate_hz);
+    const double to = elapsed_s(gap.before_sample, r.gaps, r.sample_rate_hz);
+    region.x = {from / kSecondsPerHour, to / kSecondsPerHour};
+    region.y_low = {-1e30, -1e30};
+    region.y_high = {1e30, 1e30};
+    plot.series.push_back(std::move(region));
+  }
+}
+
 // The bias steps (vertical lines over the rate's span) and spikes (a mark at
 // the edge of their preview block) the analysis found.
 void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const RecordPreview& p,
@@ -64,7 +84,7 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
     Series step;
     step.title = i == 0 ? fmt::format("bias step ({} found, levelled)", r.steps.indices.size())
                         : std::string();
-    const double t = static_cast<double>(r.steps.indices[i]) / r.sample_rate_hz / kSecondsPerHour;
+    const double t = elapsed_s(r.steps.indices[i], r.gaps, r.sample_rate_hz) / kSecondsPerHour;
     step.x = {t, t};
     step.y = {lo, hi};
     step.color = kOrange;
@@ -83,7 +103,7 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
   spikes.sets_range = false;
   const double block_h = hours.size() > 1 ? hours[1] - hours[0] : 1.0;
   for (std::size_t i = 0; i < r.spikes.indices.size(); ++i) {
-    const double t = static_cast<double>(r.spikes.indices[i]) / r.sample_rate_hz / kSecondsPerHour;
+    const double t = elapsed_s(r.spikes.indices[i], r.gaps, r.sample_rate_hz) / kSecondsPerHour;
     const auto k = static_cast<std::size_t>(std::clamp(std::round((t - hours.front()) / block_h),
                                                        0.0, static_cast<double>(hours.size() - 1)));
     const bool up = r.spikes.sizes_deg_h[i] > 0.0;
@@ -135,6 +155,7 @@ Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std:
     t.y2 = true;
     plot.series.push_back(std::move(t));
   }
+  mark_gaps(plot, r);
   mark_steps_and_spikes(plot, r, p, hours);
   return plot;
 }
@@ -394,7 +415,7 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
 
 RecordPreview preview_record(std::span<const double> rate_deg_h,
                              std::span<const double> temperature_c, double sample_rate_hz,
-                             std::size_t points) {
+                             std::size_t points, std::span<const Gap> gaps) {
   if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
     throw UsageError(
         fmt::format("preview_record: sample rate {} Hz: expected > 0", sample_rate_hz));
@@ -408,31 +429,47 @@ RecordPreview preview_record(std::span<const double> rate_deg_h,
   RecordPreview p;
   const std::size_t n = rate_deg_h.size();
   if (n == 0) return p;
+  check_gaps(gaps, static_cast<std::int64_t>(n), "preview_record");
   const std::size_t block = (n + points - 1) / points;
   p.block_samples = static_cast<std::int64_t>(block);
-  for (std::size_t start = 0; start < n; start += block) {
-    const std::size_t end = std::min(n, start + block);
-    double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo, tsum = 0.0;
-    std::size_t m = 0, tm = 0;
-    for (std::size_t k = start; k < end; ++k) {
-      const double v = rate_deg_h[k];
-      if (std::isfinite(v)) {
-        sum += v;
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-        ++m;
-      }
-      if (!temperature_c.empty() && std::isfinite(temperature_c[k])) {
-        tsum += temperature_c[k];
-        ++tm;
-      }
+  auto time_of = [&](std::size_t k) {
+    return elapsed_s(static_cast<std::int64_t>(k), gaps, sample_rate_hz);
+  };
+  for (const Stretch& stretch : contiguous_stretches(static_cast<std::int64_t>(n), gaps)) {
+    const auto first = static_cast<std::size_t>(stretch.begin);
+    const auto last = static_cast<std::size_t>(stretch.end);
+    if (first > 0) {
+      // a point without values in the gap, so that no line crosses it
+      p.time_s.push_back(0.5 * (time_of(first - 1) + time_of(first)));
+      p.rate_mean_deg_h.push_back(kNaN);
+      p.rate_min_deg_h.push_back(kNaN);
+      p.rate_max_deg_h.push_back(kNaN);
+      if (!temperature_c.empty()) p.temperature_c.push_back(kNaN);
     }
-    p.time_s.push_back(0.5 * static_cast<double>(start + end - 1) / sample_rate_hz);
-    p.rate_mean_deg_h.push_back(m > 0 ? sum / static_cast<double>(m) : kNaN);
-    p.rate_min_deg_h.push_back(m > 0 ? lo : kNaN);
-    p.rate_max_deg_h.push_back(m > 0 ? hi : kNaN);
-    if (!temperature_c.empty()) {
-      p.temperature_c.push_back(tm > 0 ? tsum / static_cast<double>(tm) : kNaN);
+    for (std::size_t start = first; start < last; start += block) {
+      const std::size_t end = std::min(last, start + block);
+      double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo, tsum = 0.0;
+      std::size_t m = 0, tm = 0;
+      for (std::size_t k = start; k < end; ++k) {
+        const double v = rate_deg_h[k];
+        if (std::isfinite(v)) {
+          sum += v;
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+          ++m;
+        }
+        if (!temperature_c.empty() && std::isfinite(temperature_c[k])) {
+          tsum += temperature_c[k];
+          ++tm;
+        }
+      }
+      p.time_s.push_back(0.5 * (time_of(start) + time_of(end - 1)));
+      p.rate_mean_deg_h.push_back(m > 0 ? sum / static_cast<double>(m) : kNaN);
+      p.rate_min_deg_h.push_back(m > 0 ? lo : kNaN);
+      p.rate_max_deg_h.push_back(m > 0 ? hi : kNaN);
+      if (!temperature_c.empty()) {
+        p.temperature_c.push_back(tm > 0 ? tsum / static_cast<double>(tm) : kNaN);
+      }
     }
   }
   return p;

@@ -3,10 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "foglab/core/error.h"
+#include "foglab/sim/generator.h"
 #include "generator_internal.h"
 
 namespace foglab::sim {
@@ -66,6 +69,75 @@ void validate(const SensorOutput& o, double sample_rate_hz) {
         o.spike_size_deg_h, "a finite number >= 0");
   check(std::isfinite(o.lsb_deg_h) && o.lsb_deg_h >= 0.0, "lsb_deg_h", o.lsb_deg_h,
         "a finite number >= 0");
+  for (const Dropout& d : o.dropouts) {
+    check(std::isfinite(d.start_s) && d.start_s >= 0.0, "dropouts[].start_s", d.start_s,
+          "a finite time >= 0");
+    check(std::isfinite(d.duration_s) && d.duration_s > 0.0, "dropouts[].duration_s", d.duration_s,
+          "a finite duration > 0");
+  }
+}
+
+namespace {
+
+// The lost samples [first, end) of each dropout, sorted and merged, within
+// a record of `samples` samples.
+std::vector<std::pair<std::int64_t, std::int64_t>> lost_ranges(const SensorOutput& o, double fs,
+                                                               std::int64_t samples) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> ranges;
+  for (const Dropout& d : o.dropouts) {
+    // sample k is lost when start <= k / fs < start + duration
+    const auto first = static_cast<std::int64_t>(std::ceil(d.start_s * fs));
+    const auto end = static_cast<std::int64_t>(std::ceil((d.start_s + d.duration_s) * fs));
+    if (std::min(end, samples) > first) ranges.emplace_back(first, std::min(end, samples));
+  }
+  std::sort(ranges.begin(), ranges.end());
+  std::vector<std::pair<std::int64_t, std::int64_t>> merged;
+  for (const auto& r : ranges) {
+    if (!merged.empty() && r.first <= merged.back().second) {
+      merged.back().second = std::max(merged.back().second, r.second);
+    } else {
+      merged.push_back(r);
+    }
+  }
+  return merged;
+}
+
+}  // namespace
+
+std::vector<Gap> dropout_gaps(const SensorOutput& output, double sample_rate_hz,
+                              std::int64_t samples) {
+  std::vector<Gap> gaps;
+  std::int64_t lost_before = 0;
+  for (const auto& [first, end] : lost_ranges(output, sample_rate_hz, samples)) {
+    if (first > 0 && end < samples) gaps.push_back({first - lost_before, end - first});
+    lost_before += end - first;
+  }
+  return gaps;
+}
+
+std::vector<Gap> remove_dropouts(Recording& rec, const SensorOutput& output) {
+  const auto samples = static_cast<std::int64_t>(rec.rate_deg_h.size());
+  const auto ranges = lost_ranges(output, rec.sample_rate_hz, samples);
+  if (ranges.empty()) return {};
+  std::vector<bool> lost(static_cast<std::size_t>(samples), false);
+  for (const auto& [first, end] : ranges) {
+    std::fill(lost.begin() + first, lost.begin() + end, true);
+  }
+  auto keep = [&](std::vector<double>& column) {
+    if (column.size() != lost.size()) return;
+    std::size_t out = 0;
+    for (std::size_t k = 0; k < column.size(); ++k) {
+      if (!lost[k]) column[out++] = column[k];
+    }
+    column.resize(out);
+  };
+  keep(rec.time_s);
+  keep(rec.rate_deg_h);
+  keep(rec.temperature_c);
+  if (rec.rate_deg_h.empty()) {
+    throw UsageError("SensorOutput::dropouts lose every sample of the record");
+  }
+  return dropout_gaps(output, rec.sample_rate_hz, samples);
 }
 
 double output_filter_gain(const SensorOutput& output, double frequency_hz, double sample_rate_hz) {

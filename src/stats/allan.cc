@@ -289,29 +289,85 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
 
 namespace {
 
-// The statistic on an angle record made by to_phase(); `record_samples` is
-// the length of the original record, for messages.
-AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_samples,
-                             double sample_rate_hz, InputKind input,
+// The edf of one stretch of n angle points at averaging factor m.
+double stretch_edf(AllanKind kind, int alpha, std::int64_t m, std::int64_t n) {
+  switch (kind) {
+    case AllanKind::adev:
+      return greenhall_edf(alpha, m, n, {.stride = Stride::non_overlapping});
+    case AllanKind::oadev:
+      return greenhall_edf(alpha, m, n);
+    case AllanKind::mdev:
+    case AllanKind::tdev:
+      return greenhall_edf(alpha, m, n, {.filter = Filter::modified});
+    case AllanKind::hdev:
+      return greenhall_edf(alpha, m, n, {.order = 3, .stride = Stride::non_overlapping});
+    case AllanKind::ohdev:
+      return greenhall_edf(alpha, m, n, {.order = 3});
+    case AllanKind::totdev:
+      return totdev_edf(alpha, m, n);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// The stretches' pooled deviations: sum / count over the terms of every
+// stretch long enough for a factor (allan.h, "Gaps"); `factors` ascend.
+std::vector<double> pooled_deviations(std::span<const double> phase,
+                                      std::span<const Stretch> stretches, AllanKind kind,
+                                      std::span<const std::int64_t> factors,
+                                      std::vector<std::int64_t>& terms) {
+  std::vector<double> weighted(factors.size(), 0.0);
+  terms.assign(factors.size(), 0);
+  for (const Stretch& s : stretches) {
+    const std::int64_t limit = max_factor(kind, s.size());
+    const auto usable = static_cast<std::size_t>(
+        std::upper_bound(factors.begin(), factors.end(), limit) - factors.begin());
+    if (usable == 0) continue;
+    std::vector<std::int64_t> counts;
+    const std::vector<double> dev = detail::deviations_from_phase(
+        phase.subspan(static_cast<std::size_t>(s.begin), static_cast<std::size_t>(s.size())), kind,
+        factors.first(usable), &counts);
+    for (std::size_t k = 0; k < usable; ++k) {
+      weighted[k] += dev[k] * dev[k] * static_cast<double>(counts[k]);
+      terms[k] += counts[k];
+    }
+  }
+  std::vector<double> dev(factors.size());
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    dev[k] = std::sqrt(weighted[k] / static_cast<double>(terms[k]));
+  }
+  return dev;
+}
+
+// The statistic on an angle record made by to_phase(), whose contiguous
+// stretches are `stretches` (angle points); `record_samples` is the length
+// of the original record, for messages.
+AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stretch> stretches,
+                             std::size_t record_samples, double sample_rate_hz, InputKind input,
                              const AllanOptions& options) {
   const auto n = static_cast<std::int64_t>(phase.size());
-  const std::int64_t limit = max_factor(options.kind, n);
+  const Stretch longest =
+      *std::max_element(stretches.begin(), stretches.end(),
+                        [](const Stretch& a, const Stretch& b) { return a.size() < b.size(); });
+  const std::int64_t limit = max_factor(options.kind, longest.size());
   if (limit < 1) {
     const std::int64_t needed = options.kind == AllanKind::adev ||
                                         options.kind == AllanKind::oadev ||
                                         options.kind == AllanKind::totdev
                                     ? 3
                                     : 4;  // angle points for averaging factor 1
-    throw DataError(fmt::format("{} needs at least {} {} samples, the record has {}",
-                                to_string(options.kind),
-                                input == InputKind::rate ? needed - 1 : needed,
-                                to_string(input), record_samples));
+    const std::int64_t longest_samples = longest.size() - (input == InputKind::rate ? 1 : 0);
+    throw DataError(fmt::format(
+        "{} needs at least {} {} samples, the {} {}", to_string(options.kind),
+        input == InputKind::rate ? needed - 1 : needed, to_string(input),
+        stretches.size() > 1 ? "longest stretch between gaps has" : "record has",
+        stretches.size() > 1 ? longest_samples : static_cast<std::int64_t>(record_samples)));
   }
   AllanResult result;
   result.kind = options.kind;
   result.input = input;
   result.sample_rate_hz = sample_rate_hz;
   result.phase_points = n;
+  for (const Stretch& s : stretches) result.segment_points.push_back(s.size());
   result.m = averaging_factors(options.grid, n, sample_rate_hz, limit);
   if (result.m.empty()) {
     throw DataError(fmt::format(
@@ -320,7 +376,9 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
         record_samples, to_string(input), to_string(options.kind), options.grid.min_clusters,
         options.grid.min_clusters + (input == InputKind::rate ? 0 : 1)));
   }
-  result.dev = detail::deviations_from_phase(phase, options.kind, result.m, &result.n);
+  result.dev = stretches.size() == 1
+                   ? detail::deviations_from_phase(phase, options.kind, result.m, &result.n)
+                   : pooled_deviations(phase, stretches, options.kind, result.m, result.n);
   const std::size_t count = result.m.size();
   const double tau0_s = 1.0 / sample_rate_hz;
   result.tau_s.resize(count);
@@ -340,7 +398,10 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
   if (!options.confidence) return result;
 
   const bool hadamard = options.kind == AllanKind::hdev || options.kind == AllanKind::ohdev;
-  const std::vector<NoiseId> ids = identify_noise(phase, result.m, hadamard ? 3 : 2);
+  const std::vector<NoiseId> ids =
+      identify_noise(phase.subspan(static_cast<std::size_t>(longest.begin),
+                                   static_cast<std::size_t>(longest.size())),
+                     result.m, hadamard ? 3 : 2);
   // Phase-noise types (alpha > 0, ADEV ~ 1/tau) fall faster than every other
   // term, so once a frequency-noise type dominates at some tau, phase noise
   // cannot dominate at a longer one. With few decimated points the lag-1
@@ -365,25 +426,11 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
     previous_alpha = id.alpha;
     result.alpha[k] = id.alpha;
     result.alpha_method[k] = how;
-    double edf = nan;
-    switch (options.kind) {
-      case AllanKind::adev:
-        edf = greenhall_edf(id.alpha, m, n, {.stride = Stride::non_overlapping});
-        break;
-      case AllanKind::oadev:
-        edf = greenhall_edf(id.alpha, m, n);
-        break;
-      case AllanKind::mdev:
-      case AllanKind::tdev:
-        edf = greenhall_edf(id.alpha, m, n, {.filter = Filter::modified});
-        break;
-      case AllanKind::hdev:
-        edf = greenhall_edf(id.alpha, m, n, {.order = 3, .stride = Stride::non_overlapping});
-        break;
-      case AllanKind::ohdev:
-        edf = greenhall_edf(id.alpha, m, n, {.order = 3});
-        break;
-      case AllanKind::totdev: edf = totdev_edf(id.alpha, m, n); break;
+    double edf = 0.0;
+    for (const Stretch& s : stretches) {
+      if (m > max_factor(options.kind, s.size())) continue;
+      const double e = stretch_edf(options.kind, id.alpha, m, s.size());
+      edf = std::isfinite(e) ? edf + e : nan;
     }
     result.edf[k] = edf;
     const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);
@@ -396,19 +443,36 @@ AllanResult allan_from_phase(std::span<const double> phase, std::size_t record_s
   return result;
 }
 
+// The contiguous stretches, in angle points, of a record of `samples`
+// samples with `gaps`: a rate stretch [a, b) integrates to the angle points
+// a .. b, an angle stretch is itself.
+std::vector<Stretch> angle_stretches(std::size_t samples, InputKind input,
+                                     std::span<const Gap> gaps) {
+  std::vector<Stretch> stretches = contiguous_stretches(static_cast<std::int64_t>(samples), gaps);
+  if (input == InputKind::rate) {
+    for (Stretch& s : stretches) ++s.end;
+  }
+  return stretches;
+}
+
 }  // namespace
 
-AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
-                            InputKind input, const AllanOptions& options) {
+AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz, InputKind input,
+                            const AllanOptions& options, std::span<const Gap> gaps) {
+  check_gaps(gaps, static_cast<std::int64_t>(samples.size()), "allan_deviation");
   const std::vector<double> phase = detail::to_phase(samples, sample_rate_hz, input);
-  return allan_from_phase(phase, samples.size(), sample_rate_hz, input, options);
+  return allan_from_phase(phase, angle_stretches(samples.size(), input, gaps), samples.size(),
+                          sample_rate_hz, input, options);
 }
 
 AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
-                                     InputKind input, const AllanOptions& options) {
+                                     InputKind input, const AllanOptions& options,
+                                     std::span<const Gap> gaps) {
   const std::size_t record_samples = samples.size();
+  check_gaps(gaps, static_cast<std::int64_t>(record_samples), "allan_deviation");
   detail::to_phase_in_place(samples, sample_rate_hz, input);
-  return allan_from_phase(samples, record_samples, sample_rate_hz, input, options);
+  return allan_from_phase(samples, angle_stretches(record_samples, input, gaps), record_samples,
+                          sample_rate_hz, input, options);
 }
 
 }  // namespace foglab::stats

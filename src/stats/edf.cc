@@ -181,6 +181,19 @@ double greenhall_edf(int alpha, std::int64_t m, std::int64_t n_phase,
   return 1.0 / inv_edf;
 }
 
+double pooled_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points,
+                  const DifferenceVariance& variance) {
+  double total = 0.0;
+  bool any = false;
+  for (const std::int64_t points : segment_points) {
+    const double edf = greenhall_edf(alpha, m, points, variance);
+    if (!std::isfinite(edf)) continue;  // too short a stretch for m
+    total += edf;
+    any = true;
+  }
+  return any ? total : kNaN;
+}
+
 double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase) {
   // NIST SP 1065 Table 12: edf = b (T / tau) - c.
   const double ratio = static_cast<double>(n_phase) / static_cast<double>(m);

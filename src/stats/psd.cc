@@ -160,8 +160,12 @@ void validate(std::size_t n, double sample_rate_hz, const WelchOptions& options)
 }  // namespace
 
 PsdResult welch_psd(std::span<const double> rate, double sample_rate_hz,
-                    const WelchOptions& options) {
-  const std::size_t n = rate.size();
+                    const WelchOptions& options, std::span<const Gap> gaps) {
+  check_gaps(gaps, static_cast<std::int64_t>(rate.size()), "welch_psd");
+  const std::vector<Stretch> stretches =
+      contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps);
+  std::size_t n = 0;  // the longest stretch (the record, without gaps)
+  for (const Stretch& s : stretches) n = std::max(n, static_cast<std::size_t>(s.size()));
   validate(n, sample_rate_hz, options);
 
   const std::size_t length =
@@ -169,7 +173,21 @@ PsdResult welch_psd(std::span<const double> rate, double sample_rate_hz,
   const std::size_t bins = length / 2;  // k = 1 .. bins
   const double hop_real = std::round(static_cast<double>(length) * (1.0 - options.overlap));
   const std::size_t hop = std::max<std::size_t>(1, static_cast<std::size_t>(hop_real));
-  const std::size_t segments = (n - length) / hop + 1;
+  // Welch segments wholly inside one stretch (core/gaps.h): stretch j holds
+  // segments first_segment[j] .. first_segment[j + 1] - 1.
+  std::vector<std::size_t> first_segment{0};
+  for (const Stretch& s : stretches) {
+    const auto size = static_cast<std::size_t>(s.size());
+    first_segment.push_back(first_segment.back() +
+                            (size >= length ? (size - length) / hop + 1 : 0));
+  }
+  const std::size_t segments = first_segment.back();
+  auto segment_start = [&](std::size_t segment) {
+    const auto j = static_cast<std::size_t>(
+        std::upper_bound(first_segment.begin(), first_segment.end(), segment) -
+        first_segment.begin() - 1);
+    return static_cast<std::size_t>(stretches[j].begin) + (segment - first_segment[j]) * hop;
+  };
 
   // Periodic Hann window and its power sum (3L/8 up to rounding).
   std::vector<double> window(length);
@@ -224,7 +242,7 @@ PsdResult welch_psd(std::span<const double> rate, double sample_rate_hz,
       const std::size_t first = c * chunk_segments;
       const std::size_t last = std::min(segments, first + chunk_segments);
       for (std::size_t s = first; s < last; ++s) {
-        const double* x = data + s * hop;
+        const double* x = data + segment_start(s);
         CompensatedSum mean_sum;
         for (std::size_t i = 0; i < length; ++i) mean_sum.add(x[i]);
         const double mean = mean_sum.value() * inv_length;

@@ -477,27 +477,22 @@ std::vector<Case> catalogue() {
        kAll,
        3,
        {"not uniformly sampled", "sample 150", "line 151", "--fs"}},
-      {"GapInTime",
-       "gap.csv",
-       csv([](auto& r) { r.erase(r.begin() + 250, r.begin() + 260); }),
-       "",
-       kAll,
-       3,
-       {"not uniformly sampled", "gap", "line 251", "--fs"}},
-      {"GapInTimeMatNoF",
-       "gap.mat",
+      // (a whole number of missing samples is a gap the analyses handle:
+      // cli_sensor_effects_test.cc; a step of 1.3 samples is not)
+      {"IrregularTimeMatNoF",
+       "odd.mat",
        mat([](LabLayout& l) {
          l.with_f = false;
-         for (std::size_t i = 200; i < kSamples; ++i) l.t[i] += 5.0;
+         for (std::size_t i = 200; i < kSamples; ++i) l.t[i] += 0.03;
        }),
        "",
        kAll,
        3,
        {"not uniformly sampled", "sample 201 of 't'", "--fs"}},
-      {"GapInTimeMatWithF",
-       "gap_f.mat",
+      {"IrregularTimeMatWithF",
+       "odd_f.mat",
        mat([](LabLayout& l) {
-         for (std::size_t i = 200; i < kSamples; ++i) l.t[i] += 5.0;
+         for (std::size_t i = 200; i < kSamples; ++i) l.t[i] += 0.03;
        }),
        "",
        kAll,

@@ -125,6 +125,57 @@ TEST(SensorEffects, MovingAverageIsFoundWithItsLength) {
   EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
 }
 
+TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {
+  // Three dropouts (30 s, half a second and 15 min) in a CSV and a MAT file:
+  // the time column shows them, analyze and allan use the stretches, and N,
+  // B and K stay within what the lost data allow.
+  const test::TempDir dir;
+  const std::string model =
+      "--N 0.2 --B 0.02 --K 0.002 --fs 100 --hours 2 --drop 600:30 --drop 3000:0.5 "
+      "--drop 5000:900";
+  for (const char* ext : {".csv", ".mat"}) {
+    SCOPED_TRACE(ext);
+    const fs::path out = dir.path() / (std::string("gaps") + ext);
+    const fs::path truth_path = dir.path() / "gaps.json";
+    const test::CliRun g =
+        test::run_foglab("generate " + model + " --seed 4 --out " + test::quote(out) + " --truth " +
+                         test::quote(truth_path));
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+    const json truth = read_json(truth_path)["sensor_output"]["dropouts"]["gaps"];
+    ASSERT_EQ(truth.size(), 3u);
+    const test::CliRun a = test::run_foglab("analyze " + test::quote(out) + " --json -");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_NE(a.err.find("3 gap(s)"), std::string::npos) << a.err;
+    const json r = json::parse(a.out);
+    const json& gaps = r["input"]["gaps"];
+    ASSERT_EQ(gaps["count"], 3);
+    EXPECT_EQ(gaps["missing_samples"], 3000 + 50 + 90000);
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(gaps["list"][k]["before_sample"], truth[k]["before_sample"]);
+      EXPECT_EQ(gaps["list"][k]["missing_samples"], truth[k]["missing_samples"]);
+    }
+    EXPECT_NEAR(gaps["list"][2]["start_s"].get<double>(), 4999.99, 1e-6);
+    EXPECT_NEAR(gaps["list"][2]["end_s"].get<double>(), 5900.0, 1e-6);
+    const json& nm = r["noise_model"];
+    EXPECT_NEAR(nm["N"]["value"].get<double>() / 0.2, 1.0, 0.03);
+    EXPECT_LE(nm["B"]["ci95"][0].get<double>(), 0.02);
+    EXPECT_GE(nm["B"]["ci95"][1].get<double>(), 0.02);
+    EXPECT_LE(nm["K"]["ci95"][0].get<double>(), 0.002);
+    EXPECT_GE(nm["K"]["ci95"][1].get<double>(), 0.002);
+    EXPECT_NEAR(r["input"]["samples"].get<double>(), 720000 - 93050, 0.5);
+    // the Allan deviation of the stretches: as many terms at tau0 as the
+    // stretches hold (the record less one per stretch)
+    const test::CliRun allan = test::run_foglab("allan " + test::quote(out) + " --json -");
+    ASSERT_EQ(allan.exit_code, 0) << allan.err;
+    EXPECT_EQ(json::parse(allan.out)["n"][0], 720000 - 93050 - 4);
+  }
+  // a raw file has no time column for the gaps
+  const test::CliRun raw =
+      test::run_foglab("generate " + model + " --out " + test::quote(dir.path() / "x.f64"));
+  EXPECT_EQ(raw.exit_code, 2);
+  EXPECT_NE(raw.err.find("--drop"), std::string::npos) << raw.err;
+}
+
 TEST(SensorEffects, BadEffectOptionsAreUsageErrorsNamingTheFlag) {
   const test::TempDir dir;
   const std::string out = " --out " + test::quote(dir.path() / "x.mat");

@@ -230,17 +230,36 @@ TEST_P(MatVersionTest, NoDataChannelListsWhatIsThere) {
   EXPECT_THAT(message, HasSubstr("f (1x1 double)"));
 }
 
-TEST_P(MatVersionTest, TimeWithAGapIsReportedWithItsIndexAndValues) {
+TEST_P(MatVersionTest, TimeWithAGapListsTheMissingSamples) {
   std::vector<double> t = ramp(20, 0.0, 0.01);
-  for (std::size_t i = 12; i < t.size(); ++i) t[i] += 0.01;  // sample 13 comes late
+  for (std::size_t i = 12; i < t.size(); ++i) t[i] += 0.01;  // one sample missing before the 13th
   const std::string path = make([&](MatWriter& mat) {
     mat.vector("t", t);
     mat.vector("Y1", ramp(20, 0.0, 1.0));
   });
-  const std::string message = message_of<DataError>([&] { read_series(path, {}); });
-  EXPECT_THAT(message, HasSubstr("'" + path + "'"));
+  const Series series = read_series(path, {});
+  ASSERT_EQ(series.gaps.size(), 1u);
+  EXPECT_EQ(series.gaps[0].before_sample, 12);
+  EXPECT_EQ(series.gaps[0].missing_samples, 1);
+  EXPECT_NEAR(series.sample_rate_hz, 100.0, 1e-9);
+  // beside f, the time vector's gaps are the record's too
+  const std::string with_f = make([&](MatWriter& mat) {
+    mat.scalar("f", 100.0);
+    mat.vector("t", t);
+    mat.vector("Y1", ramp(20, 0.0, 1.0));
+  });
+  EXPECT_EQ(read_series(with_f, {}).gaps.size(), 1u);
+  // an irregular step (1.3 samples) is still an error naming the sample
+  t = ramp(20, 0.0, 0.01);
+  for (std::size_t i = 12; i < t.size(); ++i) t[i] += 0.003;
+  const std::string odd = make([&](MatWriter& mat) {
+    mat.vector("t", t);
+    mat.vector("Y1", ramp(20, 0.0, 1.0));
+  });
+  const std::string message = message_of<DataError>([&] { read_series(odd, {}); });
+  EXPECT_THAT(message, HasSubstr("'" + odd + "'"));
   EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample 13 of 't'"));
-  EXPECT_THAT(message, HasSubstr("0.11 s -> 0.13 s"));
+  EXPECT_THAT(message, HasSubstr("0.11 s -> 0.123 s"));
   EXPECT_THAT(message, HasSubstr("expected 0.01 s"));
 }
 

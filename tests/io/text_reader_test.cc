@@ -173,14 +173,28 @@ TEST_F(TextReaderTest, ACapitalTIsTemperatureNotTime) {
   EXPECT_EQ(read_series(path, with_fs(1.0)).channel, "Y1");
 }
 
-TEST_F(TextReaderTest, TimeWithAGapIsAnErrorWithIndexAndValues) {
-  const std::string path = write("gap.csv", "t,rate\n0,1\n0.1,1\n0.2,1\n0.4,1\n0.5,1\n");
+TEST_F(TextReaderTest, TimeWithAGapListsItsMissingSamples) {
+  const std::string path = write("gap.csv", "t,rate\n0,1\n0.1,1\n0.2,1\n0.5,1\n0.6,1\n");
+  const Series series = read_series(path, {});
+  ASSERT_EQ(series.gaps.size(), 1u);
+  EXPECT_EQ(series.gaps[0].before_sample, 3);  // 0.3 and 0.4 s are missing
+  EXPECT_EQ(series.gaps[0].missing_samples, 2);
+  EXPECT_EQ(series.values.size(), 5u);
+  // 5 samples and 2 missing span 0.6 s: 10 Hz, not 4 / 0.6
+  EXPECT_NEAR(series.sample_rate_hz, 10.0, 1e-9);
+  // with a sample rate given the time column is not used, so it does not matter
+  const Series ignored = read_series(path, with_fs(10.0));
+  EXPECT_EQ(ignored.values.size(), 5u);
+  EXPECT_TRUE(ignored.gaps.empty());
+}
+
+TEST_F(TextReaderTest, IrregularStepIsAnErrorWithIndexAndValues) {
+  // 1.3 steps: neither the sample step nor a whole number of missing samples
+  const std::string path = write("odd_step.csv", "t,rate\n0,1\n0.1,1\n0.2,1\n0.33,1\n0.43,1\n");
   const std::string message = message_of<DataError>([&] { read_series(path, {}); });
   EXPECT_THAT(message, HasSubstr("'" + path + "'"));
-  EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample 4 of 't' (line 5): step 0.2 s "
-                                 "(0.2 s -> 0.4 s), expected 0.1 s"));
-  // with a sample rate given the time column is not used, so it does not matter
-  EXPECT_EQ(read_series(path, with_fs(10.0)).values.size(), 5u);
+  EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample 4 of 't' (line 5): step 0.13 s "
+                                 "(0.2 s -> 0.33 s), expected 0.1 s (an irregular step"));
 }
 
 TEST_F(TextReaderTest, TimeGoingBackIsAnError) {
@@ -197,9 +211,12 @@ TEST_F(TextReaderTest, GapLateInALongRecordIsFound) {
     content += fmt::format("{} {}\n", t, i);
   }
   const std::string path = write("late_gap.txt", content);
-  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
-              HasSubstr("not uniformly sampled at sample 322 of 'time_s' (line 324): step 0.004 s "
-                        "(100.64 s -> 100.644 s), expected 0.002 s"));
+  const Series series = read_series(path, {});
+  ASSERT_EQ(series.gaps.size(), 1u);
+  EXPECT_EQ(series.gaps[0].before_sample, 321);
+  EXPECT_EQ(series.gaps[0].missing_samples, 1);
+  EXPECT_NEAR(series.sample_rate_hz, 500.0, 1e-6);
+  EXPECT_DOUBLE_EQ(series.start_time_s, 100.0);
 }
 
 TEST_F(TextReaderTest, TimesPrintedWithFewDecimalsAreNotGaps) {
@@ -216,23 +233,36 @@ TEST_F(TextReaderTest, TimesPrintedWithFewDecimalsAreNotGaps) {
     if (i != 200) content += fmt::format("{:.3f},{}\n", 5.0 + i / 300.0, i);
   }
   const std::string gap = write("rounded_gap.csv", content);
-  EXPECT_THAT(message_of<DataError>([&] { read_series(gap, {}); }),
-              HasSubstr("not uniformly sampled at sample 201 of 't' (line 202)"));
+  const Series with_gap = read_series(gap, {});
+  ASSERT_EQ(with_gap.gaps.size(), 1u);
+  EXPECT_EQ(with_gap.gaps[0].before_sample, 200);
+  EXPECT_EQ(with_gap.gaps[0].missing_samples, 1);
+  EXPECT_TRUE(series.gaps.empty());
 }
 
 TEST_F(TextReaderTest, WholeSecondTimesAreExact) {
   // integer seconds at 1 Hz: the print resolution (1 s) is no excuse for
   // a step of 2 s
   const std::string path = write("seconds.csv", "t,rate\n0,1\n1,1\n2,1\n4,1\n5,1\n");
-  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
-              HasSubstr("at sample 4 of 't' (line 5): step 2 s (2 s -> 4 s), expected 1 s"));
+  const Series series = read_series(path, {});
+  ASSERT_EQ(series.gaps.size(), 1u);
+  EXPECT_EQ(series.gaps[0].before_sample, 3);
+  EXPECT_EQ(series.gaps[0].missing_samples, 1);
+  EXPECT_NEAR(series.sample_rate_hz, 1.0, 1e-12);
 }
 
 TEST_F(TextReaderTest, OneOddFirstStepIsReportedAsTheOddOne) {
   // the reference step is the median of the first steps, not the first one
-  const std::string path = write("odd.csv", "t,rate\n0,1\n0.5,1\n0.6,1\n0.7,1\n0.8,1\n");
-  EXPECT_THAT(message_of<DataError>([&] { read_series(path, {}); }),
-              HasSubstr("at sample 2 of 't' (line 3): step 0.5 s (0 s -> 0.5 s), expected 0.1 s"));
+  const std::string path = write("odd.csv", "t,rate\n0,1\n0.13,1\n0.23,1\n0.33,1\n0.43,1\n");
+  EXPECT_THAT(
+      message_of<DataError>([&] { read_series(path, {}); }),
+      HasSubstr("at sample 2 of 't' (line 3): step 0.13 s (0 s -> 0.13 s), expected 0.1 s"));
+  // the same for a gap: four samples missing after the first, not an odd reference
+  const std::string gap = write("odd_gap.csv", "t,rate\n0,1\n0.5,1\n0.6,1\n0.7,1\n0.8,1\n");
+  const Series series = read_series(gap, {});
+  ASSERT_EQ(series.gaps.size(), 1u);
+  EXPECT_EQ(series.gaps[0].before_sample, 1);
+  EXPECT_EQ(series.gaps[0].missing_samples, 4);
 }
 
 TEST_F(TextReaderTest, NonNumericCellNamesLineColumnAndText) {

@@ -17,6 +17,7 @@
 #include "foglab/model/analysis.h"
 #include "foglab/report/plot.h"
 #include "foglab/sim/generator.h"
+#include "foglab/sim/sensor_output.h"
 #include "support/files.h"
 
 namespace foglab::report {
@@ -265,6 +266,49 @@ TEST(Report, PlotsMarkStepsSpikesAndTheBandwidth) {
                                                   r.noise.bandwidth.sample_interval_s);
   EXPECT_LE(lowered, 0.01);
   EXPECT_GT(lowered, 0.01 / 1.1);
+}
+
+TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
+  // Ten minutes lost after the first quarter hour: the time plot shades
+  // them, no line crosses them, and a spike after them sits at its true time.
+  sim::ErrorModel m;
+  m.noise.N = 150.0;
+  m.output.dropouts = {{900.0, 600.0}};
+  sim::GeneratorOptions g;
+  g.sample_rate_hz = 100.0;
+  g.duration_s = 3600.0;
+  g.seed = 3;
+  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, g);
+  const std::vector<Gap> gaps = sim::remove_dropouts(rec, m.output);
+  ASSERT_EQ(gaps.size(), 1u);
+  rec.rate_deg_h[150000] += 60000.0;  // t = 1500 s + 600 s lost = 2100 s
+  ReportInput in;
+  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz, 2000, gaps);
+  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz, {}, gaps);
+  ASSERT_EQ(r.spikes.count, 1);
+  const std::vector<Plot> plots = report_plots(r, in);
+  const Series* gap = nullptr;
+  const Series* spike = nullptr;
+  for (const Series& s : plots[0].series) {
+    if (s.title.rfind("gap (1 found", 0) == 0) gap = &s;
+    if (s.title.rfind("spike", 0) == 0) spike = &s;
+  }
+  ASSERT_NE(gap, nullptr);
+  EXPECT_NEAR(gap->x[0], 899.99 / 3600.0, 1e-9);
+  EXPECT_NEAR(gap->x[1], 1500.0 / 3600.0, 1e-9);
+  ASSERT_NE(spike, nullptr);
+  EXPECT_NEAR(spike->x[0], 2100.0 / 3600.0, 1e-9);
+  // the preview has a point without values inside the gap
+  bool hole = false;
+  for (std::size_t k = 0; k < in.preview.time_s.size(); ++k) {
+    const double t = in.preview.time_s[k];
+    if (t > 900.0 && t < 1500.0) {
+      EXPECT_TRUE(std::isnan(in.preview.rate_mean_deg_h[k])) << t;
+      hole = true;
+    }
+  }
+  EXPECT_TRUE(hole);
+  EXPECT_NEAR(in.preview.time_s.back(), 3600.0, 2.0);
 }
 
 TEST(Report, BiasPlotFollowsTheFittedPolynomial) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/sim/generator.h"
 
 namespace foglab::sim {
 namespace {
@@ -119,6 +120,35 @@ TEST(SensorOutput, BadFieldsAreNamed) {
   o = {};
   o.moving_average_samples = 0;
   EXPECT_THROW(validate(o, 100.0), UsageError);
+}
+
+TEST(SensorOutput, DropoutsLeaveGapsAndKeepTheOtherSamplesAsTheyWere) {
+  Recording rec;
+  rec.sample_rate_hz = 10.0;
+  for (int k = 0; k < 100; ++k) {
+    rec.time_s.push_back(k / 10.0);
+    rec.rate_deg_h.push_back(k);
+    rec.temperature_c.push_back(-k);
+  }
+  SensorOutput o;
+  // 2.0 <= t < 2.5 and 2.3 <= t < 3.0 merge (samples 20-29); 9.85 s on
+  // shortens the record (sample 99); 5.01 s for 0.01 s holds no sample time
+  o.dropouts = {{2.3, 0.7}, {2.0, 0.5}, {9.85, 1.0}, {5.01, 0.01}};
+  const std::vector<Gap> gaps = remove_dropouts(rec, o);
+  ASSERT_EQ(gaps.size(), 1u);
+  EXPECT_EQ(gaps[0].before_sample, 20);
+  EXPECT_EQ(gaps[0].missing_samples, 10);
+  ASSERT_EQ(rec.rate_deg_h.size(), 89u);  // 10 in the gap, 1 at the end
+  EXPECT_EQ(rec.time_s.back(), 9.8);
+  EXPECT_EQ(rec.rate_deg_h[19], 19.0);
+  EXPECT_EQ(rec.rate_deg_h[20], 30.0);
+  EXPECT_EQ(rec.time_s[20], 3.0);
+  EXPECT_EQ(rec.temperature_c[20], -30.0);
+  EXPECT_EQ(dropout_gaps(o, 10.0, 100).size(), 1u);
+  o.dropouts = {{0.0, 100.0}};
+  EXPECT_THROW(remove_dropouts(rec, o), UsageError);
+  o.dropouts = {{1.0, 0.0}};
+  EXPECT_THROW(validate(o, 10.0), UsageError);
 }
 
 }  // namespace

@@ -343,5 +343,30 @@ TEST(WelchPsd, ResultDoesNotDependOnThreadCount) {
   omp_set_num_threads(saved);
 }
 
+TEST(WelchGaps, SegmentsInsideTheStretchesAreAveraged) {
+  // The PSD of a record with gaps is the segment-weighted mean of its
+  // stretches' PSDs with the same segment length; segments never span a gap.
+  const std::vector<double> rate = white_noise(10000, 2.0, 77);
+  const std::vector<Gap> gaps = {{3000, 10}, {3100, 5}, {9000, 1000}};
+  WelchOptions options;
+  options.segment_length = 256;
+  const PsdResult pooled = welch_psd(rate, 10.0, options, gaps);
+  std::vector<double> weighted(pooled.psd.size(), 0.0);
+  std::size_t segments = 0;
+  for (const Stretch& s : contiguous_stretches(10000, gaps)) {
+    if (s.size() < 256) continue;  // the stretch of 100 samples holds no segment
+    const std::span<const double> part(rate.data() + s.begin, static_cast<std::size_t>(s.size()));
+    const PsdResult r = welch_psd(part, 10.0, options);
+    for (std::size_t k = 0; k < r.psd.size(); ++k) weighted[k] += r.psd[k] * r.segments;
+    segments += r.segments;
+  }
+  EXPECT_EQ(pooled.segments, segments);
+  for (std::size_t k = 0; k < weighted.size(); ++k) {
+    EXPECT_NEAR(pooled.psd[k], weighted[k] / segments, 1e-12 * pooled.psd[k]) << "bin " << k;
+  }
+  // the automatic segment follows the longest stretch (5900 samples): 1024
+  EXPECT_EQ(welch_psd(rate, 10.0, {}, gaps).segment_length, 1024u);
+}
+
 }  // namespace
 }  // namespace foglab::stats

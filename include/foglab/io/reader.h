@@ -13,17 +13,20 @@
 //
 // The sample rate comes, in this order, from ReadOptions::sample_rate_hz,
 // from a MAT variable `f`, or from a uniformly sampled time column (`t`,
-// `time` or `time_s`; gaps and non-monotonic time are data errors whose
-// message says to give ReadOptions::sample_rate_hz to ignore the time; the
-// naming rules are in channels.h). When `f` gives the rate,
-// a MAT time vector `t`/`time`/`time_s` beside it is still checked (same
-// length as the channel, increasing, no gaps), so that a record with a gap
-// is never analysed as if it were continuous; ReadOptions::sample_rate_hz
-// skips every time check.
+// `time` or `time_s`; the naming rules are in channels.h). When `f` gives
+// the rate, a MAT time vector `t`/`time`/`time_s` beside it is still checked
+// (same length as the channel, increasing). A time axis may have gaps: a
+// step of at least 1.5 reference steps is round(step / reference) - 1
+// missing samples, listed in Series::gaps (core/gaps.h) so that a record
+// with a gap is never analysed as if it were continuous, and nothing is
+// interpolated. Non-monotonic time and irregular steps (neither within 1 %
+// of the reference nor a gap) are data errors whose message says to give
+// ReadOptions::sample_rate_hz to ignore the time; that option skips every
+// time check (and finds no gaps).
 // An explicit ReadOptions::time_channel is used before `f`. Text headers
 // match the time names without regard to case, except that a column named
-// exactly `T` is the lab's temperature. A time step counts as a gap when it
-// differs from the median of the first 64 steps by more than 1%.
+// exactly `T` is the lab's temperature. The reference step is the median of
+// the first 64 steps.
 //
 // Channel names: MAT variables by name; text columns by header name (exact,
 // else without regard to case) or, for a string of digits that is not a
@@ -53,6 +56,7 @@
 #include <string_view>
 #include <vector>
 
+#include "foglab/core/gaps.h"
 #include "foglab/core/units.h"
 
 namespace foglab::io {
@@ -117,6 +121,11 @@ struct Series {
   SampleRateSource sample_rate_source = SampleRateSource::option;
   /// The time variable or column that gave it (time_channel), else empty.
   std::string sample_rate_channel;
+  /// Stretches of missing samples the time axis shows (empty without a
+  /// time axis, or with ReadOptions::sample_rate_hz).
+  std::vector<Gap> gaps;
+  /// [s] The time axis' first time (0 without one).
+  double start_time_s = 0.0;
   /// Every data channel the file holds (for messages and listings). MAT:
   /// the real numeric vectors of two or more samples, in file order (v7.3:
   /// name order), `t` and `T1` included, scalars such as `f` not; text:

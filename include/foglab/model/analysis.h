@@ -63,8 +63,8 @@ struct RandomBiasEvidence {
 
 struct AnalysisResult {
   double sample_rate_hz = 0.0;  ///< [Hz]
-  std::int64_t samples = 0;
-  double duration_s = 0.0;                  ///< [s]
+  std::int64_t samples = 0;     ///< samples present (without the gaps')
+  double duration_s = 0.0;      ///< [s] the span, gaps included
   std::optional<SystematicFit> systematic;  ///< empty without temperature
   stats::PsdResult psd;                     ///< Welch PSD of the residual, (deg/h)^2/Hz two-sided
   stats::PsdResult psd_smoothed;            ///< the same, log-smoothed
@@ -80,6 +80,7 @@ struct AnalysisResult {
   Spikes spikes;                           ///< what was found (and replaced) before the analysis
   BiasSteps steps;                         ///< the same for bias steps (levelled)
   OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
+  std::vector<Gap> gaps;                   ///< the record's gaps, as given (core/gaps.h)
   ClassVerdict verdict;
   std::vector<std::string> notes;  ///< what the program decided and why
 };
@@ -90,8 +91,13 @@ struct AnalysisResult {
 /// afterwards); it needs no copy, and with room for one more sample none is
 /// made. The automatic degree runs a second array of the record's size and
 /// uses two threads.
+/// `gaps` (core/gaps.h) are the stretches of missing samples between the
+/// samples given: the statistics pool the contiguous stretches (allan.h,
+/// psd.h), spike and step times count the missing samples, and a note says
+/// so. The temperature, when given, pairs with the samples present.
 /// Throws UsageError / DataError as the steps do (e.g. too short a record).
 AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> temperature_c,
-                       double sample_rate_hz, const AnalysisOptions& options = {});
+                       double sample_rate_hz, const AnalysisOptions& options = {},
+                       std::span<const Gap> gaps = {});
 
 }  // namespace foglab::model

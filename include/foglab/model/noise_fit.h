@@ -153,6 +153,11 @@ struct NoiseFitOptions {
   /// Look for the sensor's output bandwidth in the short taus and model it
   /// (core/sensor_bandwidth.h); needs the averaging factors.
   bool model_bandwidth = true;
+  /// [deg/h/sqrt(Hz)] White rate noise of a known source outside the
+  /// sensor, added to every model as the fixed Allan variance N_q^2 / tau:
+  /// the rounding of a quantised output word (output_quantisation.h). N is
+  /// then the sensor's own white level. 0: none.
+  double known_white_deg_h_sqrt_hz = 0.0;
 };
 
 /// The sensor bandwidth the fit found (core/sensor_bandwidth.h): a part of
@@ -224,6 +229,8 @@ struct NoiseFitResult {
   /// Narrow-band disturbances whose Allan variance the fit took as known
   /// (model/spectral_lines.h); empty when none were given.
   std::vector<SpectralLine> lines;
+  /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
+  double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
   RandomBiasProcess random_bias_process = RandomBiasProcess::none;
   NoiseTermSet terms;  ///< the chosen terms, e.g. N+B+K
@@ -246,7 +253,7 @@ struct NoiseFitResult {
 /// The fitted Allan variance [(deg/h)^2] of one term at tau [s]: the
 /// model's, with the white term's bandwidth factor.
 double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double tau_s);
-/// The sum over the terms and the spectral lines.
+/// The sum over the terms, the spectral lines and the known white noise.
 double fitted_allan_variance(const NoiseFitResult& fit, double tau_s);
 /// The spectral lines' part of it.
 double lines_allan_variance(const NoiseFitResult& fit, double tau_s);

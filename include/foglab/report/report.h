@@ -64,9 +64,12 @@ struct RecordPreview {
 /// shorter). `temperature_c` is empty or as long as the rate. Non-finite
 /// samples are skipped. Throws UsageError for a non-positive sample rate,
 /// mismatched lengths or points < 1.
+/// With `gaps` (core/gaps.h) the times count the missing samples, blocks
+/// stop at each gap and a point without values sits in it (no line crosses
+/// a gap).
 RecordPreview preview_record(std::span<const double> rate_deg_h,
                              std::span<const double> temperature_c, double sample_rate_hz,
-                             std::size_t points = 2000);
+                             std::size_t points = 2000, std::span<const Gap> gaps = {});
 
 /// What the analysis does not keep about the recording.
 struct ReportInput {

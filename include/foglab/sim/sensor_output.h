@@ -13,14 +13,22 @@
 //      process of core/sensor_bandwidth.h with the whole of it filtered);
 //   3. spikes: isolated outliers of +-size at a mean rate per hour, at
 //      samples drawn independently (a bit error, a vibration knock);
-//   4. the output word: each sample rounded to a whole number of LSBs.
+//   4. the output word: each sample rounded to a whole number of LSBs;
+//   5. dropouts: stretches of samples the logger loses. They are not part of
+//      the chain (the record is generated whole, so the other effects do not
+//      depend on them); remove_dropouts() takes them out of a recording,
+//      whose time column then shows the gaps (core/gaps.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "foglab/core/gaps.h"
+
 namespace foglab::sim {
+
+struct Recording;
 
 struct Sinusoid {
   double frequency_hz = 0.0;     ///< [Hz] > 0
@@ -33,6 +41,11 @@ struct BiasStep {
   double size_deg_h = 0.0;  ///< [deg/h]
 };
 
+struct Dropout {
+  double start_s = 0.0;     ///< [s] the samples at start_s <= t_k < start_s + duration_s are lost
+  double duration_s = 0.0;  ///< [s] > 0
+};
+
 struct SensorOutput {
   std::vector<Sinusoid> sinusoids;
   std::vector<BiasStep> steps;
@@ -41,8 +54,9 @@ struct SensorOutput {
   double spike_rate_per_hour = 0.0;     ///< mean number of spikes per hour
   double spike_size_deg_h = 0.0;        ///< [deg/h] each spike's magnitude (random sign)
   double lsb_deg_h = 0.0;               ///< [deg/h] output step (0: not rounded)
+  std::vector<Dropout> dropouts;        ///< lost stretches (step 5, not in any())
 
-  /// Whether any effect is on.
+  /// Whether any effect of steps 1-4 is on.
   bool any() const;
 };
 
@@ -60,6 +74,17 @@ double output_filter_gain(const SensorOutput& output, double frequency_hz, doubl
 /// samples (the same draws as OutputChain's).
 std::vector<double> spike_times_s(const SensorOutput& output, double sample_rate_hz,
                                   std::uint64_t seed, std::uint64_t stream, std::int64_t samples);
+
+/// The gaps the dropouts leave in a record of `samples` samples at
+/// `sample_rate_hz` (overlapping dropouts merge; one that loses the first or
+/// the last sample shortens the record instead, and is not a gap).
+std::vector<Gap> dropout_gaps(const SensorOutput& output, double sample_rate_hz,
+                              std::int64_t samples);
+
+/// Removes the dropouts' samples from every column of `recording`; returns
+/// the gaps (as dropout_gaps(), indices among the samples kept). Throws
+/// UsageError when no sample would be left.
+std::vector<Gap> remove_dropouts(Recording& recording, const SensorOutput& output);
 
 /// The chain of one record, applied block by block in order: it carries the
 /// filters' state from one block to the next. Spikes come from the same

@@ -39,6 +39,14 @@
 // and the interval from the chi-square distribution (confidence.h,
 // SP1065 eq. 45). Valid tau range: the default grids keep at least 10
 // clusters, floor((N-1)/m) >= 10, as the lab manual asks (L_m >= 10).
+//
+// Gaps (core/gaps.h): a record with missing samples is analysed as its
+// contiguous stretches. Each statistic pools the terms that lie wholly
+// inside one stretch, sum / count over all of them (terms spanning a gap are
+// left out, as Stable32 skips gap terms; nothing is interpolated); the noise
+// type comes from the longest stretch, and the edf is the sum of the
+// stretches' edf (their terms are independent for white and random-walk
+// noise, nearly so for the others).
 #pragma once
 
 #include <cstdint>
@@ -47,6 +55,7 @@
 #include <string_view>
 #include <vector>
 
+#include "foglab/core/gaps.h"
 #include "foglab/core/units.h"
 #include "foglab/stats/noise_id.h"
 #include "foglab/stats/tau_grid.h"
@@ -75,6 +84,9 @@ struct AllanResult {
   InputKind input = InputKind::rate;
   double sample_rate_hz = 0.0;       ///< [Hz]
   std::int64_t phase_points = 0;     ///< N, number of angle samples analysed
+  /// Angle samples of each contiguous stretch analysed (one entry, N, for a
+  /// record without gaps); they add up to N.
+  std::vector<std::int64_t> segment_points;
   std::vector<std::int64_t> m;       ///< averaging factors, tau = m / fs
   std::vector<double> tau_s;         ///< [s]
   /// [deg/h] (TDEV: [deg/h * s], the analogue of a time deviation)
@@ -89,16 +101,19 @@ struct AllanResult {
 
 /// Computes one statistic of `samples` (rate [deg/h] or angle
 /// [(deg/h)*s], see units.h) sampled at `sample_rate_hz`.
-/// Throws UsageError for a bad sample rate or grid, DataError when the
-/// record is too short for the statistic at a requested tau.
-AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz,
-                            InputKind input, const AllanOptions& options = {});
+/// `gaps` (sorted, checked as by check_gaps()) are the stretches of missing
+/// samples between the samples given; see "Gaps" above.
+/// Throws UsageError for a bad sample rate, grid or gap list, DataError when
+/// the record is too short for the statistic at a requested tau.
+AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz, InputKind input,
+                            const AllanOptions& options = {}, std::span<const Gap> gaps = {});
 
 /// As allan_deviation(), but turns `samples` into the angle record in place
 /// (no second array: peak memory stays at one copy of the record). The
 /// vector's contents are unspecified afterwards. The CLI uses this form.
 AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
-                                     InputKind input, const AllanOptions& options = {});
+                                     InputKind input, const AllanOptions& options = {},
+                                     std::span<const Gap> gaps = {});
 
 /// Largest averaging factor at which `kind` is defined for N phase points.
 std::int64_t max_factor(AllanKind kind, std::int64_t phase_points);

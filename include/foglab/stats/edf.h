@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 namespace foglab::stats {
 
@@ -37,6 +38,12 @@ struct DifferenceVariance {
 /// algorithm's domain.
 double greenhall_edf(int alpha, std::int64_t m, std::int64_t n_phase,
                      const DifferenceVariance& variance = {});
+
+/// The edf of a variance pooled over contiguous stretches of
+/// `segment_points` phase points each (core/gaps.h): the sum of the
+/// stretches' greenhall_edf() over those long enough for m (NaN if none is).
+double pooled_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points,
+                  const DifferenceVariance& variance = {});
 
 /// edf of TOTDEV (SP1065 Table 12, Greenhall's OADEV edf for alpha > 0).
 double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);

@@ -21,6 +21,8 @@
 #include <span>
 #include <vector>
 
+#include "foglab/core/gaps.h"
+
 namespace foglab::stats {
 
 struct WelchOptions {
@@ -42,11 +44,14 @@ struct PsdResult {
   double sample_rate_hz = 0.0;       ///< [Hz]
 };
 
-/// Welch PSD of `rate` sampled at `sample_rate_hz`. Throws UsageError for a
-/// non-positive sample rate, a bad segment length or overlap, or a record
-/// shorter than 16 samples.
+/// Welch PSD of `rate` sampled at `sample_rate_hz`. With `gaps` (sorted,
+/// core/gaps.h) only segments wholly inside one contiguous stretch are
+/// averaged, and the automatic segment length and the limits below apply to
+/// the longest stretch. Throws UsageError for a non-positive sample rate, a
+/// bad segment length or overlap, a bad gap list, or a record (longest
+/// stretch) shorter than 16 samples.
 PsdResult welch_psd(std::span<const double> rate, double sample_rate_hz,
-                    const WelchOptions& options = {});
+                    const WelchOptions& options = {}, std::span<const Gap> gaps = {});
 
 /// The estimate averaged in bins of equal width in log10(f), `bins_per_decade`
 /// per decade (> 0); each output point is the mean PSD of the bins it holds at

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""The real-sensor effects study: every effect foglab's generator makes, on
+several gyro grades, over seeds; `analyze` against the truth.
+
+    python3 bench/effects_study.py BUILD/apps/foglab/foglab [--seeds 10] [--out DIR]
+
+For each (effect, grade) it prints the worst |N error|, the median |B| and
+|K| errors, the Gauss-Markov sigma and Tc errors, how often the 95 %
+intervals hold the truth (every term the truth has), and whether the
+effect itself was found (bandwidth, LSB, spike and step counts, gaps). The
+targets (issue 16): N worst <= 3 %, B median <= 6 %, K <= 12 %, GM <= 20 %,
+coverage >= 90 %. Results go to bench/RESULTS.md by hand, with the machine
+and the date.
+"""
+import argparse
+import concurrent.futures as cf
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+# Gyro grades: noise model options and the sample rate; the effects' sizes
+# scale with each grade's sample spread sd = N sqrt(fs).
+GRADES = {
+    "nav-fog": {"N": 0.01, "B": 0.004, "K": 0.0004},
+    "tactical-fog": {"N": 0.3, "B": 0.1, "K": 0.02},
+    "gm-fog": {"N": 0.2, "B": 0.03, "gm-sigma": 0.05, "gm-tc": 300},
+    "mems": {"N": 150.0, "B": 30.0},
+}
+FS_HZ = 100.0
+HOURS = 2.0
+
+
+def effects(grade):
+    sd = grade["N"] * FS_HZ ** 0.5
+    return {
+        "none": [],
+        "low-pass": ["--filter-tc", "0.0054"],
+        "moving-average": ["--moving-average", "4"],
+        "lsb": ["--lsb", f"{0.5 * sd:.6g}"],
+        "sine": ["--sine", f"20:{3 * sd:.6g}"],
+        "spikes": ["--spikes", f"3:{20 * sd:.6g}"],
+        "steps": ["--step", f"2000:{0.5 * sd:.6g}", "--step", f"5000:{-0.4 * sd:.6g}"],
+        "gaps": ["--drop", "600:30", "--drop", "3000:0.5", "--drop", "5000:900"],
+    }
+
+
+def run(foglab, workdir, grade_name, effect_name, args, seed):
+    grade = GRADES[grade_name]
+    stem = os.path.join(workdir, f"{grade_name}_{effect_name}_{seed}")
+    model = []
+    for k, v in grade.items():
+        model += [f"--{k}", str(v)]
+    subprocess.run([foglab, "generate", *model, *args, "--fs", str(FS_HZ), "--hours", str(HOURS),
+                    "--seed", str(seed), "--out", stem + ".mat", "--truth", stem + "_truth.json"],
+                   check=True, capture_output=True)
+    a = subprocess.run([foglab, "analyze", stem + ".mat", "--json", "-"], check=True,
+                       capture_output=True, text=True)
+    os.remove(stem + ".mat")
+    with open(stem + "_truth.json") as f:
+        truth = json.load(f)
+    return truth, json.loads(a.stdout)
+
+
+def summarise(results, effect_name):
+    n_err, b_err, k_err, gs_err, gt_err = [], [], [], [], []
+    inside = total = 0
+    found = 0
+    for truth, r in results:
+        m, nm = truth["model"], r["noise_model"]
+        def rel(key, true):
+            v = nm[key]["value"]
+            return abs(v / true - 1) if v is not None else float("inf")
+        for key, true, sink in (("N", m["N"], n_err), ("B", m["B"], b_err), ("K", m["K"], k_err),
+                                ("gm_sigma", m["gm_sigma"], gs_err), ("gm_tc", m["gm_tc"], gt_err)):
+            if true > 0:
+                sink.append(rel(key, true))
+                lo, hi = nm[key]["ci95"]
+                total += 1
+                inside += (lo is not None and hi is not None and lo <= true <= hi)
+        out = truth["sensor_output"]
+        if effect_name == "none":
+            found += (not r["sensor_bandwidth"]["resolved"] and r["spikes"]["count"] == 0
+                      and r["steps"]["count"] == 0 and not r["spectral_lines"]
+                      and not r["output_quantisation"]["detected"])
+        elif effect_name in ("low-pass", "moving-average"):
+            found += r["sensor_bandwidth"]["resolved"]
+        elif effect_name == "lsb":
+            found += (r["output_quantisation"]["detected"] and
+                      abs(r["output_quantisation"]["lsb_deg_h"] / out["lsb_deg_h"] - 1) < 1e-6)
+        elif effect_name == "sine":
+            found += len(r["spectral_lines"]) == 1
+        elif effect_name == "spikes":
+            found += r["spikes"]["count"] == len(out["spike_times_s"])
+        elif effect_name == "steps":
+            found += r["steps"]["count"] == len(out["steps"])
+        elif effect_name == "gaps":
+            found += r["input"]["gaps"]["count"] == len(out["dropouts"]["gaps"])
+    pct = lambda xs, f: f"{100 * f(xs):.1f}" if xs else "-"
+    return {
+        "N worst %": pct(n_err, max), "B median %": pct(b_err, statistics.median),
+        "K median %": pct(k_err, statistics.median),
+        "GM sigma median %": pct(gs_err, statistics.median),
+        "GM Tc median %": pct(gt_err, statistics.median),
+        "coverage %": f"{100 * inside / total:.0f}" if total else "-",
+        "effect found": f"{found}/{len(results)}",
+    }
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("foglab")
+    p.add_argument("--seeds", type=int, default=10)
+    p.add_argument("--grades", default=",".join(GRADES))
+    p.add_argument("--effects", default="")
+    p.add_argument("--jobs", type=int, default=2)
+    args = p.parse_args()
+    work = tempfile.mkdtemp(prefix="foglab_effects_")
+    print("| effect | grade | N worst % | B median % | K median % | GM sigma % | GM Tc % | "
+          "95 % coverage | effect found |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    for grade_name in args.grades.split(","):
+        chosen = effects(GRADES[grade_name])
+        names = args.effects.split(",") if args.effects else list(chosen)
+        for effect_name in names:
+            with cf.ThreadPoolExecutor(args.jobs) as pool:
+                jobs = [pool.submit(run, args.foglab, work, grade_name, effect_name,
+                                    chosen[effect_name], seed) for seed in range(1, args.seeds + 1)]
+                results = [j.result() for j in jobs]
+            s = summarise(results, effect_name)
+            print(f"| {effect_name} | {grade_name} | " + " | ".join(s.values()) + " |", flush=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
