@@ -88,30 +88,63 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   }
   const detail::BandwidthSearch bandwidth = detail::find_bandwidth(p, options);
   // 2. Every admissible subset, best first; the best is the chosen model.
-  const std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
+  std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
   if (fits.empty()) return degenerate(p);
-  const detail::SubsetFit& chosen = fits.front();
-  NoiseFitResult r;
-  set_status(chosen, fits, options, r);
-  r.model = detail::to_model(chosen);
-  r.bandwidth = bandwidth.estimate;
-  if (with_lines) r.lines.assign(lines.begin(), lines.end());
-  r.known_white_deg_h_sqrt_hz = known_white;
-  r.terms = chosen.terms;
-  r.deviance = chosen.deviance;
-  r.points = static_cast<int>(p.y.size());
-  r.parameters = chosen.terms.parameter_count();
-  r.dispersion = std::max(1.0, chosen.deviance / std::max(1, r.points - r.parameters));
-  for (const detail::SubsetFit& f : fits)
-    r.candidates.push_back(detail::candidate(f, options.penalty));
-  // 3. The random-bias evidence and decision.
-  detail::collect_random_bias_evidence(fits, options.penalty, r);
-  // 4-6. Intervals, under the chosen model's covariance of the points.
-  const detail::ChosenModel model = detail::chosen_model(p, chosen, r.dispersion);
-  detail::set_chosen_intervals(model, options, r);
-  detail::bound_left_out_terms(model, options, r);
-  detail::widen_over_near_candidates(p, model, fits, options, r);
-  detail::widen_over_bandwidths(p, chosen, bandwidth.near, r);
+  auto conclude = [&] {
+    const detail::SubsetFit& chosen = fits.front();
+    NoiseFitResult r;
+    set_status(chosen, fits, options, r);
+    r.model = detail::to_model(chosen);
+    r.bandwidth = bandwidth.estimate;
+    if (with_lines) r.lines.assign(lines.begin(), lines.end());
+    r.known_white_deg_h_sqrt_hz = known_white;
+    r.terms = chosen.terms;
+    r.deviance = chosen.deviance;
+    r.points = static_cast<int>(p.y.size());
+    r.parameters = chosen.terms.parameter_count();
+    r.dispersion = std::max(1.0, chosen.deviance / std::max(1, r.points - r.parameters));
+    for (const detail::SubsetFit& f : fits)
+      r.candidates.push_back(detail::candidate(f, options.penalty));
+    // 3. The random-bias evidence and decision.
+    detail::collect_random_bias_evidence(fits, options.penalty, r);
+    // 4-6. Intervals, under the chosen model's covariance of the points.
+    const detail::ChosenModel model = detail::chosen_model(p, chosen, r.dispersion);
+    detail::set_chosen_intervals(model, options, r);
+    detail::bound_left_out_terms(model, options, r);
+    detail::widen_over_near_candidates(p, model, fits, options, r);
+    detail::widen_over_bandwidths(p, chosen, bandwidth.near, r);
+    return r;
+  };
+  NoiseFitResult r = conclude();
+  // A Gauss-Markov term is the random bias only when the record shows its
+  // hump turning down: the Allan variance of the process peaks near
+  // 1.89 Tc, so Tc's 95 % interval must close below the longest tau over
+  // 1.89. Otherwise the record cannot tell it from a random walk (a
+  // Gauss-Markov process far from its Tc is one), and the best Wiener
+  // candidate is the model.
+  constexpr double kHumpOverTc = 1.89;
+  if (r.random_bias_process == RandomBiasProcess::gauss_markov &&
+      !(kHumpOverTc * r.gm_tc.ci95_high <= p.tau.back())) {
+    const auto wiener = std::find_if(fits.begin(), fits.end(), [](const detail::SubsetFit& f) {
+      return f.terms.contains(NoiseTerm::random_walk) &&
+             !f.terms.contains(NoiseTerm::gauss_markov);
+    });
+    if (wiener != fits.end()) {
+      const std::string why = fmt::format(
+          "the Gauss-Markov model {} fitted better (criterion {:.1f} against {:.1f}), but its Tc "
+          "of {:.4g} s has the 95 % interval [{:.4g}, {:.4g}] s, which does not close below the "
+          "longest tau / {} = {:.4g} s: the record does not show the process turning away from "
+          "a random walk, so the Wiener model {} is taken",
+          to_string(fits.front().terms), detail::candidate(fits.front(), options.penalty).criterion,
+          detail::candidate(*wiener, options.penalty).criterion, r.gm_tc.value,
+          r.gm_tc.ci95_low, r.gm_tc.ci95_high, kHumpOverTc, p.tau.back() / kHumpOverTc,
+          to_string(wiener->terms));
+      std::rotate(fits.begin(), wiener, wiener + 1);
+      r = conclude();
+      r.gauss_markov_set_aside = why;
+      r.message += "; " + why;
+    }
+  }
   return r;
 }
 

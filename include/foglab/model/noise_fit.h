@@ -229,6 +229,10 @@ struct NoiseFitResult {
   /// Narrow-band disturbances whose Allan variance the fit took as known
   /// (model/spectral_lines.h); empty when none were given.
   std::vector<SpectralLine> lines;
+  /// Why a better-fitting Gauss-Markov model was set aside for the Wiener
+  /// one (its Tc's interval does not close inside the record); empty when
+  /// none was.
+  std::string gauss_markov_set_aside;
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
