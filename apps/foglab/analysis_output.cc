@@ -222,7 +222,7 @@ nlohmann::json lines_json(const model::NoiseFitResult& f) {
   return lines;
 }
 
-nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
+nlohmann::json evidence_json(const model::RandomBiasEvidence& e, const model::NoiseFitResult& fit) {
   return {{"deviance_none", number(e.deviance_none)},
           {"deviance_wiener", number(e.deviance_wiener)},
           {"deviance_gauss_markov", number(e.deviance_gauss_markov)},
@@ -231,6 +231,9 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e) {
           {"criterion_gauss_markov", number(e.criterion_gauss_markov)},
           {"adev_end_slope", number(e.adev_end_slope)},
           {"psd_low_frequency_slope", number(e.psd_low_frequency_slope)},
+          {"gauss_markov_set_aside", fit.gauss_markov_set_aside.empty()
+                                         ? nlohmann::json(nullptr)
+                                         : nlohmann::json(fit.gauss_markov_set_aside)},
           {"summary", e.summary}};
 }
 
@@ -349,7 +352,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"bias_instability_tau_s", number(r.bias_instability_tau_s)},
           {"bias_instability_at_edge", r.bias_instability_at_edge},
           {"random_bias_process", std::string(to_string(r.noise.random_bias_process))},
-          {"random_bias_evidence", evidence_json(r.evidence)},
+          {"random_bias_evidence", evidence_json(r.evidence, r.noise)},
           {"readings", readings},
           {"accuracy_class", std::string(to_string(r.verdict.accuracy_class))},
           {"accuracy_class_decided_by", std::string(to_string(r.verdict.decided_by))},

@@ -227,8 +227,12 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
     case RandomBiasProcess::wiener:
       e.summary = fmt::format(
           "Wiener random bias: the Allan deviation rises at the long taus (end slope {:.2f}, "
-          "+0.5 expected) and a random walk explains it best; {}",
-          e.adev_end_slope, fits);
+          "+0.5 expected) and {}; {}",
+          e.adev_end_slope,
+          n.gauss_markov_set_aside.empty()
+              ? "a random walk explains it best"
+              : "a random walk explains it (" + n.gauss_markov_set_aside + ")",
+          fits);
       break;
     case RandomBiasProcess::gauss_markov:
       e.summary = fmt::format(
