@@ -119,9 +119,10 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   // A Gauss-Markov term is the random bias only when the record shows its
   // hump turning down: the Allan variance of the process peaks near
   // 1.89 Tc, so Tc's 95 % interval must close below the longest tau over
-  // 1.89. Otherwise the record cannot tell it from a random walk (a
-  // Gauss-Markov process far from its Tc is one), and the best Wiener
-  // candidate is the model.
+  // 1.89. Otherwise, unless it fits better than the best Wiener candidate
+  // by more than two parameters' worth of the criterion, the record cannot
+  // tell it from a random walk (a Gauss-Markov process far from its Tc is
+  // one) and the Wiener candidate is the model.
   constexpr double kHumpOverTc = 1.89;
   if (r.random_bias_process == RandomBiasProcess::gauss_markov &&
       !(kHumpOverTc * r.gm_tc.ci95_high <= p.tau.back())) {
@@ -129,16 +130,19 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
       return f.terms.contains(NoiseTerm::random_walk) &&
              !f.terms.contains(NoiseTerm::gauss_markov);
     });
-    if (wiener != fits.end()) {
+    if (wiener != fits.end() &&
+        detail::candidate(*wiener, options.penalty).criterion -
+                detail::candidate(fits.front(), options.penalty).criterion <=
+            2.0 * options.penalty) {
       const std::string why = fmt::format(
-          "the Gauss-Markov model {} fitted better (criterion {:.1f} against {:.1f}), but its Tc "
+          "the Gauss-Markov model {} fitted better (criterion {:.1f} against {:.1f}, less than "
+          "two parameters' worth), but its Tc "
           "of {:.4g} s has the 95 % interval [{:.4g}, {:.4g}] s, which does not close below the "
           "longest tau / {} = {:.4g} s: the record does not show the process turning away from "
           "a random walk, so the Wiener model {} is taken",
           to_string(fits.front().terms), detail::candidate(fits.front(), options.penalty).criterion,
-          detail::candidate(*wiener, options.penalty).criterion, r.gm_tc.value,
-          r.gm_tc.ci95_low, r.gm_tc.ci95_high, kHumpOverTc, p.tau.back() / kHumpOverTc,
-          to_string(wiener->terms));
+          detail::candidate(*wiener, options.penalty).criterion, r.gm_tc.value, r.gm_tc.ci95_low,
+          r.gm_tc.ci95_high, kHumpOverTc, p.tau.back() / kHumpOverTc, to_string(wiener->terms));
       std::rotate(fits.begin(), wiener, wiener + 1);
       r = conclude();
       r.gauss_markov_set_aside = why;

@@ -53,9 +53,10 @@
 // (the lab's question), not combined, unless the options allow it. A
 // chosen Gauss-Markov model stands only when the record shows its hump
 // turning down: its Allan variance peaks near 1.89 Tc, so Tc's 95 %
-// interval must close below the longest tau / 1.89; otherwise the process
-// is indistinguishable from a random walk there and the best Wiener
-// candidate is taken (NoiseFitResult::gauss_markov_set_aside says why).
+// interval must close below the longest tau / 1.89; otherwise, unless it
+// beats the best Wiener candidate by more than 2 x penalty, the process is
+// indistinguishable from a random walk there and that Wiener candidate is
+// taken (NoiseFitResult::gauss_markov_set_aside says why).
 //
 // Uncertainty: the 95 % interval of a chosen term comes from the observed
 // Fisher information of the gamma likelihood in log-parameter space,
