@@ -17,7 +17,9 @@
 // resolved when it lowers that deviance by more than its two parameters
 // cost in the selection criterion (2 x the penalty, times the dispersion),
 // takes at least 0.5 % from the first point's Allan variance and does not
-// sit at the longest T or k searched. It is then held for every candidate.
+// sit at the longest T or k searched. It is then held for every candidate,
+// and kept only if the best candidate with it beats the best without it by
+// more than those two parameters' cost (noise_fit.cc).
 #include <algorithm>
 #include <cmath>
 
@@ -33,15 +35,17 @@ constexpr int kFractionSteps = 20;
 constexpr int kLongestMovingAverage = 32;  // samples
 constexpr double kSmallestEffect = 0.005;
 
-// The reference model: white noise, flicker, random walk and ramp, as many
-// as leave three points to spare for phi, T and the judge. Not the angle
+// The reference model: white noise, flicker, random walk and ramp (and, on
+// the second look noise_fit.cc takes, a Gauss-Markov process of a given Tc),
+// as many as leave three points to spare for phi, T and the judge. Not the angle
 // quantisation Q: its 3 Q^2 / tau^2 raises the first taus where the
 // bandwidth lowers them, and with both free the pair trades off (a spurious
 // Q and a too long T), which biases N by about 1 %.
-NoiseTermSet reference_terms(const Points& p) {
+NoiseTermSet reference_terms(const Points& p, bool gauss_markov) {
   NoiseTermSet terms;
-  for (NoiseTerm t :
-       {NoiseTerm::white, NoiseTerm::flicker, NoiseTerm::random_walk, NoiseTerm::ramp}) {
+  for (NoiseTerm t : {NoiseTerm::white, NoiseTerm::gauss_markov, NoiseTerm::flicker,
+                      NoiseTerm::random_walk, NoiseTerm::ramp}) {
+    if (t == NoiseTerm::gauss_markov && !gauss_markov) continue;
     if (terms.with(t).parameter_count() + 3 <= static_cast<int>(p.y.size())) terms = terms.with(t);
   }
   return terms;
@@ -58,7 +62,8 @@ struct Trial {
 
 class Search {
  public:
-  Search(Points& p, NoiseTermSet terms) : p_(p), terms_(terms), tau0_(p.sample_interval_s()) {}
+  Search(Points& p, NoiseTermSet terms, double tc)
+      : p_(p), terms_(terms), tc_(tc), tau0_(p.sample_interval_s()) {}
 
   SensorBandwidth bandwidth_of(double fraction, double log_t, int k) const {
     return k > 1 ? SensorBandwidth{fraction, 0.0, k}
@@ -70,7 +75,7 @@ class Search {
   // noise it describes; with every term dropped the deviance can even be 0).
   double deviance(double fraction, double log_t, int k = 1) {
     set_shape(bandwidth_of(fraction, log_t, k));
-    const SubsetFit f = fit_subset(p_, terms_, 1.0, std::nullopt, NonPositive::drop_term);
+    const SubsetFit f = fit_subset(p_, terms_, tc_, std::nullopt, NonPositive::drop_term);
     if (!f.feasible || !f.terms.contains(NoiseTerm::white) || !(f.deviance > 0.0)) return kInf;
     return f.deviance;
   }
@@ -152,21 +157,24 @@ class Search {
  private:
   Points& p_;
   NoiseTermSet terms_;
+  double tc_;  // the reference's Gauss-Markov Tc (1 without the term)
   double tau0_;
 };
 
 }  // namespace
 
-BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options) {
+BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s) {
   BandwidthSearch result;
   BandwidthEstimate& e = result.estimate;
   e.sample_interval_s = p.sample_interval_s();
   p.white_shape.clear();
   if (!options.model_bandwidth || !(e.sample_interval_s > 0.0)) return result;
-  const NoiseTermSet terms = reference_terms(p);
+  const bool gauss_markov = gm_tc_s > 0.0;
+  const double tc = gauss_markov ? gm_tc_s : 1.0;
+  const NoiseTermSet terms = reference_terms(p, gauss_markov);
   if (!terms.contains(NoiseTerm::white)) return result;
-  const SubsetFit plain = fit_subset(p, terms, 1.0, std::nullopt, NonPositive::drop_term);
-  Search search(p, terms);
+  const SubsetFit plain = fit_subset(p, terms, tc, std::nullopt, NonPositive::drop_term);
+  Search search(p, terms, tc);
   const Trial best = search.best();
   p.white_shape.clear();
   if (!std::isfinite(best.deviance) || !std::isfinite(plain.deviance)) return result;

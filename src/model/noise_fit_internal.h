@@ -134,7 +134,9 @@ struct BandwidthSearch {
 
 /// Looks for the sensor bandwidth in the short-tau points and, when the data
 /// resolve it, sets p.white_shape; returns what it found.
-BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options);
+/// `gm_tc_s` > 0 adds a Gauss-Markov process of that correlation time to
+/// the reference model.
+BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s = 0.0);
 
 /// Widens N's interval to the union over the bandwidths the data do not
 /// tell apart (the chosen terms refitted with each): the white level is
