@@ -85,7 +85,8 @@ struct AllanResult {
   double sample_rate_hz = 0.0;       ///< [Hz]
   std::int64_t phase_points = 0;     ///< N, number of angle samples analysed
   /// Angle samples of each contiguous stretch analysed (one entry, N, for a
-  /// record without gaps); they add up to N.
+  /// record without gaps). A rate stretch of L samples has L + 1 angle
+  /// points, so with gaps the entries add up to N plus the number of gaps.
   std::vector<std::int64_t> segment_points;
   std::vector<std::int64_t> m;       ///< averaging factors, tau = m / fs
   std::vector<double> tau_s;         ///< [s]
