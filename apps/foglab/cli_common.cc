@@ -141,11 +141,12 @@ std::string sample_rate_source_text(const io::Series& series) {
 nlohmann::json gaps_json(const io::Series& series) {
   const double fs = series.sample_rate_hz;
   nlohmann::json list = nlohmann::json::array();
-  for (const Gap& gap : series.gaps) {
-    list.push_back({{"before_sample", gap.before_sample},
-                    {"missing_samples", gap.missing_samples},
-                    {"start_s", elapsed_s(gap.before_sample - 1, series.gaps, fs)},
-                    {"end_s", elapsed_s(gap.before_sample, series.gaps, fs)}});
+  const std::vector<GapSpan> spans = gap_spans_s(series.gaps, fs);
+  for (std::size_t g = 0; g < spans.size(); ++g) {
+    list.push_back({{"before_sample", series.gaps[g].before_sample},
+                    {"missing_samples", series.gaps[g].missing_samples},
+                    {"start_s", spans[g].start_s},
+                    {"end_s", spans[g].end_s}});
   }
   const std::int64_t missing = missing_samples(series.gaps);
   return {{"count", series.gaps.size()},

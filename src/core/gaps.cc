@@ -47,6 +47,19 @@ double elapsed_s(std::int64_t index, std::span<const Gap> gaps, double sample_ra
   return static_cast<double>(index + missing) / sample_rate_hz;
 }
 
+std::vector<GapSpan> gap_spans_s(std::span<const Gap> gaps, double sample_rate_hz) {
+  std::vector<GapSpan> spans;
+  spans.reserve(gaps.size());
+  std::int64_t missing_before = 0;
+  for (const Gap& gap : gaps) {
+    const auto before = static_cast<double>(gap.before_sample - 1 + missing_before);
+    missing_before += gap.missing_samples;
+    const auto after = static_cast<double>(gap.before_sample + missing_before);
+    spans.push_back({before / sample_rate_hz, after / sample_rate_hz});
+  }
+  return spans;
+}
+
 std::int64_t missing_samples(std::span<const Gap> gaps) {
   std::int64_t total = 0;
   for (const Gap& gap : gaps) total += gap.missing_samples;

@@ -320,10 +320,10 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   // The output word's rounding, when noise-like (a step below the samples'
   // spread), is white noise of a known level: the fit takes it as known, so
   // that N is the sensor's own.
-  AnalysisOptions local = options;
+  AnalysisOptions with_known = options;  // as given, but for the fit's known white noise
   if (const OutputQuantisation& q = r.output_quantisation;
       q.detected && q.lsb_deg_h < q.sample_sd_deg_h) {
-    local.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
+    with_known.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
   }
   r.sample_rate_hz = sample_rate_hz;
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());
@@ -335,18 +335,18 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   if (!temperature_c.empty()) {
     record.emplace(rate_deg_h, temperature_c, sample_rate_hz, options.systematic.blocks,
                    options.detrend_blocks);
-    fit = fit_temperature(*record, local.systematic);
+    fit = fit_temperature(*record, options.systematic);
     if (fit->degree_chosen) {
-      s = auto_degree_statistics(*fit, *record, rate_deg_h, temperature_c, sample_rate_hz, local,
-                                 gaps);
+      s = auto_degree_statistics(*fit, *record, rate_deg_h, temperature_c, sample_rate_hz,
+                                 with_known, gaps);
     } else {
       subtract_temperature_fit(*fit, rate_deg_h, temperature_c);
-      s = statistics(rate_deg_h, sample_rate_hz, local, gaps, &*record, fit->degree);
+      s = statistics(rate_deg_h, sample_rate_hz, with_known, gaps, &*record, fit->degree);
     }
   } else {
     r.notes.push_back(
         "no temperature: the systematic part is the mean rate only (removed by the statistics)");
-    s = statistics(rate_deg_h, sample_rate_hz, local, gaps, nullptr, 0);
+    s = statistics(rate_deg_h, sample_rate_hz, with_known, gaps, nullptr, 0);
   }
   if (fit) {
     // Standard errors with the noise model of the final residual. A random

@@ -44,21 +44,21 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
   const std::int64_t a = std::max<std::int64_t>(0, coarse - w);
   const std::int64_t b = std::min(n, coarse + w);
   std::int64_t best = coarse;
-  double best_stat = -1.0, best_size = 0.0;
+  double best_stat = -1.0;
   const double sum = p[static_cast<std::size_t>(b)] - p[static_cast<std::size_t>(a)];
   for (std::int64_t k = a + 1; k < b; ++k) {
     const double l = static_cast<double>(k - a), r = static_cast<double>(b - k);
     const double left = (p[static_cast<std::size_t>(k)] - p[static_cast<std::size_t>(a)]) / l;
     const double right = (sum - left * l) / r;
     const double stat = std::fabs(right - left) * std::sqrt(l * r / (l + r));
-    if (stat > best_stat) best_stat = stat, best = k, best_size = right - left;
+    if (stat > best_stat) best_stat = stat, best = k;
   }
   const double best_dev = std::fabs(d(std::clamp(best, w, n - w)) - centre);
   // Its size from up to 4 W either side (four times the samples of the
   // stretch that found it: half the scatter, where the noise is white).
   const std::int64_t lo = std::max<std::int64_t>(0, best - 4 * w);
   const std::int64_t hi = std::min(n, best + 4 * w);
-  best_size = (p[static_cast<std::size_t>(hi)] - p[static_cast<std::size_t>(best)]) /
+  const double best_size = (p[static_cast<std::size_t>(hi)] - p[static_cast<std::size_t>(best)]) /
                   static_cast<double>(hi - best) -
               (p[static_cast<std::size_t>(best)] - p[static_cast<std::size_t>(lo)]) /
                   static_cast<double>(best - lo);

@@ -44,8 +44,8 @@ double polynomial(const model::SystematicFit& s, double t_c) {
 
 // The gaps of the time axis, shaded over the whole height.
 void mark_gaps(Plot& plot, const model::AnalysisResult& r) {
-  for (std::size_t i = 0; i < r.gaps.size(); ++i) {
-    const Gap& gap = r.gaps[i];
+  const std::vector<GapSpan> spans = gap_spans_s(r.gaps, r.sample_rate_hz);
+  for (std::size_t i = 0; i < spans.size(); ++i) {
     Series region;
     region.title =
         i == 0 ? fmt::format("gap ({} found, nothing interpolated)", r.gaps.size()) : std::string();
@@ -53,9 +53,7 @@ void mark_gaps(Plot& plot, const model::AnalysisResult& r) {
     region.color = kGrey;
     region.fill_opacity = 0.25;
     region.sets_range = false;
-    const double from = elapsed_s(gap.before_sample - 1, r.gaps, r.sample_rate_hz);
-    const double to = elapsed_s(gap.before_sample, r.gaps, r.sample_rate_hz);
-    region.x = {from / kSecondsPerHour, to / kSecondsPerHour};
+    region.x = {spans[i].start_s / kSecondsPerHour, spans[i].end_s / kSecondsPerHour};
     region.y_low = {-1e30, -1e30};
     region.y_high = {1e30, 1e30};
     plot.series.push_back(std::move(region));
@@ -432,15 +430,19 @@ RecordPreview preview_record(std::span<const double> rate_deg_h,
   check_gaps(gaps, static_cast<std::int64_t>(n), "preview_record");
   const std::size_t block = (n + points - 1) / points;
   p.block_samples = static_cast<std::int64_t>(block);
+  const std::vector<Stretch> stretches = contiguous_stretches(static_cast<std::int64_t>(n), gaps);
+  const std::vector<GapSpan> spans = gap_spans_s(gaps, sample_rate_hz);
+  std::int64_t missing_before = 0;  // of the stretch at hand
   auto time_of = [&](std::size_t k) {
-    return elapsed_s(static_cast<std::int64_t>(k), gaps, sample_rate_hz);
+    return static_cast<double>(static_cast<std::int64_t>(k) + missing_before) / sample_rate_hz;
   };
-  for (const Stretch& stretch : contiguous_stretches(static_cast<std::int64_t>(n), gaps)) {
-    const auto first = static_cast<std::size_t>(stretch.begin);
-    const auto last = static_cast<std::size_t>(stretch.end);
-    if (first > 0) {
+  for (std::size_t j = 0; j < stretches.size(); ++j) {
+    const auto first = static_cast<std::size_t>(stretches[j].begin);
+    const auto last = static_cast<std::size_t>(stretches[j].end);
+    if (j > 0) {
       // a point without values in the gap, so that no line crosses it
-      p.time_s.push_back(0.5 * (time_of(first - 1) + time_of(first)));
+      missing_before += gaps[j - 1].missing_samples;
+      p.time_s.push_back(0.5 * (spans[j - 1].start_s + spans[j - 1].end_s));
       p.rate_mean_deg_h.push_back(kNaN);
       p.rate_min_deg_h.push_back(kNaN);
       p.rate_max_deg_h.push_back(kNaN);

@@ -289,22 +289,20 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
 
 namespace {
 
-// The edf of one stretch of n angle points at averaging factor m.
-double stretch_edf(AllanKind kind, int alpha, std::int64_t m, std::int64_t n) {
+// The edf of a statistic at factor m, pooled over the stretches of
+// `segment_points` angle points (one stretch without gaps).
+double statistic_edf(AllanKind kind, int alpha, std::int64_t m,
+                     std::span<const std::int64_t> segment_points) {
   switch (kind) {
     case AllanKind::adev:
-      return greenhall_edf(alpha, m, n, {.stride = Stride::non_overlapping});
-    case AllanKind::oadev:
-      return greenhall_edf(alpha, m, n);
+      return pooled_edf(alpha, m, segment_points, {.stride = Stride::non_overlapping});
+    case AllanKind::oadev: return pooled_edf(alpha, m, segment_points);
     case AllanKind::mdev:
-    case AllanKind::tdev:
-      return greenhall_edf(alpha, m, n, {.filter = Filter::modified});
+    case AllanKind::tdev: return pooled_edf(alpha, m, segment_points, {.filter = Filter::modified});
     case AllanKind::hdev:
-      return greenhall_edf(alpha, m, n, {.order = 3, .stride = Stride::non_overlapping});
-    case AllanKind::ohdev:
-      return greenhall_edf(alpha, m, n, {.order = 3});
-    case AllanKind::totdev:
-      return totdev_edf(alpha, m, n);
+      return pooled_edf(alpha, m, segment_points, {.order = 3, .stride = Stride::non_overlapping});
+    case AllanKind::ohdev: return pooled_edf(alpha, m, segment_points, {.order = 3});
+    case AllanKind::totdev: return pooled_totdev_edf(alpha, m, segment_points);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -426,12 +424,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
     previous_alpha = id.alpha;
     result.alpha[k] = id.alpha;
     result.alpha_method[k] = how;
-    double edf = 0.0;
-    for (const Stretch& s : stretches) {
-      if (m > max_factor(options.kind, s.size())) continue;
-      const double e = stretch_edf(options.kind, id.alpha, m, s.size());
-      edf = std::isfinite(e) ? edf + e : nan;
-    }
+    const double edf = statistic_edf(options.kind, id.alpha, m, result.segment_points);
     result.edf[k] = edf;
     const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);
     const Interval ci95 = chi2_interval(result.dev[k], edf, kConfidence95);

@@ -181,17 +181,37 @@ double greenhall_edf(int alpha, std::int64_t m, std::int64_t n_phase,
   return 1.0 / inv_edf;
 }
 
-double pooled_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points,
-                  const DifferenceVariance& variance) {
+namespace {
+
+// The sum of edf_of(points) over the stretches where it is finite (NaN:
+// too short a stretch for the factor); NaN when it is nowhere.
+template <class EdfOf>
+double sum_over_stretches(std::span<const std::int64_t> segment_points, EdfOf edf_of) {
   double total = 0.0;
   bool any = false;
   for (const std::int64_t points : segment_points) {
-    const double edf = greenhall_edf(alpha, m, points, variance);
-    if (!std::isfinite(edf)) continue;  // too short a stretch for m
+    const double edf = edf_of(points);
+    if (!std::isfinite(edf)) continue;
     total += edf;
     any = true;
   }
   return any ? total : kNaN;
+}
+
+}  // namespace
+
+double pooled_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points,
+                  const DifferenceVariance& variance) {
+  return sum_over_stretches(segment_points, [&](std::int64_t points) {
+    return greenhall_edf(alpha, m, points, variance);
+  });
+}
+
+double pooled_totdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points) {
+  return sum_over_stretches(segment_points, [&](std::int64_t points) {
+    // TOTDEV is defined up to m = (N - 1) / 2 (allan.h's max_factor)
+    return 2 * m + 1 <= points ? totdev_edf(alpha, m, points) : kNaN;
+  });
 }
 
 double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase) {

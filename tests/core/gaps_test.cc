@@ -33,6 +33,18 @@ TEST(Gaps, ElapsedTimeCountsTheMissingSamples) {
   EXPECT_DOUBLE_EQ(elapsed_s(7, gaps, 2.0), 9.5);
 }
 
+TEST(Gaps, SpansAreTheTimesOfTheSamplesEitherSide) {
+  const std::vector<Gap> gaps = {{3, 2}, {7, 10}, {8, 1}};
+  const std::vector<GapSpan> spans = gap_spans_s(gaps, 2.0);
+  ASSERT_EQ(spans.size(), 3u);
+  for (std::size_t g = 0; g < gaps.size(); ++g) {
+    EXPECT_EQ(spans[g].start_s, elapsed_s(gaps[g].before_sample - 1, gaps, 2.0));
+    EXPECT_EQ(spans[g].end_s, elapsed_s(gaps[g].before_sample, gaps, 2.0));
+  }
+  EXPECT_DOUBLE_EQ(spans[1].start_s, 4.0);  // sample 6 after 2 missing
+  EXPECT_DOUBLE_EQ(spans[1].end_s, 9.5);    // sample 7 after 12 missing
+}
+
 TEST(Gaps, UnsortedOrOutOfRangeGapsAreUsageErrors) {
   const std::vector<Gap> unsorted = {{5, 1}, {3, 1}};
   const std::vector<Gap> at_start = {{0, 1}};

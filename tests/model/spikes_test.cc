@@ -4,18 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <vector>
+
+#include "support/noise.h"
 
 namespace foglab::model {
 namespace {
 
 std::vector<double> white(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 engine(seed);
-  std::normal_distribution<double> normal(5.0, 1.0);
-  std::vector<double> y(n);
-  for (double& v : y) v = normal(engine);
-  return y;
+  return test::mt_normal(n, seed, 5.0, 1.0);
 }
 
 TEST(Spikes, IsolatedOutliersAreReplacedByTheirNeighboursMean) {

@@ -219,19 +219,33 @@ TEST(Report, WithoutTemperatureThereIsNoBiasPlot) {
   EXPECT_EQ(rep.figures[2].name, "adev");
 }
 
+// One hour at 100 Hz of `m` (white noise N = 150 deg/h/sqrt(Hz) and the
+// sensor-output effects the caller sets), from generator seed `seed`.
+sim::Recording effects_hour(sim::ErrorModel m, std::uint64_t seed) {
+  m.noise.N = 150.0;
+  sim::GeneratorOptions g;
+  g.sample_rate_hz = 100.0;
+  g.duration_s = 3600.0;
+  g.seed = seed;
+  return sim::generate(m, sim::TemperatureProfile{}, g);
+}
+
+// The first series of `plot` whose title starts with `start`, or null.
+const Series* titled(const Plot& plot, const std::string& start) {
+  for (const Series& s : plot.series) {
+    if (s.title.rfind(start, 0) == 0) return &s;
+  }
+  return nullptr;
+}
+
 TEST(Report, PlotsMarkStepsSpikesAndTheBandwidth) {
   // A filtered record with a step and two spikes: the time plot draws the
   // step at its time and a mark at each spike, the Allan plot shades where
   // the filter lowers the white level by more than 1 %.
   sim::ErrorModel m;
-  m.noise.N = 150.0;
   m.output.filter_time_constant_s = 0.01;
   m.output.steps = {{1000.0, 2000.0}};
-  sim::GeneratorOptions g;
-  g.sample_rate_hz = 100.0;
-  g.duration_s = 3600.0;
-  g.seed = 2;
-  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, g);
+  sim::Recording rec = effects_hour(m, 2);
   rec.rate_deg_h[50000] += 60000.0;
   rec.rate_deg_h[200000] -= 60000.0;
   ReportInput in;
@@ -243,21 +257,15 @@ TEST(Report, PlotsMarkStepsSpikesAndTheBandwidth) {
   ASSERT_TRUE(r.noise.bandwidth.resolved);
   const std::vector<Plot> plots = report_plots(r, in);
   ASSERT_EQ(plots.size(), 3u);
-  auto find = [](const Plot& plot, const std::string& start) -> const Series* {
-    for (const Series& s : plot.series) {
-      if (s.title.rfind(start, 0) == 0) return &s;
-    }
-    return nullptr;
-  };
-  const Series* step = find(plots[0], "bias step");
+  const Series* step = titled(plots[0], "bias step");
   ASSERT_NE(step, nullptr);
   EXPECT_NEAR(step->x.front(), 1000.0 / 3600.0, 1.0 / 3600.0);
-  const Series* spikes = find(plots[0], "spike");
+  const Series* spikes = titled(plots[0], "spike");
   ASSERT_NE(spikes, nullptr);
   ASSERT_EQ(spikes->x.size(), 2u);
   EXPECT_NEAR(spikes->x[0], 500.0 / 3600.0, 1e-9);
   EXPECT_NEAR(spikes->x[1], 2000.0 / 3600.0, 1e-9);
-  const Series* region = find(plots[2], "sensor bandwidth");
+  const Series* region = titled(plots[2], "sensor bandwidth");
   ASSERT_NE(region, nullptr);
   EXPECT_DOUBLE_EQ(region->x.front(), r.allan.tau_s.front());
   // The filter's effect at the region's end is 1 % (to the 5 % grid step).
@@ -272,13 +280,8 @@ TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
   // Ten minutes lost after the first quarter hour: the time plot shades
   // them, no line crosses them, and a spike after them sits at its true time.
   sim::ErrorModel m;
-  m.noise.N = 150.0;
   m.output.dropouts = {{900.0, 600.0}};
-  sim::GeneratorOptions g;
-  g.sample_rate_hz = 100.0;
-  g.duration_s = 3600.0;
-  g.seed = 3;
-  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, g);
+  sim::Recording rec = effects_hour(m, 3);
   const std::vector<Gap> gaps = sim::remove_dropouts(rec, m.output);
   ASSERT_EQ(gaps.size(), 1u);
   rec.rate_deg_h[150000] += 60000.0;  // t = 1500 s + 600 s lost = 2100 s
@@ -287,12 +290,8 @@ TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
   const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz, {}, gaps);
   ASSERT_EQ(r.spikes.count, 1);
   const std::vector<Plot> plots = report_plots(r, in);
-  const Series* gap = nullptr;
-  const Series* spike = nullptr;
-  for (const Series& s : plots[0].series) {
-    if (s.title.rfind("gap (1 found", 0) == 0) gap = &s;
-    if (s.title.rfind("spike", 0) == 0) spike = &s;
-  }
+  const Series* gap = titled(plots[0], "gap (1 found");
+  const Series* spike = titled(plots[0], "spike");
   ASSERT_NE(gap, nullptr);
   EXPECT_NEAR(gap->x[0], 899.99 / 3600.0, 1e-9);
   EXPECT_NEAR(gap->x[1], 1500.0 / 3600.0, 1e-9);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <span>
 #include <vector>
 
@@ -36,6 +37,17 @@ inline void fill_normal(std::span<double> out, std::uint64_t seed, double sigma)
 inline std::vector<double> white(std::size_t count, std::uint64_t seed, double sigma) {
   std::vector<double> v(count);
   fill_normal(v, seed, sigma);
+  return v;
+}
+
+/// `count` draws of N(mean, sd^2) from std::mt19937_64 seeded with `seed`:
+/// noise made independently of foglab's own generators, in one thread.
+inline std::vector<double> mt_normal(std::size_t count, std::uint64_t seed, double mean,
+                                     double sd) {
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal(mean, sd);
+  std::vector<double> v(count);
+  for (double& x : v) x = normal(engine);
   return v;
 }
 

@@ -45,6 +45,17 @@ std::vector<Stretch> contiguous_stretches(std::int64_t samples, std::span<const 
 /// every 1/sample_rate_hz with `gaps` (sorted): (index + missing before it) / fs.
 double elapsed_s(std::int64_t index, std::span<const Gap> gaps, double sample_rate_hz);
 
+/// Where a gap lies: the times of the samples either side of it [s], after
+/// the first sample.
+struct GapSpan {
+  double start_s = 0.0;  ///< the last sample before the gap
+  double end_s = 0.0;    ///< the first sample after it
+};
+
+/// Every gap's span, in one pass (elapsed_s() of each side, without its
+/// search per gap).
+std::vector<GapSpan> gap_spans_s(std::span<const Gap> gaps, double sample_rate_hz);
+
 /// Samples missing in all the gaps together.
 std::int64_t missing_samples(std::span<const Gap> gaps);
 

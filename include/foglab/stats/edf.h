@@ -48,4 +48,7 @@ double pooled_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segme
 /// edf of TOTDEV (SP1065 Table 12, Greenhall's OADEV edf for alpha > 0).
 double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
 
+/// The same pooled over contiguous stretches, as pooled_edf().
+double pooled_totdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
+
 }  // namespace foglab::stats
