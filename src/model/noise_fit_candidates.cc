@@ -114,6 +114,12 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       offset[i] += fixed->squared_coefficient * p.basis_at(fixed->term, i, tc);
     }
   }
+  // The basis of each fitted term at every point: fixed over the
+  // iterations (only the weights change), so computed once.
+  std::vector<std::vector<double>> basis(fitted.size(), std::vector<double>(n));
+  for (std::size_t j = 0; j < fitted.size(); ++j) {
+    for (std::size_t i = 0; i < n; ++i) basis[j][i] = p.basis_at(fitted[j], i, tc);
+  }
   std::vector<double> mu = p.y;  // first weights from the data themselves
   std::vector<double> c(fitted.size(), 0.0);
   double previous = kInf;
@@ -131,7 +137,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
     for (std::size_t i = 0; i < n; ++i) {
       const double w = std::sqrt(p.v[i]) / std::max(mu[i], 1e-12 * p.y[i]);
       for (Eigen::Index j = 0; j < k; ++j) {
-        a(static_cast<Eigen::Index>(i), j) = w * p.basis_at(fitted[j], i, tc);
+        a(static_cast<Eigen::Index>(i), j) = w * basis[static_cast<std::size_t>(j)][i];
       }
       b(static_cast<Eigen::Index>(i)) = w * (p.y[i] - offset[i]);
     }
@@ -147,6 +153,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       for (std::size_t j = 0; j < fitted.size();) {
         if (!(c[j] > 0)) {
           fitted.erase(fitted.begin() + static_cast<std::ptrdiff_t>(j));
+          basis.erase(basis.begin() + static_cast<std::ptrdiff_t>(j));
           c.erase(c.begin() + static_cast<std::ptrdiff_t>(j));
           dropped = true;
         } else {
@@ -162,7 +169,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
     double change = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       double m = offset[i];
-      for (std::size_t j = 0; j < fitted.size(); ++j) m += c[j] * p.basis_at(fitted[j], i, tc);
+      for (std::size_t j = 0; j < fitted.size(); ++j) m += c[j] * basis[j][i];
       change = std::max(change, std::fabs(m - mu[i]) / std::max(std::fabs(mu[i]), 1e-300));
       mu[i] = m;
     }
