@@ -60,112 +60,135 @@ NoiseFitResult degenerate(const detail::Points& p) {
   return r;
 }
 
+// The known Allan variance at every point: the output word's rounding
+// (white noise of level `known_white`) and the spectral lines.
+void add_known_allan_variance(detail::Points& p, double known_white,
+                              std::span<const SpectralLine> lines) {
+  if (!(known_white >= 0.0) || !std::isfinite(known_white)) {
+    throw UsageError(fmt::format(
+        "NoiseFitOptions::known_white_deg_h_sqrt_hz must be finite and >= 0, got {}", known_white));
+  }
+  const double tau0 = p.sample_interval_s();
+  const bool with_lines = !lines.empty() && tau0 > 0.0;
+  if (!with_lines && known_white == 0.0) return;
+  p.fixed_avar.assign(p.tau.size(), 0.0);
+  for (std::size_t i = 0; i < p.tau.size(); ++i) {
+    p.fixed_avar[i] += known_white * known_white / p.tau[i];
+    if (!with_lines) continue;
+    for (const SpectralLine& line : lines) {
+      p.fixed_avar[i] += line_allan_variance(line, p.tau[i], tau0);
+    }
+  }
+}
+
+// The bandwidth was found against a reference model without a random bias;
+// a slow Gauss-Markov hump the reference lacks can pass for a filter (a
+// 29-sample moving average on a 20 Hz record with Tc = 47 s). When the
+// chosen model has such a process (Tc beyond 100 samples, far from any
+// filter), the search is repeated with it in the reference, and a bandwidth
+// it no longer finds is dropped (with the candidates refitted).
+void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
+                       std::vector<detail::SubsetFit>& fits, const NoiseFitOptions& options) {
+  constexpr double kSlowProcessSamples = 100.0;
+  if (!bandwidth.estimate.resolved || fits.empty() ||
+      !fits.front().terms.contains(NoiseTerm::gauss_markov) ||
+      fits.front().tc < kSlowProcessSamples * p.sample_interval_s()) {
+    return;
+  }
+  detail::Points plain = p;
+  detail::BandwidthSearch again = detail::find_bandwidth(plain, options, fits.front().tc);
+  if (again.estimate.resolved) return;
+  p = std::move(plain);
+  bandwidth = std::move(again);
+  fits = detail::fit_candidates(p, options);
+}
+
+// The result with fits.front() as the chosen model: its status, the
+// candidates, the random-bias evidence (step 3) and the intervals (4-6).
+NoiseFitResult conclude(const detail::Points& p, const std::vector<detail::SubsetFit>& fits,
+                        const detail::BandwidthSearch& bandwidth, double known_white,
+                        std::span<const SpectralLine> lines, const NoiseFitOptions& options) {
+  const detail::SubsetFit& chosen = fits.front();
+  NoiseFitResult r;
+  set_status(chosen, fits, options, r);
+  r.model = detail::to_model(chosen);
+  r.bandwidth = bandwidth.estimate;
+  if (!lines.empty() && p.sample_interval_s() > 0.0) r.lines.assign(lines.begin(), lines.end());
+  r.known_white_deg_h_sqrt_hz = known_white;
+  r.terms = chosen.terms;
+  r.deviance = chosen.deviance;
+  r.points = static_cast<int>(p.y.size());
+  r.parameters = chosen.terms.parameter_count();
+  r.dispersion = std::max(1.0, chosen.deviance / std::max(1, r.points - r.parameters));
+  for (const detail::SubsetFit& f : fits)
+    r.candidates.push_back(detail::candidate(f, options.penalty));
+  detail::collect_random_bias_evidence(fits, options.penalty, r);
+  const detail::ChosenModel model = detail::chosen_model(p, chosen, r.dispersion);
+  detail::set_chosen_intervals(model, options, r);
+  detail::bound_left_out_terms(model, options, r);
+  detail::widen_over_near_candidates(p, model, fits, options, r);
+  detail::widen_over_bandwidths(p, chosen, bandwidth.near, r);
+  return r;
+}
+
+// A Gauss-Markov term is the random bias only when the record shows its
+// hump turning down: the Allan variance of the process peaks near 1.89 Tc,
+// so Tc's 95 % interval must close below the longest tau over 1.89.
+// Otherwise, unless it fits better than the best Wiener candidate by more
+// than two parameters' worth of the criterion, the record cannot tell it
+// from a random walk (a Gauss-Markov process far from its Tc is one) and
+// the Wiener candidate goes to the front of `fits`; returns why (empty:
+// the chosen model stands).
+std::string set_aside_unresolved_gauss_markov(const detail::Points& p,
+                                              std::vector<detail::SubsetFit>& fits,
+                                              const NoiseFitResult& r,
+                                              const NoiseFitOptions& options) {
+  constexpr double kHumpOverTc = 1.89;
+  if (r.random_bias_process != RandomBiasProcess::gauss_markov ||
+      kHumpOverTc * r.gm_tc.ci95_high <= p.tau.back()) {
+    return {};
+  }
+  const auto wiener = std::find_if(fits.begin(), fits.end(), [](const detail::SubsetFit& f) {
+    return f.terms.contains(NoiseTerm::random_walk) && !f.terms.contains(NoiseTerm::gauss_markov);
+  });
+  if (wiener == fits.end()) return {};
+  const double gm_criterion = detail::candidate(fits.front(), options.penalty).criterion;
+  const double wiener_criterion = detail::candidate(*wiener, options.penalty).criterion;
+  if (wiener_criterion - gm_criterion > 2.0 * options.penalty) return {};
+  std::string why = fmt::format(
+      "the Gauss-Markov model {} fitted better (criterion {:.1f} against {:.1f}, less than two "
+      "parameters' worth), but its Tc of {:.4g} s has the 95 % interval [{:.4g}, {:.4g}] s, which "
+      "does not close below the longest tau / {} = {:.4g} s: the record does not show the process "
+      "turning away from a random walk, so the Wiener model {} is taken",
+      to_string(fits.front().terms), gm_criterion, wiener_criterion, r.gm_tc.value,
+      r.gm_tc.ci95_low, r.gm_tc.ci95_high, kHumpOverTc, p.tau.back() / kHumpOverTc,
+      to_string(wiener->terms));
+  std::rotate(fits.begin(), wiener, wiener + 1);
+  return why;
+}
+
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
                         const NoiseFitOptions& options, const DetrendFactors* detrend,
                         std::span<const SpectralLine> lines) {
-  // 1. The points, the known Allan variance of the spectral lines, and the
-  // sensor bandwidth they show.
+  // 1. The points, the known Allan variance (output rounding, spectral
+  // lines) and the sensor bandwidth they show.
   detail::Points p =
       detail::gather_points(tau_s, adev_deg_h, edf, factors, segment_points, options, detrend);
-  const double tau0 = p.sample_interval_s();
-  const bool with_lines = !lines.empty() && tau0 > 0.0;
   const double known_white = options.known_white_deg_h_sqrt_hz;
-  if (!(known_white >= 0.0) || !std::isfinite(known_white)) {
-    throw UsageError(fmt::format(
-        "NoiseFitOptions::known_white_deg_h_sqrt_hz must be finite and >= 0, got {}", known_white));
-  }
-  if (with_lines || known_white > 0.0) {
-    p.fixed_avar.assign(p.tau.size(), 0.0);
-    for (std::size_t i = 0; i < p.tau.size(); ++i) {
-      p.fixed_avar[i] += known_white * known_white / p.tau[i];
-      if (!with_lines) continue;
-      for (const SpectralLine& line : lines) {
-        p.fixed_avar[i] += line_allan_variance(line, p.tau[i], tau0);
-      }
-    }
-  }
+  add_known_allan_variance(p, known_white, lines);
   detail::BandwidthSearch bandwidth = detail::find_bandwidth(p, options);
   // 2. Every admissible subset, best first; the best is the chosen model.
   std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
-  // The bandwidth was found against a reference model without a random
-  // bias; a slow Gauss-Markov hump the reference lacks can pass for a
-  // filter (a 29-sample moving average on a 20 Hz record with Tc = 47 s).
-  // When the chosen model has such a process (Tc beyond 100 samples, far
-  // from any filter), the search is repeated with it in the reference, and
-  // a bandwidth it no longer finds is dropped.
-  constexpr double kSlowProcessSamples = 100.0;
-  if (bandwidth.estimate.resolved && !fits.empty() &&
-      fits.front().terms.contains(NoiseTerm::gauss_markov) &&
-      fits.front().tc >= kSlowProcessSamples * tau0) {
-    detail::Points plain = p;
-    detail::BandwidthSearch again = detail::find_bandwidth(plain, options, fits.front().tc);
-    if (!again.estimate.resolved) {
-      p = std::move(plain);
-      bandwidth = std::move(again);
-      fits = detail::fit_candidates(p, options);
-    }
-  }
+  recheck_bandwidth(p, bandwidth, fits, options);
   if (fits.empty()) return degenerate(p);
-  auto conclude = [&] {
-    const detail::SubsetFit& chosen = fits.front();
-    NoiseFitResult r;
-    set_status(chosen, fits, options, r);
-    r.model = detail::to_model(chosen);
-    r.bandwidth = bandwidth.estimate;
-    if (with_lines) r.lines.assign(lines.begin(), lines.end());
-    r.known_white_deg_h_sqrt_hz = known_white;
-    r.terms = chosen.terms;
-    r.deviance = chosen.deviance;
-    r.points = static_cast<int>(p.y.size());
-    r.parameters = chosen.terms.parameter_count();
-    r.dispersion = std::max(1.0, chosen.deviance / std::max(1, r.points - r.parameters));
-    for (const detail::SubsetFit& f : fits)
-      r.candidates.push_back(detail::candidate(f, options.penalty));
-    // 3. The random-bias evidence and decision.
-    detail::collect_random_bias_evidence(fits, options.penalty, r);
-    // 4-6. Intervals, under the chosen model's covariance of the points.
-    const detail::ChosenModel model = detail::chosen_model(p, chosen, r.dispersion);
-    detail::set_chosen_intervals(model, options, r);
-    detail::bound_left_out_terms(model, options, r);
-    detail::widen_over_near_candidates(p, model, fits, options, r);
-    detail::widen_over_bandwidths(p, chosen, bandwidth.near, r);
-    return r;
-  };
-  NoiseFitResult r = conclude();
-  // A Gauss-Markov term is the random bias only when the record shows its
-  // hump turning down: the Allan variance of the process peaks near
-  // 1.89 Tc, so Tc's 95 % interval must close below the longest tau over
-  // 1.89. Otherwise, unless it fits better than the best Wiener candidate
-  // by more than two parameters' worth of the criterion, the record cannot
-  // tell it from a random walk (a Gauss-Markov process far from its Tc is
-  // one) and the Wiener candidate is the model.
-  constexpr double kHumpOverTc = 1.89;
-  if (r.random_bias_process == RandomBiasProcess::gauss_markov &&
-      !(kHumpOverTc * r.gm_tc.ci95_high <= p.tau.back())) {
-    const auto wiener = std::find_if(fits.begin(), fits.end(), [](const detail::SubsetFit& f) {
-      return f.terms.contains(NoiseTerm::random_walk) &&
-             !f.terms.contains(NoiseTerm::gauss_markov);
-    });
-    if (wiener != fits.end() &&
-        detail::candidate(*wiener, options.penalty).criterion -
-                detail::candidate(fits.front(), options.penalty).criterion <=
-            2.0 * options.penalty) {
-      const std::string why = fmt::format(
-          "the Gauss-Markov model {} fitted better (criterion {:.1f} against {:.1f}, less than "
-          "two parameters' worth), but its Tc "
-          "of {:.4g} s has the 95 % interval [{:.4g}, {:.4g}] s, which does not close below the "
-          "longest tau / {} = {:.4g} s: the record does not show the process turning away from "
-          "a random walk, so the Wiener model {} is taken",
-          to_string(fits.front().terms), detail::candidate(fits.front(), options.penalty).criterion,
-          detail::candidate(*wiener, options.penalty).criterion, r.gm_tc.value, r.gm_tc.ci95_low,
-          r.gm_tc.ci95_high, kHumpOverTc, p.tau.back() / kHumpOverTc, to_string(wiener->terms));
-      std::rotate(fits.begin(), wiener, wiener + 1);
-      r = conclude();
-      r.gauss_markov_set_aside = why;
-      r.message += "; " + why;
-    }
+  // 3-6. The evidence and the intervals; then the Gauss-Markov rule.
+  NoiseFitResult r = conclude(p, fits, bandwidth, known_white, lines, options);
+  if (std::string why = set_aside_unresolved_gauss_markov(p, fits, r, options); !why.empty()) {
+    r = conclude(p, fits, bandwidth, known_white, lines, options);
+    r.gauss_markov_set_aside = why;
+    r.message += "; " + why;
   }
   return r;
 }
