@@ -67,7 +67,9 @@ def run(foglab, workdir, grade_name, effect_name, args, seed):
     return truth, json.loads(a.stdout)
 
 
-def summarise(results, effect_name):
+def summarise(results, effect_name, misses=None):
+    """The row of the table; `misses` (a list), when given, gets a line for
+    every truth parameter outside its 95 % interval."""
     n_err, b_err, k_err, gs_err, gt_err = [], [], [], [], []
     inside = total = 0
     found = 0
@@ -82,7 +84,12 @@ def summarise(results, effect_name):
                 sink.append(rel(key, true))
                 lo, hi = nm[key]["ci95"] or (None, None)  # null: the term is absent
                 total += 1
-                inside += (lo is not None and hi is not None and lo <= true <= hi)
+                hit = lo is not None and hi is not None and lo <= true <= hi
+                inside += hit
+                if not hit and misses is not None:
+                    misses.append(f"seed {truth.get('seed', '?')}: {key} truth {true:.4g}, "
+                                  f"estimate {nm[key]['value']} [{lo}, {hi}] "
+                                  f"({nm[key]['status']}; terms {r['fit']['terms']})")
         out = truth["sensor_output"]
         if effect_name == "none":
             found += (not r["sensor_bandwidth"]["resolved"] and r["spikes"]["count"] == 0
@@ -119,6 +126,8 @@ def main():
     p.add_argument("--grades", default=",".join(GRADES))
     p.add_argument("--effects", default="")
     p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--misses", action="store_true",
+                   help="list each truth parameter outside its 95 %% interval")
     args = p.parse_args()
     work = tempfile.mkdtemp(prefix="foglab_effects_")
     print("| effect | grade | N worst % | B median % | K median % | GM sigma % | GM Tc % | "
@@ -132,8 +141,11 @@ def main():
                 jobs = [pool.submit(run, args.foglab, work, grade_name, effect_name,
                                     chosen[effect_name], seed) for seed in range(1, args.seeds + 1)]
                 results = [j.result() for j in jobs]
-            s = summarise(results, effect_name)
+            misses = [] if args.misses else None
+            s = summarise(results, effect_name, misses)
             print(f"| {effect_name} | {grade_name} | " + " | ".join(s.values()) + " |", flush=True)
+            for line in misses or []:
+                print(f"  miss ({effect_name}, {grade_name}) {line}")
 
 
 if __name__ == "__main__":

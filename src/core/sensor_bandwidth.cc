@@ -32,7 +32,61 @@ double ma_allan_factor(int k, std::int64_t m) {
   return (var - cov) / static_cast<double>(m);
 }
 
+// L(a) = a^2 ln|a| (0 at a = 0): flicker noise's semivariogram between
+// interval averages j samples apart is (L(j + 1) - 2 L(j) + L(j - 1)) / 4
+// times the plateau / ln 2 (from S(f) = h / f and the averages' sinc^2).
+double l_of(double a) {
+  a = std::fabs(a);
+  return a > 1.0 ? a * a * std::log(a) : 0.0;
+}
+
+// The quadratic form of the Allan kernel at factor m (two neighbouring
+// m-sample averages, differenced) over the flicker semivariogram, at a
+// shift of j samples between the two copies: the fourth difference of L at
+// step m, (4 L(j + m) + 4 L(j - m) - 6 L(j) - L(j + 2m) - L(j - 2m)) / 4.
+// At j = 0 it is -2 m^2 ln 2 (the unfiltered plateau).
+double flicker_kernel_form(double m, double j) {
+  return 0.25 * (4.0 * l_of(j + m) + 4.0 * l_of(j - m) - 6.0 * l_of(j) - l_of(j + 2.0 * m) -
+                 l_of(j - 2.0 * m));
+}
+
+// The filtered flicker's Allan variance at factor m over the unfiltered
+// plateau: the kernel form weighted by the filter's autocorrelation a_j
+// (which sums to 1, the filter's unit gain at zero frequency).
+template <class Autocorrelation>
+double flicker_ratio(std::int64_t m, std::int64_t reach, Autocorrelation a) {
+  const double md = static_cast<double>(m);
+  double sum = a(0) * flicker_kernel_form(md, 0.0);
+  for (std::int64_t j = 1; j <= reach; ++j) {
+    sum += 2.0 * a(j) * flicker_kernel_form(md, static_cast<double>(j));
+  }
+  return sum / (-2.0 * md * md * std::numbers::ln2);
+}
+
 }  // namespace
+
+double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
+                            double sample_interval_s) {
+  if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
+  const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
+  double g = 1.0;
+  if (bandwidth.moving_average()) {
+    const int k = bandwidth.moving_average_samples;
+    // 1 - g falls as (k / m)^2: beyond 4096 k it is below 1e-7.
+    if (m > 4096 * static_cast<std::int64_t>(k)) return 1.0;
+    g = flicker_ratio(m, k - 1, [k](std::int64_t j) { return ma_autocovariance(k, j); });
+  } else {
+    const double rho = filtered_lag1(bandwidth, sample_interval_s);
+    const double samples = bandwidth.time_constant_s / sample_interval_s;
+    if (static_cast<double>(m) > 4096.0 * (samples + 1.0)) return 1.0;
+    // The AR(1) autocorrelation (1 - rho) / (1 + rho) rho^|j|, to rho^j < 1e-16.
+    const auto reach =
+        static_cast<std::int64_t>(std::ceil(std::log(1e-16) / std::min(std::log(rho), -1e-3)));
+    const double scale = (1.0 - rho) / (1.0 + rho);
+    g = flicker_ratio(m, reach, [&](std::int64_t j) { return scale * std::pow(rho, j); });
+  }
+  return 1.0 - bandwidth.filtered_fraction * (1.0 - g);
+}
 
 double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s) {
   if (bandwidth.moving_average()) {

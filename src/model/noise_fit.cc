@@ -236,8 +236,14 @@ ParameterEstimate& NoiseFitResult::estimate(const NoiseParameter& parameter) {
 
 double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double tau_s) {
   const double v = allan_variance(fit.model, term, tau_s);
-  if (term != NoiseTerm::white || !fit.bandwidth.resolved) return v;
-  return v * white_allan_factor(fit.bandwidth.bandwidth, tau_s, fit.bandwidth.sample_interval_s);
+  if (!fit.bandwidth.resolved) return v;
+  const BandwidthEstimate& b = fit.bandwidth;
+  if (term == NoiseTerm::white)
+    return v * white_allan_factor(b.bandwidth, tau_s, b.sample_interval_s);
+  if (term == NoiseTerm::flicker) {
+    return v * flicker_allan_factor(b.bandwidth, tau_s, b.sample_interval_s);
+  }
+  return v;
 }
 
 double lines_allan_variance(const NoiseFitResult& fit, double tau_s) {

@@ -22,6 +22,8 @@
 // more than those two parameters' cost (noise_fit.cc).
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "noise_fit_internal.h"
 
@@ -80,10 +82,24 @@ class Search {
     return f.deviance;
   }
 
+  // The shapes of the bandwidth; the flicker factor with the whole output
+  // filtered depends on the filter alone (not on phi), so it is kept per
+  // filter across the trials.
   void set_shape(const SensorBandwidth& bandwidth) {
     p_.white_shape.resize(p_.tau.size());
+    p_.flicker_shape.resize(p_.tau.size());
+    SensorBandwidth whole = bandwidth;
+    whole.filtered_fraction = 1.0;
+    auto [it, added] =
+        flicker_cache_.try_emplace({whole.moving_average_samples, whole.time_constant_s});
+    if (added) {
+      for (std::size_t i = 0; i < p_.tau.size(); ++i) {
+        it->second.push_back(flicker_allan_factor(whole, p_.tau[i], tau0_));
+      }
+    }
     for (std::size_t i = 0; i < p_.tau.size(); ++i) {
       p_.white_shape[i] = white_allan_factor(bandwidth, p_.tau[i], tau0_);
+      p_.flicker_shape[i] = 1.0 - bandwidth.filtered_fraction * (1.0 - it->second[i]);
     }
   }
 
@@ -159,15 +175,27 @@ class Search {
   NoiseTermSet terms_;
   double tc_;  // the reference's Gauss-Markov Tc (1 without the term)
   double tau0_;
+  std::map<std::pair<int, double>, std::vector<double>> flicker_cache_;  // (k, T): factors
 };
 
 }  // namespace
+
+void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth) {
+  p.white_shape.clear();
+  p.flicker_shape.clear();
+  const double tau0 = p.sample_interval_s();
+  if (!bandwidth.any() || !(tau0 > 0.0)) return;
+  for (std::size_t i = 0; i < p.tau.size(); ++i) {
+    p.white_shape.push_back(white_allan_factor(bandwidth, p.tau[i], tau0));
+    p.flicker_shape.push_back(flicker_allan_factor(bandwidth, p.tau[i], tau0));
+  }
+}
 
 BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s) {
   BandwidthSearch result;
   BandwidthEstimate& e = result.estimate;
   e.sample_interval_s = p.sample_interval_s();
-  p.white_shape.clear();
+  set_bandwidth_shapes(p, {});
   if (!options.model_bandwidth || !(e.sample_interval_s > 0.0)) return result;
   const bool gauss_markov = gm_tc_s > 0.0;
   const double tc = gauss_markov ? gm_tc_s : 1.0;
@@ -176,7 +204,7 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
   const SubsetFit plain = fit_subset(p, terms, tc, std::nullopt, NonPositive::drop_term);
   Search search(p, terms, tc);
   const Trial best = search.best();
-  p.white_shape.clear();
+  set_bandwidth_shapes(p, {});
   if (!std::isfinite(best.deviance) || !std::isfinite(plain.deviance)) return result;
 
   const SensorBandwidth bandwidth = search.bandwidth_of(best.fraction, best.log_t, best.k);
@@ -203,7 +231,7 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
       result.near.push_back(search.bandwidth_of(t.fraction, t.log_t, t.k));
     }
   }
-  search.set_shape(bandwidth);
+  set_bandwidth_shapes(p, bandwidth);
   return result;
 }
 
@@ -214,11 +242,8 @@ void widen_over_bandwidths(const Points& p, const SubsetFit& chosen,
   if (!(n > 0.0)) return;
   Points q = p;
   q.v = chosen.v;
-  const double tau0 = p.sample_interval_s();
   for (const SensorBandwidth& b : near) {
-    for (std::size_t i = 0; i < q.tau.size(); ++i) {
-      q.white_shape[i] = white_allan_factor(b, q.tau[i], tau0);
-    }
+    set_bandwidth_shapes(q, b);
     const SubsetFit f = fit_subset(q, chosen.terms, chosen.tc);
     if (!f.feasible) continue;
     const double ratio = std::sqrt(f.squared(NoiseTerm::white)) / n;

@@ -67,6 +67,9 @@ struct Points {
   /// The sensor bandwidth's factor on the white term at each point
   /// (core/sensor_bandwidth.h); empty: 1.
   std::vector<double> white_shape;
+  /// Its factor on the flicker term (the filter acts on the output's flicker
+  /// noise too); empty: 1.
+  std::vector<double> flicker_shape;
 
   /// The sample interval tau0 [s] (0 when the averaging factors are unknown).
   double sample_interval_s() const {
@@ -78,6 +81,7 @@ struct Points {
   double basis_at(NoiseTerm t, std::size_t i, double tc) const {
     double b = unit_allan_variance(t, tau[i], tc);
     if (t == NoiseTerm::white && !white_shape.empty()) b *= white_shape[i];
+    if (t == NoiseTerm::flicker && !flicker_shape.empty()) b *= flicker_shape[i];
     return detrend ? b * detrend->factor(t, index[i], tc) : b;
   }
 };
@@ -132,8 +136,12 @@ struct BandwidthSearch {
   std::vector<SensorBandwidth> near;
 };
 
+/// Sets p.white_shape and p.flicker_shape for `bandwidth` (clears them
+/// without one).
+void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth);
+
 /// Looks for the sensor bandwidth in the short-tau points and, when the data
-/// resolve it, sets p.white_shape; returns what it found.
+/// resolve it, sets p.white_shape and p.flicker_shape; returns what it found.
 /// `gm_tc_s` > 0 adds a Gauss-Markov process of that correlation time to
 /// the reference model.
 BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s = 0.0);

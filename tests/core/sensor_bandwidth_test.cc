@@ -92,6 +92,67 @@ TEST(SensorBandwidth, MovingAverageFactorEqualsTheWeightsSum) {
   EXPECT_NEAR(fc, 11.385, 0.001);
 }
 
+// Flicker noise sampled as interval averages of a 1/f process: half the
+// mean square difference of samples j apart, in units of the Allan plateau
+// over ln 2 (L(a) = a^2 ln|a|).
+double flicker_semivariogram(int j) {
+  auto l = [](double a) { return std::fabs(a) > 1.0 ? a * a * std::log(std::fabs(a)) : 0.0; };
+  return 0.25 * (l(j + 1.0) - 2.0 * l(j) + l(j - 1.0));
+}
+
+// The Allan variance at factor m of the flicker samples passed through the
+// filter with impulse response h, by brute force: the weights of the two
+// neighbouring m-averages on the input samples, and the variance of their
+// difference from the semivariogram (-sum w_a w_b gamma(a - b), the
+// weights summing to 0), over 2 m^2; in units of the plateau (ln 2).
+double filtered_flicker_allan(const std::vector<double>& h, int m) {
+  std::vector<double> w(2 * static_cast<std::size_t>(m) + h.size() - 1, 0.0);
+  for (int i = 0; i < 2 * m; ++i) {
+    for (std::size_t j = 0; j < h.size(); ++j) w[i + j] += (i < m ? -1.0 : 1.0) * h[j];
+  }
+  double sum = 0.0;
+  for (std::size_t a = 0; a < w.size(); ++a) {
+    for (std::size_t b = 0; b < w.size(); ++b) {
+      sum -= w[a] * w[b] * flicker_semivariogram(static_cast<int>(a) - static_cast<int>(b));
+    }
+  }
+  return sum / (2.0 * m * m) / std::numbers::ln2;
+}
+
+TEST(SensorBandwidth, FlickerFactorEqualsTheBruteForceSumOverTheSemivariogram) {
+  const double tau0 = 0.01;
+  // Unfiltered, the semivariogram gives the plateau at every m (the
+  // continuous Allan variance of 1/f noise does not depend on tau).
+  for (int m : {1, 2, 3, 10, 33}) EXPECT_NEAR(filtered_flicker_allan({1.0}, m), 1.0, 1e-12) << m;
+  for (double phi : {0.4, 1.0}) {
+    for (int k : {2, 4, 7}) {
+      const std::vector<double> h(static_cast<std::size_t>(k), 1.0 / k);
+      for (int m : {1, 2, 3, 5, 8, 21}) {
+        const double expected = 1.0 - phi * (1.0 - filtered_flicker_allan(h, m));
+        EXPECT_NEAR(flicker_allan_factor(SensorBandwidth{phi, 0.0, k}, m * tau0, tau0), expected,
+                    1e-10)
+            << "k " << k << ", phi " << phi << ", m " << m;
+      }
+    }
+    for (double t_over_tau0 : {0.54, 3.0}) {
+      const double rho = std::exp(-1.0 / t_over_tau0);
+      std::vector<double> h;
+      for (int j = 0; j < 300; ++j) h.push_back((1.0 - rho) * std::pow(rho, j));
+      for (int m : {1, 2, 5, 16}) {
+        const double expected = 1.0 - phi * (1.0 - filtered_flicker_allan(h, m));
+        EXPECT_NEAR(flicker_allan_factor(SensorBandwidth{phi, t_over_tau0 * tau0}, m * tau0, tau0),
+                    expected, 1e-10)
+            << "T " << t_over_tau0 << " tau0, phi " << phi << ", m " << m;
+      }
+    }
+  }
+  // A 4-sample moving average keeps 13 % of the flicker plateau at the
+  // first tau; far out it keeps all of it.
+  EXPECT_NEAR(flicker_allan_factor(SensorBandwidth{1.0, 0.0, 4}, tau0, tau0), 0.12989, 1e-5);
+  EXPECT_NEAR(flicker_allan_factor(SensorBandwidth{1.0, 0.0, 4}, 1e4 * tau0, tau0), 1.0, 1e-6);
+  EXPECT_EQ(flicker_allan_factor(SensorBandwidth{}, tau0, tau0), 1.0);
+}
+
 TEST(SensorBandwidth, FactorTendsToTheContinuousFilterAndToOne) {
   const double tau0 = 0.01;
   const SensorBandwidth bw{1.0, 20.0 * tau0};

@@ -26,7 +26,8 @@
 // those sums (the variance of an m-average less the covariance of two
 // neighbouring ones), also exactly. A second-order low-pass lies between the
 // two; the two kinds follow it closely enough to keep N the white level
-// (docs/validation.md).
+// (docs/validation.md). The filter acts on the output's flicker noise too;
+// flicker_allan_factor() gives what it does to the flicker plateau.
 #pragma once
 
 namespace foglab {
@@ -57,6 +58,18 @@ double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s)
 /// integer multiple m of the sample interval tau0 [s]): 1 without a
 /// bandwidth, below 1 at short tau, tending to 1 as tau grows.
 double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s, double sample_interval_s);
+
+/// The factor on the flicker term's Allan variance (its plateau
+/// 2 ln 2 B^2 / pi) at tau [s] = m tau0 when the filter acts on the output's
+/// flicker noise as well (the same fraction phi): below 1 at short tau,
+/// tending to 1 as (filter length / m)^2. Exact for flicker noise whose
+/// samples are interval averages of a 1/f process: its semivariogram
+/// between averages j samples apart is L(j+1) - 2 L(j) + L(j-1), L(a) =
+/// a^2 ln|a| (up to scale), and the Allan kernel's quadratic form over it,
+/// weighted by the filter's autocorrelation, follows as a fourth difference
+/// of L at step m.
+double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
+                            double sample_interval_s);
 
 /// The lag-1 autocorrelation of the white noise's samples with this
 /// bandwidth (0 without one); for the first-order filter

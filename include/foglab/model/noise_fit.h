@@ -34,8 +34,10 @@
 // fraction phi and a time constant T (core/sensor_bandwidth.h) with a large
 // model without a Gauss-Markov term; when the data resolve it (the deviance
 // drops by more than two parameters' penalty) it is held for every
-// candidate, N stays the white level, the Gauss-Markov search starts at the
-// shortest tau, and N's interval spans the bandwidths the data cannot tell
+// candidate (on the white term and, with the same phi, on the flicker term:
+// the filter acts on the output's flicker noise too, which matters where
+// it has cut the white noise by an order of magnitude), N stays the white level, the Gauss-Markov
+// search starts at the shortest tau, and N's interval spans the bandwidths the data cannot tell
 // apart (`NoiseFitResult::bandwidth`).
 //
 // The edf of each point is Greenhall's for the noise type that dominates the
@@ -231,7 +233,7 @@ struct NoiseFitResult {
   int iterations = 0;  ///< of the chosen model's final reweighting loop
 
   NoiseModel model;  ///< the chosen model (terms left out are 0)
-  BandwidthEstimate bandwidth;  ///< the sensor's output bandwidth, on the white term
+  BandwidthEstimate bandwidth;  ///< the sensor's output bandwidth, on the white and flicker terms
   /// Narrow-band disturbances whose Allan variance the fit took as known
   /// (model/spectral_lines.h); empty when none were given.
   std::vector<SpectralLine> lines;
@@ -261,7 +263,7 @@ struct NoiseFitResult {
 };
 
 /// The fitted Allan variance [(deg/h)^2] of one term at tau [s]: the
-/// model's, with the white term's bandwidth factor.
+/// model's, with the bandwidth's factor on the white and flicker terms.
 double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double tau_s);
 /// The sum over the terms, the spectral lines and the known white noise.
 double fitted_allan_variance(const NoiseFitResult& fit, double tau_s);
