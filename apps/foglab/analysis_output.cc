@@ -215,6 +215,7 @@ nlohmann::json lines_json(const model::NoiseFitResult& f) {
                      {"width_hz", number(line.width_hz)},
                      {"rms_deg_h", number(std::sqrt(line.variance))},
                      {"peak_ratio", number(line.peak_ratio)},
+                     {"variance_scale", number(f.line_variance_scale)},
                      {"adev_at_quarter_period_deg_h",
                       number(std::sqrt(line_allan_variance(line, 0.371 / line.frequency_hz,
                                                            f.bandwidth.sample_interval_s)))}});

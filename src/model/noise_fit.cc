@@ -72,13 +72,25 @@ void add_known_allan_variance(detail::Points& p, double known_white,
   const bool with_lines = !lines.empty() && tau0 > 0.0;
   if (!with_lines && known_white == 0.0) return;
   p.fixed_avar.assign(p.tau.size(), 0.0);
+  if (with_lines) p.line_avar.assign(p.tau.size(), 0.0);
   for (std::size_t i = 0; i < p.tau.size(); ++i) {
     p.fixed_avar[i] += known_white * known_white / p.tau[i];
     if (!with_lines) continue;
     for (const SpectralLine& line : lines) {
-      p.fixed_avar[i] += line_allan_variance(line, p.tau[i], tau0);
+      p.line_avar[i] += line_allan_variance(line, p.tau[i], tau0);
     }
+    p.fixed_avar[i] += p.line_avar[i];
   }
+}
+
+// The sensor bandwidth, then the lines' variance factor the short taus ask
+// for (the PSD's bins hold a broad line's variance only in part), and, when
+// that moved, the bandwidth again with it: both shape the first taus.
+detail::BandwidthSearch find_bandwidth_and_line_scale(detail::Points& p,
+                                                      const NoiseFitOptions& options) {
+  detail::BandwidthSearch bandwidth = detail::find_bandwidth(p, options);
+  if (p.line_avar.empty() || detail::find_line_scale(p, options) == 1.0) return bandwidth;
+  return detail::find_bandwidth(p, options);
 }
 
 // The bandwidth was found against a reference model without a random bias;
@@ -113,7 +125,14 @@ NoiseFitResult conclude(const detail::Points& p, const std::vector<detail::Subse
   set_status(chosen, fits, options, r);
   r.model = detail::to_model(chosen);
   r.bandwidth = bandwidth.estimate;
-  if (!lines.empty() && p.sample_interval_s() > 0.0) r.lines.assign(lines.begin(), lines.end());
+  if (!lines.empty() && p.sample_interval_s() > 0.0) {
+    r.lines.assign(lines.begin(), lines.end());
+    r.line_variance_scale = p.line_scale;
+    for (SpectralLine& line : r.lines) {
+      line.variance *= p.line_scale;
+      for (double& v : line.bin_variance) v *= p.line_scale;
+    }
+  }
   r.known_white_deg_h_sqrt_hz = known_white;
   r.terms = chosen.terms;
   r.deviance = chosen.deviance;
@@ -173,12 +192,13 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
                         const NoiseFitOptions& options, const DetrendFactors* detrend,
                         std::span<const SpectralLine> lines) {
   // 1. The points, the known Allan variance (output rounding, spectral
-  // lines) and the sensor bandwidth they show.
+  // lines, their variance as the short taus show it) and the sensor
+  // bandwidth they show.
   detail::Points p =
       detail::gather_points(tau_s, adev_deg_h, edf, factors, segment_points, options, detrend);
   const double known_white = options.known_white_deg_h_sqrt_hz;
   add_known_allan_variance(p, known_white, lines);
-  detail::BandwidthSearch bandwidth = detail::find_bandwidth(p, options);
+  detail::BandwidthSearch bandwidth = find_bandwidth_and_line_scale(p, options);
   // 2. Every admissible subset, best first; the best is the chosen model.
   std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
   recheck_bandwidth(p, bandwidth, fits, options);

@@ -180,6 +180,49 @@ class Search {
 
 }  // namespace
 
+double find_line_scale(Points& p, const NoiseFitOptions& options) {
+  if (p.line_avar.empty()) return p.line_scale;
+  const NoiseTermSet terms = reference_terms(p, false);
+  if (!terms.contains(NoiseTerm::white)) return p.line_scale;
+  auto set_scale = [&p](double scale) {
+    for (std::size_t i = 0; i < p.fixed_avar.size(); ++i) {
+      p.fixed_avar[i] += (scale - p.line_scale) * p.line_avar[i];
+    }
+    p.line_scale = scale;
+  };
+  auto deviance = [&](double log_scale) {
+    set_scale(std::exp(log_scale));
+    const SubsetFit f = fit_subset(p, terms, 1.0, std::nullopt, NonPositive::drop_term);
+    return f.feasible && f.terms.contains(NoiseTerm::white) ? f.deviance : kInf;
+  };
+  const double as_read = deviance(0.0);
+  // A grid over 1/8 .. 8, then golden-section steps around its best.
+  constexpr double kLogRange = 2.0794415416798357;  // ln 8
+  constexpr int kSteps = 24;
+  double best_log = 0.0, best = as_read;
+  for (int k = 0; k <= kSteps; ++k) {
+    const double x = -kLogRange + 2.0 * kLogRange * k / kSteps;
+    if (const double d = deviance(x); d < best) best = d, best_log = x;
+  }
+  const double step = 2.0 * kLogRange / kSteps;
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double a = best_log - step, b = best_log + step;
+  double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = deviance(x1), f2 = deviance(x2);
+  for (int it = 0; it < 30 && b - a > 1e-4; ++it) {
+    if (f1 < f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = deviance(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = deviance(x2);
+    }
+  }
+  if (std::min(f1, f2) < best) best = std::min(f1, f2), best_log = f1 < f2 ? x1 : x2;
+  const int spare = static_cast<int>(p.y.size()) - terms.parameter_count() - 1;
+  const double dispersion = std::max(1.0, best / std::max(1, spare));
+  const bool taken = std::isfinite(best) && as_read - best > options.penalty * dispersion;
+  set_scale(taken ? std::exp(best_log) : 1.0);
+  return p.line_scale;
+}
+
 void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth) {
   p.white_shape.clear();
   p.flicker_shape.clear();

@@ -207,9 +207,11 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
 // a shorter correlation is the bandwidth's) to well beyond the longest
 // (where the process looks like a random walk), six per decade, then
 // golden-section refinement around the best.
+double shortest_tc(const Points& p) { return p.tau.front() * (p.white_shape.empty() ? 0.5 : 1.0); }
+
 SubsetFit fit_subset_profiled(const Points& p, NoiseTermSet terms) {
   if (!terms.contains(NoiseTerm::gauss_markov)) return fit_subset(p, terms, 1.0);
-  const double lo = std::log(p.tau.front() * (p.white_shape.empty() ? 0.5 : 1.0));
+  const double lo = std::log(shortest_tc(p));
   const double hi = std::log(p.tau.back() * 30.0);
   const int steps = std::max(8, static_cast<int>(std::ceil((hi - lo) / std::log(10.0) * 6.0)));
   std::vector<SubsetFit> grid;
@@ -268,6 +270,12 @@ std::vector<SubsetFit> fit_candidates(const Points& p, const NoiseFitOptions& op
     // A subset with more parameters than points minus one cannot be judged.
     if (terms.parameter_count() >= static_cast<int>(p.y.size())) continue;
     SubsetFit f = fit_subset_final(p, terms);
+    // A Gauss-Markov term that wants its Tc at the shortest tried (below
+    // the first tau) is no random bias: a correlation that short is the
+    // white level's and the bandwidth's, and its sigma and Tc would be
+    // reported at a search bound. The subset is left out.
+    constexpr double kAtBound = 1.01;
+    if (terms.contains(NoiseTerm::gauss_markov) && f.tc <= kAtBound * shortest_tc(p)) continue;
     if (f.feasible) fits.push_back(std::move(f));
   }
   std::sort(fits.begin(), fits.end(), [&](const SubsetFit& a, const SubsetFit& b) {

@@ -64,6 +64,12 @@ struct Points {
   /// The known Allan variance at each point (the spectral lines'), added
   /// to every model; empty: none.
   std::vector<double> fixed_avar;
+  /// The spectral lines' part of it at each point, per unit of
+  /// `line_scale` (their Allan variance with the PSD's variance); empty:
+  /// no lines.
+  std::vector<double> line_avar;
+  /// The factor on the lines' variance that fixed_avar holds.
+  double line_scale = 1.0;
   /// The sensor bandwidth's factor on the white term at each point
   /// (core/sensor_bandwidth.h); empty: 1.
   std::vector<double> white_shape;
@@ -135,6 +141,13 @@ struct BandwidthSearch {
   BandwidthEstimate estimate;
   std::vector<SensorBandwidth> near;
 };
+
+/// The factor on the spectral lines' variance that the short taus ask for
+/// (noise_fit_bandwidth.cc): the reference model's deviance profiled over
+/// it (1/8 .. 8) with the bandwidth p holds; taken, and put into
+/// p.fixed_avar, when it lowers that deviance by more than one parameter's
+/// cost (the penalty, times the dispersion). Returns p.line_scale.
+double find_line_scale(Points& p, const NoiseFitOptions& options);
 
 /// Sets p.white_shape and p.flicker_shape for `bandwidth` (clears them
 /// without one).

@@ -92,6 +92,12 @@ std::string lines_sentence(const model::NoiseFitResult& fit) {
                         text.empty() ? "" : "; ", g(line.frequency_hz), g(line.width_hz),
                         g(std::sqrt(line.variance)), g(line.peak_ratio));
   }
+  if (fit.line_variance_scale != 1.0) {
+    text += fmt::format(
+        " (the variance the fit used: {} times the PSD bins', as the Allan deviation's first taus "
+        "show it)",
+        g(fit.line_variance_scale));
+  }
   return text + " (its Allan variance is part of the fit, not of any noise term)";
 }
 

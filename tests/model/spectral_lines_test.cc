@@ -97,5 +97,66 @@ TEST(SpectralLine, AnalysisKeepsALineOutOfTheNoiseTerms) {
   }
 }
 
+// A broad resonance: a second-order oscillator at 20 Hz with poles at
+// radius 0.95 (a line about 1.6 Hz wide), driven by white noise, scaled to
+// `rms` [deg/h]; made here, independently of the generator. `low_level`
+// gets the white level [deg/h/sqrt(Hz)] its spectrum has at zero frequency
+// (drive variance / (1 - a1 - a2)^2 per sample): at long taus the
+// resonance adds to the white noise.
+std::vector<double> resonance(double rms, std::size_t n, std::uint64_t seed, double& low_level) {
+  const double w = 2.0 * std::numbers::pi * 20.0 / kFs, radius = 0.95;
+  const double a1 = 2.0 * radius * std::cos(w), a2 = -radius * radius;
+  // The AR(2) variance per unit drive: (1 - a2) / ((1 + a2)((1 - a2)^2 - a1^2)).
+  const double gain = (1.0 - a2) / ((1.0 + a2) * ((1.0 - a2) * (1.0 - a2) - a1 * a1));
+  const double drive = rms / std::sqrt(gain);
+  low_level = drive / std::sqrt(kFs) / (1.0 - a1 - a2);
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal(0.0, drive);
+  std::vector<double> y(n);
+  double x1 = 0.0, x2 = 0.0;
+  for (std::size_t k = 0; k < n + 1000; ++k) {  // 1000 samples to settle
+    const double x = a1 * x1 + a2 * x2 + normal(engine);
+    x2 = x1;
+    x1 = x;
+    if (k >= 1000) y[k - 1000] = x;
+  }
+  return y;
+}
+
+TEST(SpectralLine, TheShortTausFixABroadLinesVariance) {
+  // The ADIS16405 z axes' kind: white noise N = 150 deg/h/sqrt(Hz) and a
+  // broad 20 Hz resonance of 900 deg/h rms, 2.78 h at 100 Hz. The PSD's
+  // bins above the floor hold about half of such a line's variance (the
+  // skirts are left out); the fit takes the factor on it that the first
+  // taus ask for. The bins' Allan shape stays (the skirts' is not quite a
+  // line's), so the first taus are not fitted to their intervals, but the
+  // line's variance comes close to the component's own, no Gauss-Markov
+  // term takes the rest at a Tc below the first tau (before the factor, a
+  // Gauss-Markov term at the search bound did, or an angle quantisation Q
+  // with N 7 % high), and N is the white level the long taus show.
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const std::size_t n = 1000000;
+    std::vector<double> y = white(150.0, n, seed);
+    double low_level = 0.0;
+    const std::vector<double> line = resonance(900.0, n, seed + 100, low_level);
+    double variance = 0.0;  // the component's own, over this record
+    for (double v : line) variance += v * v;
+    variance /= static_cast<double>(n);
+    for (std::size_t k = 0; k < n; ++k) y[k] += line[k];
+    const AnalysisResult r = analyze(y, {}, kFs);
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    ASSERT_EQ(r.noise.lines.size(), 1u);
+    EXPECT_NEAR(r.noise.lines[0].frequency_hz, 20.0, 0.5);
+    const double used = r.noise.lines[0].variance;
+    const double from_psd = used / r.noise.line_variance_scale;
+    EXPECT_GT(r.noise.line_variance_scale, 1.2);
+    EXPECT_LT(std::fabs(used - variance), std::fabs(from_psd - variance));
+    EXPECT_NEAR(used / variance, 1.0, 0.2);
+    EXPECT_NE(r.noise.gm_sigma.status, TermStatus::resolved);
+    const double long_white = std::hypot(150.0, low_level);  // 152.6
+    EXPECT_NEAR(r.noise.N.value / long_white, 1.0, 0.02);
+  }
+}
+
 }  // namespace
 }  // namespace foglab::model

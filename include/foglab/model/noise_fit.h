@@ -40,6 +40,14 @@
 // search starts at the shortest tau, and N's interval spans the bandwidths the data cannot tell
 // apart (`NoiseFitResult::bandwidth`).
 //
+// Spectral lines (model/spectral_lines.h) enter every model as known Allan
+// variance; the factor on their PSD variance that the first taus ask for is
+// profiled with the same reference model (kept when it gains more than one
+// parameter's penalty), and the bandwidth is searched again after it
+// (`NoiseFitResult::line_variance_scale`). A Gauss-Markov candidate whose
+// Tc goes to the shortest searched is left out: a correlation below the
+// first tau is the white level's and the bandwidth's, not a random bias.
+//
 // The edf of each point is Greenhall's for the noise type that dominates the
 // candidate model there (white N: alpha 0, flicker B: -1, random walk K and
 // ramp R: -2, quantisation Q: +2, Gauss-Markov: -2 below Tc, 0 above), fit
@@ -235,8 +243,14 @@ struct NoiseFitResult {
   NoiseModel model;  ///< the chosen model (terms left out are 0)
   BandwidthEstimate bandwidth;  ///< the sensor's output bandwidth, on the white and flicker terms
   /// Narrow-band disturbances whose Allan variance the fit took as known
-  /// (model/spectral_lines.h); empty when none were given.
+  /// (model/spectral_lines.h), with their variance as the fit used it
+  /// (line_variance_scale times the PSD's); empty when none were given.
   std::vector<SpectralLine> lines;
+  /// The factor the fit found on the lines' variance as the PSD gave it:
+  /// their Allan signature at the short taus fixes its amplitude better than
+  /// the PSD bins of a broad line do (1 when the short taus do not ask for
+  /// another, or without lines).
+  double line_variance_scale = 1.0;
   /// Why a better-fitting Gauss-Markov model was set aside for the Wiener
   /// one (its Tc's interval does not close inside the record); empty when
   /// none was.
