@@ -145,7 +145,9 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
           {"penalty", o.penalty},
           {"model", noise_model_json(f.model)},
           {"candidates_total", f.candidates.size()},
-          {"candidates", candidates}};
+          {"candidates", candidates},
+          {"ramp_set_aside",
+           f.ramp_set_aside.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.ramp_set_aside)}};
 }
 
 nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {

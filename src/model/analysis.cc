@@ -121,10 +121,42 @@ NoiseFitResult residual_noise_model(const stats::AllanResult& all, const Analysi
   return fit_noise_model(all, options.noise_fit, nullptr, lines);
 }
 
+// The options with the record's least-squares slope against time and its
+// span [s] (the gaps' missing samples counted in the time), which the fit
+// checks a rate ramp against (NoiseFitOptions::record_slope_deg_h_s). Only
+// for a residual from which nothing but the mean was removed (`degree` 0,
+// or no temperature): a polynomial in a moving temperature takes trends.
+AnalysisOptions with_record_trend(const AnalysisOptions& options, std::span<const double> residual,
+                                  double fs, std::span<const Gap> gaps, int degree) {
+  AnalysisOptions o = options;
+  if (degree > 0 || residual.size() < 3) return o;
+  auto time_s = [&](auto&& visit) {  // visit(t, y) for every sample
+    std::int64_t missing = 0;
+    std::size_t g = 0;
+    for (std::size_t i = 0; i < residual.size(); ++i) {
+      while (g < gaps.size() && gaps[g].before_sample <= static_cast<std::int64_t>(i)) {
+        missing += gaps[g++].missing_samples;
+      }
+      visit(static_cast<double>(static_cast<std::int64_t>(i) + missing) / fs, residual[i]);
+    }
+  };
+  double st = 0.0, sy = 0.0;
+  time_s([&](double t, double y) { st += t, sy += y; });
+  const double n = static_cast<double>(residual.size());
+  const double mt = st / n, my = sy / n;
+  double stt = 0.0, sty = 0.0;
+  time_s([&](double t, double y) { stt += (t - mt) * (t - mt), sty += (t - mt) * (y - my); });
+  o.noise_fit.record_slope_deg_h_s = sty / stt;
+  o.noise_fit.record_span_s =
+      static_cast<double>(static_cast<std::int64_t>(residual.size()) + missing_samples(gaps)) / fs;
+  return o;
+}
+
 // PSD, OADEV and the noise fit of the residual (consumed: it becomes the
 // angle record), one after the other.
-Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOptions& options,
+Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOptions& given,
                       std::span<const Gap> gaps, const TemperatureRecord* record, int degree) {
+  const AnalysisOptions options = with_record_trend(given, residual, fs, gaps, record ? degree : 0);
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
@@ -188,8 +220,9 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   residual.assign(rate.begin(), rate.end());  // the capacity (n + 1) stays
   const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
   residual = {};
+  const AnalysisOptions final_options = with_record_trend(options, rate, fs, gaps, fit.degree);
   std::future<NoiseFitResult> noise = std::async(std::launch::async, [&] {
-    return residual_noise_model(all, options, &record, fit.degree, lines);
+    return residual_noise_model(all, final_options, &record, fit.degree, lines);
   });
   add_psd(s, rate, fs, options, gaps);  // the final residual's
   add_reported_allan(s, all, fs, options);
@@ -403,6 +436,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         "no white rate noise resolved: the ARW for the class verdict is its upper bound");
     if (std::isfinite(r.noise.N.upper_95)) r.arw_deg_sqrt_h = arw_deg_sqrt_h(r.noise.N.upper_95);
   }
+  if (!r.noise.ramp_set_aside.empty())
+    r.notes.push_back("noise-model fit: " + r.noise.ramp_set_aside);
   if (r.noise.status == FitStatus::iteration_limit) {
     r.notes.push_back("noise-model fit: " + r.noise.message);
   }

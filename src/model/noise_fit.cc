@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
 
 #include "foglab/core/error.h"
 #include "foglab/stats/edf.h"
@@ -186,6 +188,42 @@ std::string set_aside_unresolved_gauss_markov(const detail::Points& p,
   return why;
 }
 
+// A rate ramp R is a deterministic trend, which the record's least-squares
+// slope estimates (NoiseFitOptions::record_slope_deg_h_s). When the chosen
+// model's R is resolved and its 95 % interval lies above |slope| + 3
+// standard deviations of the slope under the model's other terms, the
+// rise at the last taus is not a ramp in this record (a random walk's
+// excursion ends a record steeper than it runs through it): every
+// candidate with R is left out of `fits`; returns why (empty: it stands).
+std::string set_aside_unsupported_ramp(std::vector<detail::SubsetFit>& fits,
+                                       const NoiseFitResult& r, const NoiseFitOptions& options) {
+  constexpr double kSigmas = 3.0;
+  const double slope = options.record_slope_deg_h_s, span = options.record_span_s;
+  if (!r.terms.contains(NoiseTerm::ramp) || r.R.status != TermStatus::resolved ||
+      !std::isfinite(slope) || !(span > 0.0)) {
+    return {};
+  }
+  NoiseModel others = r.model;
+  others.R = 0.0;
+  const double sd = slope_standard_deviation(others, span);
+  const double supported = std::fabs(slope) + kSigmas * sd;
+  if (!(r.R.ci95_low > supported)) return {};
+  const auto kept = std::count_if(fits.begin(), fits.end(), [](const detail::SubsetFit& f) {
+    return !f.terms.contains(NoiseTerm::ramp);
+  });
+  if (kept == 0) return {};
+  std::erase_if(fits, [](const detail::SubsetFit& f) { return f.terms.contains(NoiseTerm::ramp); });
+  return fmt::format(
+      "the model {} had a rate ramp R = {:.4g} deg/h/s [{:.4g}, {:.4g}], but the record's "
+      "least-squares slope over its {:.6g} s is {:.4g} deg/h/s, and the model's other terms "
+      "({}) allow {:.4g} deg/h/s at most (3 standard deviations of the slope beyond it): the "
+      "rise at the last taus is not a ramp in this record, so the models with R are left out",
+      to_string(r.terms), r.model.R, r.R.ci95_low, r.R.ci95_high, span, slope,
+      to_string(
+          NoiseTermSet::from_mask(r.terms.mask() & ~NoiseTermSet{}.with(NoiseTerm::ramp).mask())),
+      supported);
+}
+
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
@@ -203,12 +241,20 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
   recheck_bandwidth(p, bandwidth, fits, options);
   if (fits.empty()) return degenerate(p);
-  // 3-6. The evidence and the intervals; then the Gauss-Markov rule.
+  // 3-6. The evidence and the intervals; then the ramp and the
+  // Gauss-Markov rules.
   NoiseFitResult r = conclude(p, fits, bandwidth, known_white, lines, options);
+  const std::string ramp = set_aside_unsupported_ramp(fits, r, options);
+  if (!ramp.empty()) {
+    r = conclude(p, fits, bandwidth, known_white, lines, options);
+    r.ramp_set_aside = ramp;
+    r.message += "; " + ramp;
+  }
   if (std::string why = set_aside_unresolved_gauss_markov(p, fits, r, options); !why.empty()) {
     r = conclude(p, fits, bandwidth, known_white, lines, options);
+    r.ramp_set_aside = ramp;
     r.gauss_markov_set_aside = why;
-    r.message += "; " + why;
+    r.message += (ramp.empty() ? "; " : "; " + ramp + "; ") + why;
   }
   return r;
 }
@@ -279,6 +325,39 @@ double fitted_allan_variance(const NoiseFitResult& fit, double tau_s) {
                fit.known_white_deg_h_sqrt_hz * fit.known_white_deg_h_sqrt_hz / tau_s;
   for (NoiseTerm t : kNoiseTerms) sum += fitted_allan_variance(fit, t, tau_s);
   return sum;
+}
+
+double slope_standard_deviation(const NoiseModel& model, double span_s) {
+  const double t = span_s;
+  double variance = 12.0 * model.N * model.N / (t * t * t) +
+                    9.0 * model.B * model.B / (std::numbers::pi * t * t) +
+                    1.2 * model.K * model.K / t;
+  if (model.gm_sigma > 0.0 && model.gm_tc > 0.0) {
+    // int_0^1 exp(-l x) r(x) dx with r(x) = 1/12 - x/4 + x^3/6, from the
+    // moments e_n = int_0^1 x^n exp(-l x) dx: a series for small l, the
+    // recurrence e_n = (n e_(n-1) - exp(-l)) / l otherwise.
+    const double l = t / model.gm_tc;
+    std::array<double, 4> e{};
+    if (l < 1.0) {
+      for (int n = 0; n < 4; ++n) {
+        double term = 1.0, sum = 0.0;  // (-l)^k / k!
+        for (int k = 0; k < 30; ++k) {
+          sum += term / (n + k + 1);
+          term *= -l / (k + 1);
+        }
+        e[static_cast<std::size_t>(n)] = sum;
+      }
+    } else {
+      const double tail = std::exp(-l);
+      e[0] = -std::expm1(-l) / l;
+      for (int n = 1; n < 4; ++n) {
+        e[static_cast<std::size_t>(n)] = (n * e[static_cast<std::size_t>(n - 1)] - tail) / l;
+      }
+    }
+    const double integral = e[0] / 12.0 - e[1] / 4.0 + e[3] / 6.0;
+    variance += 288.0 * model.gm_sigma * model.gm_sigma / (t * t) * std::max(0.0, integral);
+  }
+  return std::sqrt(variance);
 }
 
 double DetrendFactors::factor(NoiseTerm term, std::size_t index, double tc_s) const {

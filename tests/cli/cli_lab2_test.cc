@@ -67,6 +67,40 @@ TEST(CliLab2, GeneratedVariantWritesTheReportTablesAndEachAnalysis) {
   EXPECT_THAT(r.err, Not(HasSubstr("analysing")));
 }
 
+// The main job: `foglab lab2` on its default (variant 1, seed 2021, the
+// full 3 h records) must agree with its answer key on the random-bias
+// process and the class, for both gyros and both runs, and hold the ramp
+// runs' temperature coefficient c1 in its interval.
+TEST(CliLab2, TheDefaultAgreesWithItsAnswerKey) {
+  test::TempDir dir;
+  const test::CliRun r = run_foglab("lab2 --no-plots --out " + quote(dir / "o"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(test::read_file(dir / "o" / "lab2_table.csv"));
+  int checked = 0;
+  for (std::string line; std::getline(in, line);) {
+    const bool process = line.find(",random bias process,") != std::string::npos;
+    const bool cls = line.find(",accuracy class,") != std::string::npos;
+    const bool c1 = line.find(",temperature coefficient c1,") != std::string::npos &&
+                    line.find(",ramp,") != std::string::npos;
+    if (!process && !cls && !c1) continue;
+    // The last seven fields (none of these rows has a comma in them): unit,
+    // condition, value, ci95_low, ci95_high, text, truth.
+    std::vector<std::string> all;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) all.push_back(v);
+    ASSERT_GE(all.size(), 7u) << line;
+    const std::vector<std::string> f(all.end() - 7, all.end());
+    if (c1) {
+      EXPECT_LE(std::stod(f[3]), std::stod(f[6])) << line;
+      EXPECT_GE(std::stod(f[4]), std::stod(f[6])) << line;
+    } else {
+      EXPECT_EQ(f[5].substr(0, f[6].size()), f[6]) << line;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 10);  // 2 gyros x (2 processes + 2 classes + 1 c1)
+}
+
 TEST(CliLab2, TheLabsFilesGiveTheTableOfTheSameDataGeneratedInMemory) {
   test::TempDir dir;
   const test::CliRun data = run_foglab("lab2-data --hours 1 --seed 7 --out " + quote(dir / "data"));

@@ -99,7 +99,9 @@ TEST(Bandwidth, GeneratedFlickerThroughTheOutputFilterFollowsTheFlickerFactor) {
     o.duration_s = 10.0 * 3600.0;
     o.seed = 5;
     const std::vector<double> rate = sim::generate(m, sim::TemperatureProfile{}, o).rate_deg_h;
-    return stats::allan_deviation(rate, fs, InputKind::rate, {.confidence = false}).dev;
+    stats::AllanOptions deviations_only;
+    deviations_only.confidence = false;
+    return stats::allan_deviation(rate, fs, InputKind::rate, deviations_only).dev;
   };
   const std::vector<double> plain = adev({});
   sim::SensorOutput moving;

@@ -47,6 +47,8 @@
 // (`NoiseFitResult::line_variance_scale`). A Gauss-Markov candidate whose
 // Tc goes to the shortest searched is left out: a correlation below the
 // first tau is the white level's and the bandwidth's, not a random bias.
+// A rate ramp R is checked against the record's own least-squares slope
+// (NoiseFitOptions::record_slope_deg_h_s; `NoiseFitResult::ramp_set_aside`).
 //
 // The edf of each point is Greenhall's for the noise type that dominates the
 // candidate model there (white N: alpha 0, flicker B: -1, random walk K and
@@ -109,6 +111,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -174,7 +177,27 @@ struct NoiseFitOptions {
   /// the rounding of a quantised output word (output_quantisation.h). N is
   /// then the sensor's own white level. 0: none.
   double known_white_deg_h_sqrt_hz = 0.0;
+  /// [deg/h/s] The record's least-squares slope against time, and its span
+  /// [s] (both NaN: unknown). A rate ramp R is a deterministic trend: the
+  /// record's slope then estimates it. When the chosen model's R has its
+  /// 95 % interval above |slope| + 3 standard deviations of the slope under
+  /// the model's other terms (slope_standard_deviation()), the rise at the
+  /// last taus is not a ramp in that record (a random walk's excursion, for
+  /// one), and the models with R are left out
+  /// (NoiseFitResult::ramp_set_aside). analyze() sets these where nothing
+  /// but the mean was removed from the record.
+  double record_slope_deg_h_s = std::numeric_limits<double>::quiet_NaN();
+  double record_span_s = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// The standard deviation [deg/h/s] of the least-squares slope against time
+/// of a record of span T [s] whose noise is `model` (its stochastic terms:
+/// white 12 N^2 / T^3, flicker 9 B^2 / (pi T^2), random walk 1.2 K^2 / T,
+/// Gauss-Markov 288 sigma^2 / T^2 * int_0^1 exp(-x T / Tc) r(x) dx with
+/// r(x) = 1/12 - x/4 + x^3/6, the slope weight's autocorrelation; the
+/// continuous-time forms, from the weights' autocorrelation over each
+/// term's autocovariance or semivariogram). The ramp R and Q add nothing.
+double slope_standard_deviation(const NoiseModel& model, double span_s);
 
 /// The sensor bandwidth the fit found (core/sensor_bandwidth.h): a part of
 /// the white noise low-pass filtered before sampling. It is a property of
@@ -255,6 +278,10 @@ struct NoiseFitResult {
   /// one (its Tc's interval does not close inside the record); empty when
   /// none was.
   std::string gauss_markov_set_aside;
+  /// Why the models with a rate ramp R were left out (the record's own
+  /// slope does not support the ramp the chosen one had;
+  /// NoiseFitOptions::record_slope_deg_h_s); empty when they were not.
+  std::string ramp_set_aside;
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
