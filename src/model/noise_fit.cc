@@ -219,9 +219,7 @@ std::string set_aside_unsupported_ramp(std::vector<detail::SubsetFit>& fits,
       "({}) allow {:.4g} deg/h/s at most (3 standard deviations of the slope beyond it): the "
       "rise at the last taus is not a ramp in this record, so the models with R are left out",
       to_string(r.terms), r.model.R, r.R.ci95_low, r.R.ci95_high, span, slope,
-      to_string(
-          NoiseTermSet::from_mask(r.terms.mask() & ~NoiseTermSet{}.with(NoiseTerm::ramp).mask())),
-      supported);
+      to_string(r.terms.without(NoiseTerm::ramp)), supported);
 }
 
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,

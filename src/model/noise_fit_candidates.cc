@@ -202,13 +202,18 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
   return fit;
 }
 
-// The correlation times tried for a Gauss-Markov term: from half the
-// shortest tau (from the shortest, when the sensor bandwidth is modelled:
-// a shorter correlation is the bandwidth's) to well beyond the longest
-// (where the process looks like a random walk), six per decade, then
-// golden-section refinement around the best.
+namespace {
+
+// The shortest Gauss-Markov correlation time tried: half the shortest tau
+// (the shortest, when the sensor bandwidth is modelled: a shorter
+// correlation is the bandwidth's).
 double shortest_tc(const Points& p) { return p.tau.front() * (p.white_shape.empty() ? 0.5 : 1.0); }
 
+}  // namespace
+
+// The correlation times tried for a Gauss-Markov term: from shortest_tc()
+// to well beyond the longest tau (where the process looks like a random
+// walk), six per decade, then golden-section refinement around the best.
 SubsetFit fit_subset_profiled(const Points& p, NoiseTermSet terms) {
   if (!terms.contains(NoiseTerm::gauss_markov)) return fit_subset(p, terms, 1.0);
   const double lo = std::log(shortest_tc(p));

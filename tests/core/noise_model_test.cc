@@ -148,6 +148,8 @@ TEST(NoiseModel, CoefficientsAndTermSets) {
   EXPECT_EQ(m.terms().parameter_count(), 7);
   EXPECT_EQ(to_string(NoiseModel{.N = 1.0, .K = 2.0}.terms()), "N+K");
   EXPECT_EQ(to_string(NoiseTermSet{}), "none");
+  EXPECT_EQ(to_string(m.terms().without(NoiseTerm::ramp)), "N+B+K+Q+GM");
+  EXPECT_EQ(to_string(NoiseModel{.N = 1.0}.terms().without(NoiseTerm::ramp)), "N");
   for (const char* text : {"none", "N", "N+B+K", "N+GM", "B+R+Q"}) {
     EXPECT_EQ(to_string(noise_term_set_from_string(text)), text);
   }

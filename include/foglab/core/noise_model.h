@@ -77,6 +77,7 @@ class NoiseTermSet {
   constexpr bool empty() const { return bits_ == 0; }
   constexpr bool contains(NoiseTerm t) const { return (bits_ & bit(t)) != 0; }
   constexpr NoiseTermSet with(NoiseTerm t) const { return from_mask(bits_ | bit(t)); }
+  constexpr NoiseTermSet without(NoiseTerm t) const { return from_mask(bits_ & ~bit(t)); }
   /// The number of fitted parameters: one per term, two for Gauss-Markov.
   constexpr int parameter_count() const {
     int count = 0;
