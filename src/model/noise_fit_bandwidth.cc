@@ -15,13 +15,13 @@
 // Nelder-Mead simplex (phi and T trade off along a narrow valley, which
 // coordinate steps crawled down: they stopped at phi 0.77, T 0.67 tau0 for
 // a whole-output filter of 0.54 tau0, with N 1 % high), and over phi and
-// the length k (2 .. 32 samples) of a moving average; the better of the two kinds is taken. It is
-// resolved when it lowers that deviance by more than its two parameters
-// cost in the selection criterion (2 x the penalty, times the dispersion),
-// takes at least 0.5 % from the first point's Allan variance and does not
-// sit at the longest T or k searched. It is then held for every candidate,
-// and kept only if the best candidate with it beats the best without it by
-// more than those two parameters' cost (noise_fit.cc).
+// the length k (2 .. 32 samples) of a moving average; the better of the
+// two kinds is taken. It is resolved when it lowers that deviance by more
+// than its two parameters cost in the selection criterion (2 x the
+// penalty, times the dispersion), takes at least 0.5 % from the first
+// point's Allan variance and does not sit at the longest T or k searched. It is then held for every
+// candidate, and kept only if the best candidate with it beats the best without it by more than
+// those two parameters' cost (noise_fit.cc).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,6 +65,22 @@ struct Trial {
   int k = 1;  // > 1: a moving average over k samples
 };
 
+// Golden section of f on [a, b]; returns the best abscissa and value.
+template <class F>
+std::pair<double, double> golden(F f, double a, double b) {
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = b - g * (b - a), x2 = a + g * (b - a);
+  double f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < 30 && b - a > 1e-4; ++it) {
+    if (f1 < f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = f(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = f(x2);
+    }
+  }
+  return f1 < f2 ? std::pair{x1, f1} : std::pair{x2, f2};
+}
+
 class Search {
  public:
   Search(Points& p, NoiseTermSet terms, double tc)
@@ -104,22 +120,6 @@ class Search {
       p_.white_shape[i] = white_allan_factor(bandwidth, p_.tau[i], tau0_);
       p_.flicker_shape[i] = 1.0 - bandwidth.filtered_fraction * (1.0 - it->second[i]);
     }
-  }
-
-  // Golden section of f on [a, b]; returns the best abscissa and value.
-  template <class F>
-  static std::pair<double, double> golden(F f, double a, double b) {
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = f(x1), f2 = f(x2);
-    for (int it = 0; it < 30 && b - a > 1e-4; ++it) {
-      if (f1 < f2) {
-        b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = f(x1);
-      } else {
-        a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = f(x2);
-      }
-    }
-    return f1 < f2 ? std::pair{x1, f1} : std::pair{x2, f2};
   }
 
   std::vector<Trial> trials;  // every (phi, T) tried
@@ -248,17 +248,8 @@ double find_line_scale(Points& p, const NoiseFitOptions& options) {
     if (const double d = deviance(x); d < best) best = d, best_log = x;
   }
   const double step = 2.0 * kLogRange / kSteps;
-  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-  double a = best_log - step, b = best_log + step;
-  double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = deviance(x1), f2 = deviance(x2);
-  for (int it = 0; it < 30 && b - a > 1e-4; ++it) {
-    if (f1 < f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = deviance(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = deviance(x2);
-    }
-  }
-  if (std::min(f1, f2) < best) best = std::min(f1, f2), best_log = f1 < f2 ? x1 : x2;
+  const auto [x, d] = golden(deviance, best_log - step, best_log + step);
+  if (d < best) best = d, best_log = x;
   const int spare = static_cast<int>(p.y.size()) - terms.parameter_count() - 1;
   const double dispersion = std::max(1.0, best / std::max(1, spare));
   const bool taken = std::isfinite(best) && as_read - best > options.penalty * dispersion;
