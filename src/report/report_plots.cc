@@ -258,6 +258,27 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
   if (psd.frequency_hz.empty()) return plot;
   const double f_lo = psd.frequency_hz.front(), f_hi = psd.frequency_hz.back();
 
+  // Each spectral line the analysis found, shaded over its bins (at least
+  // one bin of the raw estimate wide, so a single-bin line shows).
+  const double bin_hz =
+      r.psd.frequency_hz.size() > 1 ? r.psd.frequency_hz[1] - r.psd.frequency_hz[0] : 0.0;
+  for (const SpectralLine& line : r.noise.lines) {
+    if (line.bin_frequency_hz.empty()) continue;
+    const auto [low, high] =
+        std::minmax_element(line.bin_frequency_hz.begin(), line.bin_frequency_hz.end());
+    Series region;
+    region.title = fmt::format("spectral line {} Hz, {} deg/h rms (in the fit as known noise)",
+                               g(line.frequency_hz), g(std::sqrt(line.variance)));
+    region.style = SeriesStyle::band;
+    region.color = kPurple;
+    region.fill_opacity = 0.2;
+    region.sets_range = false;
+    region.x = {*low - 0.5 * bin_hz, *high + 0.5 * bin_hz};
+    region.y_low = {1e-30, 1e-30};
+    region.y_high = {1e30, 1e30};
+    plot.series.push_back(std::move(region));
+  }
+
   const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N);
   if (n) {
     Series white = reference_line(

@@ -276,6 +276,35 @@ TEST(Report, PlotsMarkStepsSpikesAndTheBandwidth) {
   EXPECT_GT(lowered, 0.01 / 1.1);
 }
 
+TEST(Report, PsdPlotShadesTheSpectralLine) {
+  // A 20 Hz sinusoid of 1,000 deg/h amplitude on the white noise: the PSD
+  // plot shades the line's bins, around 20 Hz and narrower than 1 Hz, and
+  // names its rms; a record without one has no such region.
+  sim::ErrorModel m;
+  m.output.sinusoids = {{20.0, 1000.0, 0.0}};
+  sim::Recording rec = effects_hour(m, 4);
+  ReportInput in;
+  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz);
+  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz);
+  ASSERT_EQ(r.noise.lines.size(), 1u);
+  const std::vector<Plot> plots = report_plots(r, in);
+  const Series* region = titled(plots[1], "spectral line 20");
+  ASSERT_NE(region, nullptr);
+  EXPECT_EQ(region->style, SeriesStyle::band);
+  EXPECT_FALSE(region->sets_range);
+  ASSERT_EQ(region->x.size(), 2u);
+  EXPECT_LT(region->x[0], 20.0);
+  EXPECT_GT(region->x[1], 20.0);
+  EXPECT_LT(region->x[1] - region->x[0], 1.0);
+  EXPECT_NE(region->title.find(" deg/h rms"), std::string::npos) << region->title;
+  EXPECT_NEAR(std::sqrt(r.noise.lines.front().variance), 1000.0 / std::sqrt(2.0), 50.0);
+
+  sim::Recording plain = effects_hour(sim::ErrorModel{}, 4);
+  const model::AnalysisResult none = model::analyze(plain.rate_deg_h, {}, plain.sample_rate_hz);
+  ASSERT_TRUE(none.noise.lines.empty());
+  EXPECT_EQ(titled(report_plots(none, in)[1], "spectral line"), nullptr);
+}
+
 TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
   // Ten minutes lost after the first quarter hour: the time plot shades
   // them, no line crosses them, and a spike after them sits at its true time.
