@@ -13,6 +13,8 @@ constexpr double kBandsPerDecade = 20.0;
 constexpr double kFloorHalfWidth = 0.2;  // decades either side of a band's centre
 constexpr double kSmoothing = 0.005;     // moving-average width, relative to f
 constexpr double kBinRatio = 3.0;        // a line's smoothed bins stand this far above the floor
+constexpr double kSkirtSignificance = 4.0;  // a found line extends while they stand this many
+                                            // standard errors above the floor
 constexpr double kPeakRatio = 4.0;       // its highest smoothed bin this far
 constexpr double kSignificance = 10.0;   // its excess this many standard errors
 constexpr std::size_t kLowestBin = 64;   // in resolutions
@@ -54,18 +56,30 @@ std::vector<double> noise_floor(const stats::PsdResult& psd) {
 
 // The PSD averaged over a window 0.5 % of f wide (at least 3 bins), which
 // takes the Welch estimate's scatter off a broad hump.
+std::size_t smoothing_half_width(std::size_t k) {
+  return static_cast<std::size_t>(std::max(1.0, 0.5 * kSmoothing * static_cast<double>(k)));
+}
+
 std::vector<double> smoothed(const stats::PsdResult& psd) {
   const std::size_t n = psd.psd.size();
   std::vector<double> prefix(n + 1, 0.0);
   for (std::size_t k = 0; k < n; ++k) prefix[k + 1] = prefix[k] + psd.psd[k];
   std::vector<double> out(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const auto h =
-        static_cast<std::size_t>(std::max(1.0, 0.5 * kSmoothing * static_cast<double>(k)));
+    const std::size_t h = smoothing_half_width(k);
     const std::size_t a = k >= h ? k - h : 0, b = std::min(n, k + h + 1);
     out[k] = (prefix[b] - prefix[a]) / static_cast<double>(b - a);
   }
   return out;
+}
+
+// Whether the smoothed PSD at bin k stands above the floor by more than its
+// scatter allows: a Welch average of K segments over 2h+1 bins scatters by
+// about sqrt(2 / (K (2h+1))) of its mean (the factor 2 for the Hann window's
+// correlation of neighbouring bins).
+bool above_floor(double smooth, double floor, std::size_t k, double segments) {
+  const double bins = static_cast<double>(2 * smoothing_half_width(k) + 1);
+  return smooth > floor * (1.0 + kSkirtSignificance * std::sqrt(2.0 / (segments * bins)));
 }
 
 }  // namespace
@@ -91,26 +105,44 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
       if (smooth[end] > kBinRatio * floor[end]) last = end;
       ++end;
     }
-    SpectralLine line;
-    double excess = 0.0, floor_sum = 0.0, weighted_f = 0.0;
+    double excess = 0.0, floor_sum = 0.0, peak_ratio = 0.0;
     for (std::size_t b = k; b <= last; ++b) {
-      const double e = std::max(0.0, psd.psd[b] - floor[b]);
-      line.bin_frequency_hz.push_back(psd.frequency_hz[b]);
-      line.bin_variance.push_back(2.0 * e * df);
-      line.peak_ratio = std::max(line.peak_ratio, smooth[b] / floor[b]);
-      excess += e;
+      excess += std::max(0.0, psd.psd[b] - floor[b]);
       floor_sum += floor[b];
-      weighted_f += e * psd.frequency_hz[b];
+      peak_ratio = std::max(peak_ratio, smooth[b] / floor[b]);
     }
     const double bins = static_cast<double>(last - k + 1);
     const double standard_error = floor_sum / bins * std::sqrt(bins / segments);
-    if (excess > kSignificance * standard_error && line.peak_ratio > kPeakRatio) {
+    if (!(excess > kSignificance * standard_error && peak_ratio > kPeakRatio)) {
+      k = last + 1;
+      continue;
+    }
+    // The skirts of a found line (a broad resonance's flanks) belong to it.
+    std::size_t low = k, high = last;
+    while (low > kLowestBin && above_floor(smooth[low - 1], floor[low - 1], low - 1, segments)) {
+      --low;
+    }
+    while (high + 1 < n && above_floor(smooth[high + 1], floor[high + 1], high + 1, segments)) {
+      ++high;
+    }
+    {
+      SpectralLine line;
+      line.peak_ratio = peak_ratio;
+      double weighted_f = 0.0;
+      excess = 0.0;
+      for (std::size_t b = low; b <= high; ++b) {
+        const double e = std::max(0.0, psd.psd[b] - floor[b]);
+        line.bin_frequency_hz.push_back(psd.frequency_hz[b]);
+        line.bin_variance.push_back(2.0 * e * df);
+        excess += e;
+        weighted_f += e * psd.frequency_hz[b];
+      }
       line.frequency_hz = weighted_f / excess;
-      line.width_hz = psd.frequency_hz[last] - psd.frequency_hz[k];
+      line.width_hz = psd.frequency_hz[high] - psd.frequency_hz[low];
       line.variance = 2.0 * excess * df;
       lines.push_back(std::move(line));
     }
-    k = last + 1;
+    k = high + 1;
   }
   std::sort(lines.begin(), lines.end(),
             [](const SpectralLine& a, const SpectralLine& b) { return a.variance > b.variance; });

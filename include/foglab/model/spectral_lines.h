@@ -9,9 +9,15 @@
 // and whose excess over the floor is more than 10 times its own standard
 // error (the floor times sqrt(bins / segments): a Welch average of K
 // segments scatters by about 1/sqrt(K)). Only bins from 64 times the
-// resolution up are searched. The line's bins carry their excess,
-// 2 (S - floor) df each (both signs of f). A resonance hump a few hertz
-// wide is a line in this sense: its bins are summed as they are.
+// resolution up are searched. A line found extends over its skirts: the
+// neighbouring bins whose averaged PSD stays more than four of its standard
+// errors (sqrt(2 / (K bins averaged))) above the floor, so a broad
+// resonance's flanks are part of it, with their own frequencies (on the
+// ADIS16405 z axes the line grows from 2.5-3.3 Hz to 9.6-10.1 Hz wide, and
+// the bins hold three quarters of a resonance's variance instead of half).
+// The line's bins carry their excess, 2 (S - floor) df each (both signs of
+// f). A resonance hump a few hertz wide is a line in this sense: its bins
+// are summed as they are.
 #pragma once
 
 #include <vector>
