@@ -90,11 +90,15 @@ TEST_P(RealGyro, WhiteLevelBandwidthAndClass) {
     outside +=
         model < allan["ci95_low"][i].get<double>() || model > allan["ci95_high"][i].get<double>();
   }
-  EXPECT_LE(outside, 3) << "of " << allan["tau_s"].size() << " taus";
-  // The interval holds the estimate and is not degenerate.
+  EXPECT_LE(outside, 2) << "of " << allan["tau_s"].size() << " taus";
+  // The interval holds the estimate, is not degenerate, and is narrow: a
+  // million samples fix the white level to well under 1 % (on the z axes it
+  // had been -23/+58 % while the 20 Hz resonance's skirts were left out and
+  // the bandwidths the first taus could not tell apart spread it).
   const auto& ci = j["noise_model"]["N"]["ci95"];
   EXPECT_LT(ci[0].get<double>(), n);
   EXPECT_GT(ci[1].get<double>(), n);
+  EXPECT_LT(ci[1].get<double>() / ci[0].get<double>(), 1.03) << ci;
 
   const json& bw = j["sensor_bandwidth"];
   ASSERT_TRUE(bw["resolved"].get<bool>());
