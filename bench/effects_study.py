@@ -82,9 +82,10 @@ def summarise(results, effect_name, misses=None):
                                 ("gm_sigma", m["gm_sigma"], gs_err), ("gm_tc", m["gm_tc"], gt_err)):
             if true > 0:
                 sink.append(rel(key, true))
-                lo, hi = nm[key]["ci95"] or (None, None)  # null: the term is absent
+                # null: no interval; [low, null]: open above (docs/json.md)
+                lo, hi = nm[key]["ci95"] or (None, None)
                 total += 1
-                hit = lo is not None and hi is not None and lo <= true <= hi
+                hit = lo is not None and lo <= true <= (hi if hi is not None else float("inf"))
                 inside += hit
                 if not hit and misses is not None:
                     misses.append(f"seed {truth.get('seed', '?')}: {key} truth {true:.4g}, "
