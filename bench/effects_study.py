@@ -42,6 +42,7 @@ def effects(grade):
         "none": [],
         "low-pass": ["--filter-tc", "0.0054"],
         "moving-average": ["--moving-average", "4"],
+        "butterworth": ["--butterworth", "25"],
         "lsb": ["--lsb", f"{0.5 * sd:.6g}"],
         "sine": ["--sine", f"20:{3 * sd:.6g}"],
         "spikes": ["--spikes", f"3:{20 * sd:.6g}"],
@@ -98,6 +99,10 @@ def summarise(results, effect_name, misses=None):
                       and not r["output_quantisation"]["detected"])
         elif effect_name in ("low-pass", "moving-average"):
             found += r["sensor_bandwidth"]["resolved"]
+        elif effect_name == "butterworth":  # the kind, and f_c within 5 %
+            b = r["sensor_bandwidth"]
+            found += (b["resolved"] and b["kind"] == "butterworth_second_order"
+                      and abs(b["cutoff_hz"] / out["butterworth_cutoff_hz"] - 1) < 0.05)
         elif effect_name == "lsb":
             found += (r["output_quantisation"]["detected"] and
                       abs(r["output_quantisation"]["lsb_deg_h"] / out["lsb_deg_h"] - 1) < 1e-6)

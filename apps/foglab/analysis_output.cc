@@ -156,18 +156,21 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
             {"deviance_drop", number(b.deviance_drop)},
             {"at_search_bound", b.at_search_bound}};
   }
-  const bool ma = b.bandwidth.moving_average();
-  return {{"resolved", true},
-          {"kind", ma ? "moving_average" : "first_order"},
-          {"moving_average_samples", b.bandwidth.moving_average_samples},
-          {"time_constant_s", ma ? nlohmann::json(nullptr) : number(b.bandwidth.time_constant_s)},
-          {"cutoff_hz", number(b.cutoff_hz)},
-          {"filtered_fraction", number(b.bandwidth.filtered_fraction)},
-          {"lag1_correlation", number(b.lag1_correlation)},
-          {"first_tau_reduction", number(b.first_tau_reduction)},
-          {"sample_interval_s", number(b.sample_interval_s)},
-          {"deviance_drop", number(b.deviance_drop)},
-          {"at_search_bound", b.at_search_bound}};
+  const bool ma = b.bandwidth.moving_average(), bw = b.bandwidth.butterworth();
+  return {
+      {"resolved", true},
+      {"kind", ma   ? "moving_average"
+               : bw ? "butterworth_second_order"
+                    : "first_order"},
+      {"moving_average_samples", b.bandwidth.moving_average_samples},
+      {"time_constant_s", ma || bw ? nlohmann::json(nullptr) : number(b.bandwidth.time_constant_s)},
+      {"cutoff_hz", number(b.cutoff_hz)},
+      {"filtered_fraction", number(b.bandwidth.filtered_fraction)},
+      {"lag1_correlation", number(b.lag1_correlation)},
+      {"first_tau_reduction", number(b.first_tau_reduction)},
+      {"sample_interval_s", number(b.sample_interval_s)},
+      {"deviance_drop", number(b.deviance_drop)},
+      {"at_search_bound", b.at_search_bound}};
 }
 
 nlohmann::json spikes_json(const model::AnalysisResult& r) {

@@ -189,6 +189,7 @@ constexpr FlagOfField kFlagsOfFields[] = {
     {R"(SensorOutput::steps\[\]\.\w+)", "--step"},
     {R"(SensorOutput::moving_average_samples)", "--moving-average"},
     {R"(SensorOutput::filter_time_constant_s)", "--filter-tc"},
+    {R"(SensorOutput::butterworth_cutoff_hz)", "--butterworth"},
     {R"(SensorOutput::spike_(rate_per_hour|size_deg_h))", "--spikes"},
     {R"(SensorOutput::lsb_deg_h)", "--lsb"},
 };

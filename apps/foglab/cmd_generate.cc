@@ -36,6 +36,7 @@ struct GenerateCommand {
   std::string truth;
   // The sensor's output chain (sim/sensor_output.h).
   std::optional<double> filter_tc;
+  std::optional<double> butterworth_hz;
   int moving_average = 1;
   std::vector<std::string> sines, steps;
   std::string spikes;
@@ -87,6 +88,7 @@ sim::SensorOutput sensor_output_of(const GenerateCommand& c) {
   }
   o.moving_average_samples = c.moving_average;
   if (c.filter_tc) o.filter_time_constant_s = *c.filter_tc;
+  if (c.butterworth_hz) o.butterworth_cutoff_hz = *c.butterworth_hz;
   if (c.lsb) o.lsb_deg_h = *c.lsb;
   for (const std::string& text : c.drops) {
     const auto v = numbers_of("--drop", text, ':', 2, 2, "T:D (start and duration in s)");
@@ -133,6 +135,9 @@ nlohmann::json sensor_output_json(const sim::SensorOutput& o, const sim::Generat
           {"filter_cutoff_hz",
            tc > 0 ? nlohmann::json(1.0 / (2.0 * std::numbers::pi * tc)) : nlohmann::json(nullptr)},
           {"filter_lag1", tc > 0 ? std::exp(-1.0 / (g.sample_rate_hz * tc)) : 0.0},
+          {"butterworth_cutoff_hz", o.butterworth_cutoff_hz > 0
+                                        ? nlohmann::json(o.butterworth_cutoff_hz)
+                                        : nlohmann::json(nullptr)},
           {"spike_rate_per_hour", o.spike_rate_per_hour},
           {"spike_size_deg_h", o.spike_size_deg_h},
           {"spike_times_s", sim::spike_times_s(o, g.sample_rate_hz, g.seed, g.stream, samples)},
@@ -349,6 +354,8 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--truth", c->truth, "write the truth as JSON ('-' for stdout)");
   cmd->add_option("--filter-tc", c->filter_tc,
                   "sensor bandwidth: first-order low-pass time constant on the output [s]");
+  cmd->add_option("--butterworth", c->butterworth_hz,
+                  "sensor bandwidth: second-order Butterworth low-pass cut-off on the output [Hz]");
   cmd->add_option("--moving-average", c->moving_average,
                   "sensor bandwidth: moving average over this many samples")
       ->capture_default_str();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 namespace foglab {
 
@@ -63,7 +64,67 @@ double flicker_ratio(std::int64_t m, std::int64_t reach, Autocorrelation a) {
   return sum / (-2.0 * md * md * std::numbers::ln2);
 }
 
+// The Butterworth's samples' autocorrelation a_j, j = 0 .. R, for unit
+// white level per sample (sum over all j of a_j = 1, the unit DC gain):
+// its impulse response h, run until it stays below 1e-16 of its largest
+// magnitude, correlated with itself. The bandwidth search asks for the
+// same few cut-offs many times, so the last ones are kept.
+const std::vector<double>& butterworth_autocorrelation(double cutoff_hz, double tau0) {
+  thread_local std::vector<std::pair<double, std::vector<double>>> cache;
+  const double key = cutoff_hz * tau0;
+  for (const auto& [k, a] : cache) {
+    if (k == key) return a;
+  }
+  const auto [b0, b1, b2, a1, a2] = butterworth_coefficients(cutoff_hz, tau0);
+  std::vector<double> h;
+  double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0, largest = 0.0;
+  for (int n = 0, quiet = 0; quiet < 64 && n < 1000000; ++n) {
+    const double x = n == 0 ? 1.0 : 0.0;
+    const double y = b0 * x + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
+    x2 = x1, x1 = x, y2 = y1, y1 = y;
+    h.push_back(y);
+    largest = std::max(largest, std::fabs(y));
+    quiet = std::fabs(y) < 1e-16 * largest ? quiet + 1 : 0;
+  }
+  std::vector<double> a(h.size(), 0.0);
+  for (std::size_t j = 0; j < h.size(); ++j) {
+    for (std::size_t n = 0; n + j < h.size(); ++n) a[j] += h[n] * h[n + j];
+  }
+  if (cache.size() >= 64) cache.erase(cache.begin());
+  cache.emplace_back(key, std::move(a));
+  return cache.back().second;
+}
+
+// m AVAR(m) of a filtered white sequence of unit level with autocorrelation
+// a_j (j = 0 .. R, zero beyond): the variance of an m-average less the
+// covariance of two neighbouring ones, as ma_allan_factor(); for m > R in
+// closed form, 1 - 3 sum_j j a_j / m.
+double allan_factor_of(const std::vector<double>& a, std::int64_t m) {
+  const auto reach = static_cast<std::int64_t>(a.size()) - 1;
+  if (m > reach) {
+    double first_moment = 0.0;
+    for (std::int64_t j = 1; j <= reach; ++j) first_moment += static_cast<double>(j) * a[j];
+    return 1.0 - 3.0 * first_moment / static_cast<double>(m);
+  }
+  auto at = [&](std::int64_t j) { return j <= reach ? a[static_cast<std::size_t>(j)] : 0.0; };
+  double var = static_cast<double>(m) * a[0], cov = 0.0;
+  for (std::int64_t j = 1; j < m; ++j) var += 2.0 * static_cast<double>(m - j) * at(j);
+  for (std::int64_t j = 1; j <= 2 * m - 1 && j <= reach; ++j) {
+    const std::int64_t d = j - m;
+    cov += static_cast<double>(m - (d < 0 ? -d : d)) * at(j);
+  }
+  return (var - cov) / static_cast<double>(m);
+}
+
 }  // namespace
+
+std::array<double, 5> butterworth_coefficients(double cutoff_hz, double sample_interval_s) {
+  const double k = std::tan(std::numbers::pi * cutoff_hz * sample_interval_s);
+  const double norm = 1.0 / (1.0 + std::numbers::sqrt2 * k + k * k);
+  const double b0 = k * k * norm;
+  return {b0, 2.0 * b0, b0, 2.0 * (k * k - 1.0) * norm,
+          (1.0 - std::numbers::sqrt2 * k + k * k) * norm};
+}
 
 double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
                             double sample_interval_s) {
@@ -75,6 +136,12 @@ double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
     // 1 - g falls as (k / m)^2: beyond 4096 k it is below 1e-7.
     if (m > 4096 * static_cast<std::int64_t>(k)) return 1.0;
     g = flicker_ratio(m, k - 1, [k](std::int64_t j) { return ma_autocovariance(k, j); });
+  } else if (bandwidth.butterworth()) {
+    const std::vector<double>& a =
+        butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s);
+    const auto reach = static_cast<std::int64_t>(a.size()) - 1;
+    if (m > 4096 * (reach + 1)) return 1.0;
+    g = flicker_ratio(m, reach, [&a](std::int64_t j) { return a[static_cast<std::size_t>(j)]; });
   } else {
     const double rho = filtered_lag1(bandwidth, sample_interval_s);
     const double samples = bandwidth.time_constant_s / sample_interval_s;
@@ -89,6 +156,7 @@ double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
 }
 
 double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  if (bandwidth.butterworth()) return bandwidth.butterworth_cutoff_hz;
   if (bandwidth.moving_average()) {
     if (!(sample_interval_s > 0.0)) return std::numeric_limits<double>::infinity();
     // |sin(pi f k tau0) / (k sin(pi f tau0))| = 1/sqrt(2), by bisection on f.
@@ -109,6 +177,12 @@ double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s) {
 }
 
 double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  if (bandwidth.butterworth()) {
+    if (!(sample_interval_s > 0.0)) return 0.0;
+    const std::vector<double>& a =
+        butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s);
+    return a.size() > 1 ? a[1] / a[0] : 0.0;
+  }
   if (bandwidth.moving_average()) {
     return static_cast<double>(bandwidth.moving_average_samples - 1) /
            bandwidth.moving_average_samples;
@@ -123,6 +197,12 @@ double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
   if (bandwidth.moving_average()) {
     const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
     const double g = ma_allan_factor(bandwidth.moving_average_samples, m);
+    return 1.0 - bandwidth.filtered_fraction * (1.0 - g);
+  }
+  if (bandwidth.butterworth()) {
+    const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
+    const double g = allan_factor_of(
+        butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s), m);
     return 1.0 - bandwidth.filtered_fraction * (1.0 - g);
   }
   const double rho = filtered_lag1(bandwidth, sample_interval_s);
@@ -140,6 +220,12 @@ double white_lag1_correlation(const SensorBandwidth& bandwidth, double sample_in
     const int k = bandwidth.moving_average_samples;
     const double phi = bandwidth.filtered_fraction;
     return phi * ma_autocovariance(k, 1) / ((1.0 - phi) + phi * ma_autocovariance(k, 0));
+  }
+  if (bandwidth.butterworth()) {
+    const std::vector<double>& a =
+        butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s);
+    const double phi = bandwidth.filtered_fraction;
+    return a.size() > 1 ? phi * a[1] / ((1.0 - phi) + phi * a[0]) : 0.0;
   }
   // White level S = phi S + (1 - phi) S; the filtered part's variance is
   // phi S (1 - rho) / (1 + rho), its lag-1 covariance rho times that; the

@@ -140,6 +140,9 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
 struct BandwidthSearch {
   BandwidthEstimate estimate;
   std::vector<SensorBandwidth> near;
+  /// The reference model's deviance with the bandwidth found (without one
+  /// when none is resolved); infinite when the search did not run.
+  double reference_deviance = kInf;
 };
 
 /// The factor on the spectral lines' variance that the short taus ask for
@@ -157,7 +160,8 @@ void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth);
 /// resolve it, sets p.white_shape and p.flicker_shape; returns what it found.
 /// `gm_tc_s` > 0 adds a Gauss-Markov process of that correlation time to
 /// the reference model.
-BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s = 0.0);
+BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s = 0.0,
+                               bool butterworth = true);
 
 /// Widens N's interval to the union over the bandwidths the data do not
 /// tell apart (the chosen terms refitted with each): the white level is

@@ -76,6 +76,14 @@ std::string bandwidth_sentence(const model::BandwidthEstimate& b) {
         g(100.0 * b.bandwidth.filtered_fraction), g(b.lag1_correlation),
         g(100.0 * b.first_tau_reduction));
   }
+  if (b.bandwidth.butterworth()) {
+    return fmt::format(
+        "a second-order Butterworth low-pass at {} Hz, on {} % of the white noise (lag-1 "
+        "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, "
+        "and N is the white level above it",
+        g(b.cutoff_hz), g(100.0 * b.bandwidth.filtered_fraction), g(b.lag1_correlation),
+        g(100.0 * b.first_tau_reduction));
+  }
   return fmt::format(
       "time constant {} s, first-order cut-off {} Hz, on {} % of the white noise (lag-1 "
       "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, and "

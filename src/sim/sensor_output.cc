@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <utility>
 
 #include "foglab/core/error.h"
+#include "foglab/core/sensor_bandwidth.h"
 #include "foglab/sim/generator.h"
 #include "generator_internal.h"
 
@@ -42,7 +44,8 @@ void check(bool ok, std::string_view field, double value, std::string_view expec
 
 bool SensorOutput::any() const {
   return !sinusoids.empty() || !steps.empty() || moving_average_samples > 1 ||
-         filter_time_constant_s > 0.0 || spike_rate_per_hour > 0.0 || lsb_deg_h > 0.0;
+         filter_time_constant_s > 0.0 || butterworth_cutoff_hz > 0.0 || spike_rate_per_hour > 0.0 ||
+         lsb_deg_h > 0.0;
 }
 
 void validate(const SensorOutput& o, double sample_rate_hz) {
@@ -63,6 +66,10 @@ void validate(const SensorOutput& o, double sample_rate_hz) {
         "moving_average_samples", o.moving_average_samples, "1 .. 100000");
   check(std::isfinite(o.filter_time_constant_s) && o.filter_time_constant_s >= 0.0,
         "filter_time_constant_s", o.filter_time_constant_s, "a finite number >= 0");
+  check(std::isfinite(o.butterworth_cutoff_hz) && o.butterworth_cutoff_hz >= 0.0 &&
+            o.butterworth_cutoff_hz < 0.5 * sample_rate_hz,
+        "butterworth_cutoff_hz", o.butterworth_cutoff_hz,
+        ">= 0 (0: none) and below half the sample rate");
   check(std::isfinite(o.spike_rate_per_hour) && o.spike_rate_per_hour >= 0.0, "spike_rate_per_hour",
         o.spike_rate_per_hour, "a finite number >= 0");
   check(std::isfinite(o.spike_size_deg_h) && o.spike_size_deg_h >= 0.0, "spike_size_deg_h",
@@ -152,6 +159,12 @@ double output_filter_gain(const SensorOutput& output, double frequency_hz, doubl
     const double re = 1.0 - rho * std::cos(w), im = rho * std::sin(w);
     gain *= (1.0 - rho) / std::sqrt(re * re + im * im);
   }
+  if (output.butterworth_cutoff_hz > 0.0) {
+    const std::array<double, 5> c =
+        butterworth_coefficients(output.butterworth_cutoff_hz, 1.0 / sample_rate_hz);
+    const std::complex<double> z1 = std::polar(1.0, -w), z2 = z1 * z1;
+    gain *= std::abs((c[0] + c[1] * z1 + c[2] * z2) / (1.0 + c[3] * z1 + c[4] * z2));
+  }
   return gain;
 }
 
@@ -175,6 +188,9 @@ OutputChain::OutputChain(const SensorOutput& output, double sample_rate_hz, std:
   validate(output_, sample_rate_hz);
   if (output_.filter_time_constant_s > 0.0) {
     rho_ = std::exp(-1.0 / (sample_rate_hz * output_.filter_time_constant_s));
+  }
+  if (output_.butterworth_cutoff_hz > 0.0) {
+    biquad_ = butterworth_coefficients(output_.butterworth_cutoff_hz, 1.0 / sample_rate_hz);
   }
   window_.assign(static_cast<std::size_t>(output_.moving_average_samples - 1), 0.0);
 }
@@ -208,6 +224,18 @@ void OutputChain::apply(std::int64_t first, double* rate, std::size_t count) {
       filtered_ = started_ ? rho_ * filtered_ + (1.0 - rho_) * x : x;
       started_ = true;
       x = filtered_;
+    }
+    if (biquad_[0] > 0.0) {
+      const auto& [b0, b1, b2, a1, a2] = biquad_;
+      if (!biquad_started_) {  // the steady state of a constant input x
+        z1_ = x * (1.0 - b0);
+        z2_ = x * (b2 - a2);
+        biquad_started_ = true;
+      }
+      const double y = b0 * x + z1_;
+      z1_ = b1 * x - a1 * y + z2_;
+      z2_ = b2 * x - a2 * y;
+      x = y;
     }
     // 3. Spikes.
     if (spike_at(key_spike_, index, p_spike)) {

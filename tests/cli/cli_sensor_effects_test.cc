@@ -125,6 +125,22 @@ TEST(SensorEffects, MovingAverageIsFoundWithItsLength) {
   EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
 }
 
+TEST(SensorEffects, ButterworthIsFoundWithItsCutoff) {
+  // A second-order anti-alias filter at a quarter of the sample rate: the
+  // truth names it, analyze finds the kind and f_c, and the report says so.
+  const test::TempDir dir;
+  const Generated r =
+      generate_and_analyze(dir.path(), "--N 150 --B 30 --fs 100 --hours 2 --butterworth 25", 4);
+  ASSERT_TRUE(r.analysis.is_object());
+  EXPECT_EQ(r.truth["sensor_output"]["butterworth_cutoff_hz"], 25.0);
+  const json& bw = r.analysis["sensor_bandwidth"];
+  ASSERT_TRUE(bw["resolved"].get<bool>());
+  EXPECT_EQ(bw["kind"], "butterworth_second_order");
+  EXPECT_TRUE(bw["time_constant_s"].is_null());
+  EXPECT_NEAR(bw["cutoff_hz"].get<double>() / 25.0, 1.0, 0.05);
+  EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.01);
+}
+
 TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {
   // Three dropouts (30 s, half a second and 15 min) in a CSV and a MAT file:
   // the time column shows them, analyze and allan use the stretches, and N,
@@ -183,6 +199,8 @@ TEST(SensorEffects, BadEffectOptionsAreUsageErrorsNamingTheFlag) {
        std::vector<std::pair<std::string, std::string>>{{"--sine 6:1", "--sine"},
                                                         {"--sine 1:x", "--sine"},
                                                         {"--moving-average 0", "--moving-average"},
+                                                        {"--butterworth 5", "--butterworth"},
+                                                        {"--butterworth -1", "--butterworth"},
                                                         {"--spikes 3", "--spikes"},
                                                         {"--lsb -1", "--lsb"},
                                                         {"--step 10", "--step"}}) {

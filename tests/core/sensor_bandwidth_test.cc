@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <vector>
 
@@ -151,6 +152,77 @@ TEST(SensorBandwidth, FlickerFactorEqualsTheBruteForceSumOverTheSemivariogram) {
   EXPECT_NEAR(flicker_allan_factor(SensorBandwidth{1.0, 0.0, 4}, tau0, tau0), 0.12989, 1e-5);
   EXPECT_NEAR(flicker_allan_factor(SensorBandwidth{1.0, 0.0, 4}, 1e4 * tau0, tau0), 1.0, 1e-6);
   EXPECT_EQ(flicker_allan_factor(SensorBandwidth{}, tau0, tau0), 1.0);
+}
+
+// The second-order Butterworth low-pass from Bristow-Johnson's "Audio EQ
+// Cookbook" (its LPF with Q = 1/sqrt(2): w0 = 2 pi f_c tau0, alpha =
+// sin(w0) / (2 Q), b = ((1 - cos w0) / 2, 1 - cos w0, (1 - cos w0) / 2),
+// a = (1 + alpha, -2 cos w0, 1 - alpha)), a derivation independent of
+// butterworth_coefficients(): its impulse response, `taps` long.
+std::vector<double> cookbook_butterworth_response(double fc_tau0, int taps) {
+  const double w0 = 2.0 * std::numbers::pi * fc_tau0, alpha = std::sin(w0) / std::sqrt(2.0);
+  const double a0 = 1.0 + alpha;
+  const double b0 = (1.0 - std::cos(w0)) / 2.0 / a0, b1 = 2.0 * b0, b2 = b0;
+  const double a1 = -2.0 * std::cos(w0) / a0, a2 = (1.0 - alpha) / a0;
+  std::vector<double> h;
+  double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
+  for (int n = 0; n < taps; ++n) {
+    const double x = n == 0 ? 1.0 : 0.0;
+    const double y = b0 * x + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
+    x2 = x1, x1 = x, y2 = y1, y1 = y;
+    h.push_back(y);
+  }
+  return h;
+}
+
+// m AVAR(m) of unit white noise through the filter h, by brute force: the
+// weights of two neighbouring m-averages on the white samples.
+double filtered_white_allan_by_weights(const std::vector<double>& h, int m) {
+  std::vector<double> w(2 * static_cast<std::size_t>(m) + h.size() - 1, 0.0);
+  for (int i = 0; i < 2 * m; ++i) {
+    for (std::size_t j = 0; j < h.size(); ++j) w[i + j] += (i < m ? -1.0 : 1.0) * h[j] / m;
+  }
+  double ss = 0.0;
+  for (double v : w) ss += v * v;
+  return 0.5 * ss * m;
+}
+
+TEST(SensorBandwidth, ButterworthFactorsEqualTheCookbookFiltersBruteForceSums) {
+  const double tau0 = 0.01;
+  for (double fc_tau0 : {0.05, 0.2, 0.4}) {
+    const std::vector<double> h = cookbook_butterworth_response(fc_tau0, 600);
+    const auto [b0, b1, b2, a1, a2] = butterworth_coefficients(fc_tau0 / tau0, tau0);
+    // Unit gain at DC; -3 dB at the cut-off.
+    double sum = 0.0;
+    std::complex<double> response = 0.0;
+    for (std::size_t n = 0; n < h.size(); ++n) {
+      sum += h[n];
+      response += h[n] * std::polar(1.0, -2.0 * std::numbers::pi * fc_tau0 * n);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    EXPECT_NEAR(std::abs(response), std::sqrt(0.5), 1e-9);
+    EXPECT_NEAR(b0, h[0], 1e-15);
+    for (double phi : {0.5, 1.0}) {
+      const SensorBandwidth bw{phi, 0.0, 1, fc_tau0 / tau0};
+      EXPECT_DOUBLE_EQ(cutoff_hz(bw, tau0), fc_tau0 / tau0);
+      for (int m : {1, 2, 3, 7, 20, 64}) {
+        const double white = filtered_white_allan_by_weights(h, m);
+        EXPECT_NEAR(white_allan_factor(bw, m * tau0, tau0), 1.0 - phi * (1.0 - white), 1e-10)
+            << "f_c " << fc_tau0 << " / tau0, phi " << phi << ", m " << m;
+        const double flicker = filtered_flicker_allan(h, m);
+        EXPECT_NEAR(flicker_allan_factor(bw, m * tau0, tau0), 1.0 - phi * (1.0 - flicker), 1e-9)
+            << "f_c " << fc_tau0 << " / tau0, phi " << phi << ", m " << m;
+      }
+      // Far beyond the response: the closed form 1 - 3 sum j a_j / m
+      // against the brute force.
+      EXPECT_NEAR(white_allan_factor(bw, 700 * tau0, tau0),
+                  1.0 - phi * (1.0 - filtered_white_allan_by_weights(h, 700)), 1e-10);
+      // Lag 1 of the samples: phi a_1 / ((1 - phi) + phi a_0).
+      double a0 = 0.0, a1 = 0.0;
+      for (std::size_t n = 0; n + 1 < h.size(); ++n) a0 += h[n] * h[n], a1 += h[n] * h[n + 1];
+      EXPECT_NEAR(white_lag1_correlation(bw, tau0), phi * a1 / ((1.0 - phi) + phi * a0), 1e-12);
+    }
+  }
 }
 
 TEST(SensorBandwidth, FactorTendsToTheContinuousFilterAndToOne) {

@@ -31,7 +31,10 @@
 // Sensor bandwidth. A gyro's electronics low-pass filter its output, which
 // lowers the first taus' Allan variance below N^2/tau. Before the
 // candidates are fitted, the white term's shape is profiled over a filtered
-// fraction phi and a time constant T (core/sensor_bandwidth.h) with a large
+// fraction phi and a time constant T, a moving average's length k, or a
+// second-order Butterworth's cut-off f_c (core/sensor_bandwidth.h; the
+// Butterworth is taken only when it fits better by more than one
+// parameter's penalty) with a large
 // model without a Gauss-Markov term; when the data resolve it (the deviance
 // drops by more than two parameters' penalty) it is held for every
 // candidate (on the white term and, with the same phi, on the flicker term:

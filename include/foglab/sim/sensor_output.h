@@ -10,7 +10,13 @@
 //   2. the sensor's bandwidth: a moving average over the last k samples
 //      and/or a first-order low-pass y_k = rho y_(k-1) + (1 - rho) x_k with
 //      rho = exp(-tau0 / T) (unit gain at DC; on white noise exactly the
-//      process of core/sensor_bandwidth.h with the whole of it filtered);
+//      process of core/sensor_bandwidth.h with the whole of it filtered),
+//      and/or a second-order Butterworth low-pass at a cut-off f_c (the
+//      bilinear transform with pre-warping: K = tan(pi f_c / fs),
+//      H(z) = K^2 (1 + z^-1)^2 / ((1 + sqrt2 K + K^2) + 2 (K^2 - 1) z^-1 +
+//      (1 - sqrt2 K + K^2) z^-2); unit gain at DC, -3 dB at f_c), as the
+//      anti-aliasing or output filter of gyro electronics; each started at
+//      its first input as if it had been there forever;
 //   3. spikes: isolated outliers of +-size at a mean rate per hour, at
 //      samples drawn independently (a bit error, a vibration knock);
 //   4. the output word: each sample rounded to a whole number of LSBs;
@@ -20,6 +26,7 @@
 //      whose time column then shows the gaps (core/gaps.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +58,7 @@ struct SensorOutput {
   std::vector<BiasStep> steps;
   int moving_average_samples = 1;       ///< k >= 1 (1: none)
   double filter_time_constant_s = 0.0;  ///< [s] T of the first-order low-pass (0: none)
+  double butterworth_cutoff_hz = 0.0;   ///< [Hz] f_c of the second-order low-pass (0: none)
   double spike_rate_per_hour = 0.0;     ///< mean number of spikes per hour
   double spike_size_deg_h = 0.0;        ///< [deg/h] each spike's magnitude (random sign)
   double lsb_deg_h = 0.0;               ///< [deg/h] output step (0: not rounded)
@@ -67,7 +75,7 @@ void validate(const SensorOutput& output, double sample_rate_hz);
 /// The magnitude of the bandwidth filters' response at frequency f [Hz]
 /// (a sinusoid there comes out this much smaller): the moving average's
 /// |sin(pi f k / fs) / (k sin(pi f / fs))| times the low-pass's
-/// (1 - rho) / |1 - rho e^(-i 2 pi f / fs)|.
+/// (1 - rho) / |1 - rho e^(-i 2 pi f / fs)| times the Butterworth's |H|.
 double output_filter_gain(const SensorOutput& output, double frequency_hz, double sample_rate_hz);
 
 /// The times [s] of the spikes the chain puts into a record of `samples`
@@ -105,6 +113,9 @@ class OutputChain {
   std::uint64_t key_spike_, key_sign_;
   double rho_ = 0.0, filtered_ = 0.0;
   bool started_ = false;
+  std::array<double, 5> biquad_{};  // b0, b1, b2, a1, a2 (none: b0 = 0)
+  double z1_ = 0.0, z2_ = 0.0;      // its transposed direct form II state
+  bool biquad_started_ = false;
   std::vector<double> window_;  // the last k - 1 inputs of the moving average
   std::size_t next_ = 0;
   double window_sum_ = 0.0;
