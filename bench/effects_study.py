@@ -43,6 +43,8 @@ def effects(grade):
         "low-pass": ["--filter-tc", "0.0054"],
         "moving-average": ["--moving-average", "4"],
         "butterworth": ["--butterworth", "25"],
+        # two filters in a row, which no single modelled kind follows
+        "cascade": ["--moving-average", "3", "--filter-tc", "0.01"],
         "lsb": ["--lsb", f"{0.5 * sd:.6g}"],
         "sine": ["--sine", f"20:{3 * sd:.6g}"],
         "spikes": ["--spikes", f"3:{20 * sd:.6g}"],
@@ -99,6 +101,9 @@ def summarise(results, effect_name, misses=None):
                       and not r["output_quantisation"]["detected"])
         elif effect_name in ("low-pass", "moving-average"):
             found += r["sensor_bandwidth"]["resolved"]
+        elif effect_name == "cascade":  # a bandwidth, or the first taus left out
+            found += (r["sensor_bandwidth"]["resolved"]
+                      or r["fit"]["first_taus_left_out"] > 0)
         elif effect_name == "butterworth":  # the kind, and f_c within 5 %
             b = r["sensor_bandwidth"]
             found += (b["resolved"] and b["kind"] == "butterworth_second_order"

@@ -147,7 +147,11 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
           {"candidates_total", f.candidates.size()},
           {"candidates", candidates},
           {"ramp_set_aside",
-           f.ramp_set_aside.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.ramp_set_aside)}};
+           f.ramp_set_aside.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.ramp_set_aside)},
+          {"first_taus_left_out", f.first_taus_left_out},
+          {"first_taus_left_out_why", f.first_taus_left_out_why.empty()
+                                          ? nlohmann::json(nullptr)
+                                          : nlohmann::json(f.first_taus_left_out_why)}};
 }
 
 nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {

@@ -438,6 +438,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   }
   if (!r.noise.ramp_set_aside.empty())
     r.notes.push_back("noise-model fit: " + r.noise.ramp_set_aside);
+  if (!r.noise.first_taus_left_out_why.empty())
+    r.notes.push_back("noise-model fit: " + r.noise.first_taus_left_out_why);
   if (r.noise.status == FitStatus::iteration_limit) {
     r.notes.push_back("noise-model fit: " + r.noise.message);
   }

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "foglab/core/error.h"
 #include "foglab/stats/edf.h"
@@ -241,6 +242,22 @@ std::string set_aside_unsupported_ramp(std::vector<detail::SubsetFit>& fits,
       to_string(r.terms.without(NoiseTerm::ramp)), supported);
 }
 
+// The chosen model's dispersion: its deviance over its degrees of freedom
+// (infinite when it has none to spare).
+double dispersion_of(const detail::Points& p, const detail::SubsetFit& chosen) {
+  const int dof = static_cast<int>(p.y.size()) - chosen.terms.parameter_count();
+  return dof > 0 ? chosen.deviance / dof : detail::kInf;
+}
+
+// Leaves out the first point of `p`.
+void drop_first_point(detail::Points& p) {
+  auto drop = [](auto& v) {
+    if (!v.empty()) v.erase(v.begin());
+  };
+  drop(p.tau), drop(p.y), drop(p.v), drop(p.index), drop(p.edf_by_alpha), drop(p.factors);
+  drop(p.fixed_avar), drop(p.line_avar), drop(p.white_shape), drop(p.flicker_shape);
+}
+
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
@@ -257,18 +274,87 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   // 2. Every admissible subset, best first; the best is the chosen model.
   std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
   recheck_bandwidth(p, bandwidth, fits, options);
+  // The output filter of a real sensor can be a cascade (an analog anti-
+  // alias filter, then a digital decimation filter) that none of the
+  // modelled kinds follows; the first taus then pull every term (a first-
+  // order low-pass of 2 samples behind a Butterworth at 0.3 fs: N 44 % low
+  // and a Gauss-Markov term). When the chosen model's dispersion is above
+  // kMisfit, the first one to four points are left out and everything
+  // refitted: the fewest that bring it to kMisfit or below, else those that
+  // lower it most, if below kGain of what it was (keeping eight points). N
+  // is then the white level above the filter. N's interval is then the
+  // fit's own: the bandwidths the remaining first taus cannot tell apart
+  // include shapes that no longer touch the white level there (on these
+  // records the union over them had reached -87 %).
+  // Not with spectral lines: their Allan shape is fitted at the first taus
+  // (the line's factor), and without those taus a line's bumps further out
+  // were taken for an angle quantisation Q.
+  constexpr double kMisfit = 4.0;
+  constexpr double kGain = 0.7;
+  constexpr int kMostLeftOut = 4;
+  int left_out = 0;
+  const double first_tau = p.tau.front();
+  double last_left_out = first_tau;
+  if (p.line_avar.empty() && !fits.empty() && dispersion_of(p, fits.front()) > kMisfit) {
+    struct Trimmed {
+      detail::Points points;
+      detail::BandwidthSearch bandwidth;
+      std::vector<detail::SubsetFit> fits;
+      double dispersion = detail::kInf;
+      int left_out = 0;
+    };
+    std::optional<Trimmed> best;
+    detail::Points trimmed = p;
+    for (int k = 1; k <= kMostLeftOut && trimmed.y.size() > 8; ++k) {
+      drop_first_point(trimmed);
+      detail::Points q = trimmed;
+      detail::BandwidthSearch again = find_bandwidth_and_line_scale(q, options);
+      std::vector<detail::SubsetFit> refits = detail::fit_candidates(q, options);
+      if (refits.empty()) break;
+      const double d = dispersion_of(q, refits.front());
+      if (!best || d < best->dispersion) {
+        best = Trimmed{std::move(q), std::move(again), std::move(refits), d, k};
+      }
+      if (d <= kMisfit) break;
+    }
+    if (best && best->dispersion < kGain * dispersion_of(p, fits.front())) {
+      left_out = best->left_out;
+      last_left_out = p.tau[static_cast<std::size_t>(left_out) - 1];
+      p = std::move(best->points);
+      bandwidth = std::move(best->bandwidth);
+      bandwidth.near.clear();
+      fits = std::move(best->fits);
+    }
+  }
   if (fits.empty()) return degenerate(p);
   // 3-6. The evidence and the intervals; then the ramp and the
   // Gauss-Markov rules.
   NoiseFitResult r = conclude(p, fits, bandwidth, known_white, lines, options);
+  std::string trimmed_why;
+  if (left_out > 0) {
+    trimmed_why = fmt::format(
+        "the first {} tau(s) ({:.6g} s to {:.6g} s) were left out: no modelled output filter "
+        "(first-order, moving average, Butterworth) followed them (the fit's dispersion was "
+        "above 4 with them, and leaving each out lowered it by more than 30 %), so the terms rest "
+        "on the taus from {:.6g} s",
+        left_out, first_tau, last_left_out, p.tau.front());
+  }
+  auto mark = [&](NoiseFitResult& result) {
+    result.first_taus_left_out = left_out;
+    result.first_taus_left_out_why = trimmed_why;
+    if (left_out > 0) result.message += "; " + trimmed_why;
+  };
+  mark(r);
   const std::string ramp = set_aside_unsupported_ramp(fits, r, options);
   if (!ramp.empty()) {
     r = conclude(p, fits, bandwidth, known_white, lines, options);
+    mark(r);
     r.ramp_set_aside = ramp;
     r.message += "; " + ramp;
   }
   if (std::string why = set_aside_unresolved_gauss_markov(p, fits, r, options); !why.empty()) {
     r = conclude(p, fits, bandwidth, known_white, lines, options);
+    mark(r);
     r.ramp_set_aside = ramp;
     r.gauss_markov_set_aside = why;
     r.message += (ramp.empty() ? "; " : "; " + ramp + "; ") + why;

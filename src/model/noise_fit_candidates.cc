@@ -276,11 +276,20 @@ std::vector<SubsetFit> fit_candidates(const Points& p, const NoiseFitOptions& op
     if (terms.parameter_count() >= static_cast<int>(p.y.size())) continue;
     SubsetFit f = fit_subset_final(p, terms);
     // A Gauss-Markov term that wants its Tc at the shortest tried (below
-    // the first tau) is no random bias: a correlation that short is the
-    // white level's and the bandwidth's, and its sigma and Tc would be
-    // reported at a search bound. The subset is left out.
+    // the first tau), or within the reach of an output filter (up to
+    // kFilterReach samples), is no random bias: a correlation that short is
+    // the white level's and the bandwidth's (for tau >> Tc it adds 2
+    // sigma^2 Tc to N^2), and its sigma and Tc would be reported at a search
+    // bound. The subset is left out. (On a 3-sample moving average behind a
+    // first-order low-pass, N+GM with Tc = 2.5 samples had carried half the
+    // white level: N 27 % low.)
     constexpr double kAtBound = 1.01;
-    if (terms.contains(NoiseTerm::gauss_markov) && f.tc <= kAtBound * shortest_tc(p)) continue;
+    constexpr double kFilterReach = 8.0;  // samples
+    const double filter_reach = kFilterReach * p.sample_interval_s();
+    if (terms.contains(NoiseTerm::gauss_markov) &&
+        (f.tc <= kAtBound * shortest_tc(p) || f.tc <= filter_reach)) {
+      continue;
+    }
     if (f.feasible) fits.push_back(std::move(f));
   }
   std::sort(fits.begin(), fits.end(), [&](const SubsetFit& a, const SubsetFit& b) {

@@ -125,6 +125,18 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
     while (high + 1 < n && above_floor(smooth[high + 1], floor[high + 1], high + 1, segments)) {
       ++high;
     }
+    // A line falls on both sides: its highest averaged bin stands kBinRatio
+    // above the PSD where its skirts end. A steep roll-off of the output
+    // filter (or a moving average's side lobe) can stand above the running
+    // median on one side only, where the passband's level goes on.
+    double peak = 0.0;
+    for (std::size_t b = k; b <= last; ++b) peak = std::max(peak, smooth[b]);
+    const double below = smooth[low > kLowestBin ? low - 1 : low];
+    const double above = smooth[high + 1 < n ? high + 1 : high];
+    if (!(peak > kBinRatio * below && peak > kBinRatio * above)) {
+      k = high + 1;
+      continue;
+    }
     {
       SpectralLine line;
       line.peak_ratio = peak_ratio;

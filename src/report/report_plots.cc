@@ -355,6 +355,20 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
       plot.series.push_back(std::move(region));
     }
   }
+  if (const auto k = static_cast<std::size_t>(r.noise.first_taus_left_out);
+      k > 0 && k < a.tau_s.size()) {
+    Series region;
+    region.title =
+        fmt::format("first {} tau(s) left out of the fit (no modelled filter follows)", k);
+    region.style = SeriesStyle::band;
+    region.color = kOrange;
+    region.fill_opacity = 0.12;
+    region.sets_range = false;
+    region.x = {a.tau_s.front(), std::sqrt(a.tau_s[k - 1] * a.tau_s[k])};
+    region.y_low = {1e-30, 1e-30};
+    region.y_high = {1e30, 1e30};
+    plot.series.push_back(std::move(region));
+  }
   Series dev;
   dev.title = "OADEV";
   dev.style = SeriesStyle::linespoints;

@@ -141,6 +141,30 @@ TEST(SensorEffects, ButterworthIsFoundWithItsCutoff) {
   EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.01);
 }
 
+TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
+  // A first-order low-pass behind a 3-sample moving average: the JSON says
+  // how many taus were left out and why (in the fit and in the notes); a
+  // single modelled filter leaves none out.
+  const test::TempDir dir;
+  const Generated r = generate_and_analyze(
+      dir.path(), "--N 0.3 --B 0.1 --fs 100 --hours 2 --filter-tc 0.01 --moving-average 3", 1);
+  ASSERT_TRUE(r.analysis.is_object());
+  const json& fit = r.analysis["fit"];
+  EXPECT_GE(fit["first_taus_left_out"].get<int>(), 1);
+  ASSERT_TRUE(fit["first_taus_left_out_why"].is_string());
+  const std::string why = fit["first_taus_left_out_why"];
+  bool noted = false;
+  for (const json& n : r.analysis["notes"])
+    noted = noted || n.get<std::string>().find(why) != std::string::npos;
+  EXPECT_TRUE(noted) << why;
+  EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 0.3, 1.0, 0.01);
+
+  const Generated single =
+      generate_and_analyze(dir.path(), "--N 0.3 --B 0.1 --fs 100 --hours 2 --filter-tc 0.01", 2);
+  EXPECT_EQ(single.analysis["fit"]["first_taus_left_out"], 0);
+  EXPECT_TRUE(single.analysis["fit"]["first_taus_left_out_why"].is_null());
+}
+
 TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {
   // Three dropouts (30 s, half a second and 15 min) in a CSV and a MAT file:
   // the time column shows them, analyze and allan use the stretches, and N,

@@ -77,6 +77,34 @@ TEST(SpectralLine, FoundInTheWelchPsdWithItsVariance) {
   EXPECT_TRUE(none.empty());
 }
 
+TEST(SpectralLine, AFiltersRollOffIsNoLineButALineOnItIs) {
+  // White noise through a steep output filter (a 2-sample average, then a
+  // second-order Butterworth at 15 Hz; made here with the cookbook filter):
+  // the passband stands above the running median of the PSD up to the
+  // roll-off, on one side only, and had been taken for a 24 Hz wide "line"
+  // at 17 Hz. A line falls on both sides; a real one on that filter is
+  // still found.
+  const std::size_t n = 720000;
+  std::vector<double> x = white(150.0, n, 11), y(n);
+  const double w0 = 2.0 * std::numbers::pi * 15.0 / kFs, alpha = std::sin(w0) / std::sqrt(2.0);
+  const double a0 = 1.0 + alpha, b0 = (1.0 - std::cos(w0)) / 2.0 / a0;
+  const double a1 = -2.0 * std::cos(w0) / a0, a2 = (1.0 - alpha) / a0;
+  double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double in = 0.5 * (x[k] + (k > 0 ? x[k - 1] : x[k]));
+    y[k] = b0 * in + 2.0 * b0 * x1 + b0 * x2 - a1 * y1 - a2 * y2;
+    x2 = x1, x1 = in, y2 = y1, y1 = y[k];
+  }
+  stats::WelchOptions w;
+  w.segment_length = 131072;
+  EXPECT_TRUE(find_spectral_lines(stats::welch_psd(y, kFs, w)).empty());
+  const std::vector<double> s = sinusoid(300.0, 9.0, n);
+  for (std::size_t k = 0; k < n; ++k) y[k] += s[k];
+  const std::vector<SpectralLine> lines = find_spectral_lines(stats::welch_psd(y, kFs, w));
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NEAR(lines[0].frequency_hz, 9.0, 0.01);
+}
+
 TEST(SpectralLine, AnalysisKeepsALineOutOfTheNoiseTerms) {
   // White noise N = 150 deg/h/sqrt(Hz) and a 20 Hz line of 500 deg/h rms,
   // 2.78 h at 100 Hz: without the line the fit bent a Gauss-Markov term

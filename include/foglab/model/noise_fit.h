@@ -43,6 +43,14 @@
 // search starts at the shortest tau, and N's interval spans the bandwidths the data cannot tell
 // apart (`NoiseFitResult::bandwidth`).
 //
+// When even so the chosen model's dispersion stays above 4 (an output
+// filter none of the kinds follows, such as a cascade of two), the first
+// tau is left out and everything refitted, while that lowers the
+// dispersion by more than 30 % (at most four taus, keeping eight points;
+// not with spectral lines): `NoiseFitResult::first_taus_left_out`. A
+// Gauss-Markov candidate whose Tc is within eight samples is no random
+// bias but part of the output's bandwidth, and is left out.
+//
 // Spectral lines (model/spectral_lines.h) enter every model as known Allan
 // variance; the factor on their PSD variance that the first taus ask for is
 // profiled with the same reference model (kept when it gains more than one
@@ -285,6 +293,10 @@ struct NoiseFitResult {
   /// slope does not support the ramp the chosen one had;
   /// NoiseFitOptions::record_slope_deg_h_s); empty when they were not.
   std::string ramp_set_aside;
+  /// How many of the first taus were left out because no modelled output
+  /// filter follows them (0: none), and why.
+  int first_taus_left_out = 0;
+  std::string first_taus_left_out_why;
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;

@@ -15,6 +15,11 @@
 // resonance's flanks are part of it, with their own frequencies (on the
 // ADIS16405 z axes the line grows from 2.5-3.3 Hz to 9.6-10.1 Hz wide, and
 // the bins hold three quarters of a resonance's variance instead of half).
+// A line falls on both sides: its highest averaged bin stands three times
+// above the PSD where its skirts end on either side. A steep roll-off of the
+// output filter stands above the running median on one side only (the
+// passband goes on at its level) and is not a line (a 2-sample average
+// before a Butterworth at 15 Hz had given a 24 Hz wide "line" at 17 Hz).
 // The line's bins carry their excess, 2 (S - floor) df each (both signs of
 // f). A resonance hump a few hertz wide is a line in this sense: its bins
 // are summed as they are.
