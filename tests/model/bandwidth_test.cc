@@ -169,6 +169,9 @@ TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
       EXPECT_LE(r.noise.first_taus_left_out, 4);
       EXPECT_NE(r.noise.first_taus_left_out_why.find("left out"), std::string::npos);
       EXPECT_NEAR(r.noise.N.value / 0.3, 1.0, 0.01);
+      // The interval spans the fits with one and two taus more left out.
+      EXPECT_LE(r.noise.N.ci95_low, 0.3);
+      EXPECT_GE(r.noise.N.ci95_high, 0.3);
       EXPECT_EQ(r.noise.B.status, TermStatus::resolved);
       EXPECT_NE(r.noise.gm_sigma.status, TermStatus::resolved);
       EXPECT_LT(r.noise.dispersion, 4.0);
