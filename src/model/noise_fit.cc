@@ -258,6 +258,93 @@ void drop_first_point(detail::Points& p) {
   drop(p.fixed_avar), drop(p.line_avar), drop(p.white_shape), drop(p.flicker_shape);
 }
 
+// The output filter of a real sensor can be a cascade (an analog anti-
+// alias filter, then a digital decimation filter) that none of the
+// modelled kinds follows; the first taus then pull every term (a first-
+// order low-pass of 2 samples behind a Butterworth at 0.3 fs: N 44 % low
+// and a Gauss-Markov term). When the chosen model's dispersion is above
+// kMisfit, the first one to four points are left out and everything
+// refitted: the fewest that bring it to kMisfit or below, else those that
+// lower it most, if below kGain of what it was (keeping eight points). N
+// is then the white level above the filter. Not with spectral lines: their
+// Allan shape is fitted at the first taus (the line's factor), and without
+// those taus a line's bumps further out were taken for an angle
+// quantisation Q. The bandwidths the remaining first taus cannot tell
+// apart include shapes that no longer touch the white level there (the
+// union of N over them had reached -87 %), so N's interval is not widened
+// over them; n_interval_further_in() widens it instead.
+struct LeftOut {
+  int count = 0;
+  double first_tau_s = 0.0, last_tau_s = 0.0;  ///< [s] the first and the last left out
+};
+
+LeftOut leave_out_unfollowed_first_taus(detail::Points& p, detail::BandwidthSearch& bandwidth,
+                                        std::vector<detail::SubsetFit>& fits,
+                                        const NoiseFitOptions& options) {
+  constexpr double kMisfit = 4.0;
+  constexpr double kGain = 0.7;
+  constexpr int kMostLeftOut = 4;
+  LeftOut left_out;
+  if (!p.line_avar.empty() || fits.empty() || !(dispersion_of(p, fits.front()) > kMisfit)) {
+    return left_out;
+  }
+  struct Trimmed {
+    detail::Points points;
+    detail::BandwidthSearch bandwidth;
+    std::vector<detail::SubsetFit> fits;
+    double dispersion = detail::kInf;
+    int left_out = 0;
+  };
+  std::optional<Trimmed> best;
+  detail::Points trimmed = p;
+  for (int k = 1; k <= kMostLeftOut && trimmed.y.size() > 8; ++k) {
+    drop_first_point(trimmed);
+    detail::Points q = trimmed;
+    detail::BandwidthSearch again = find_bandwidth_and_line_scale(q, options);
+    std::vector<detail::SubsetFit> refits = detail::fit_candidates(q, options);
+    if (refits.empty()) break;
+    const double d = dispersion_of(q, refits.front());
+    if (!best || d < best->dispersion) {
+      best = Trimmed{std::move(q), std::move(again), std::move(refits), d, k};
+    }
+    if (d <= kMisfit) break;
+  }
+  if (!best || !(best->dispersion < kGain * dispersion_of(p, fits.front()))) return left_out;
+  left_out = {best->left_out, p.tau.front(), p.tau[static_cast<std::size_t>(best->left_out) - 1]};
+  p = std::move(best->points);
+  bandwidth = std::move(best->bandwidth);
+  bandwidth.near.clear();
+  fits = std::move(best->fits);
+  return left_out;
+}
+
+// Where the filter's reach ends is itself uncertain: with taus left out,
+// N's interval spans the fits with one and two taus more left out too (the
+// filter still bends the first kept taus a little; on cascades N moved by
+// 0.3-0.9 %, against a fit-own interval of +-0.3 %). The union of those
+// fits' N intervals; none without taus left out.
+std::optional<std::pair<double, double>> n_interval_further_in(const detail::Points& p,
+                                                               int left_out, double known_white,
+                                                               std::span<const SpectralLine> lines,
+                                                               const NoiseFitOptions& options) {
+  std::optional<std::pair<double, double>> n;
+  detail::Points q = p;
+  for (int more = 1; left_out > 0 && more <= 2 && q.y.size() > 8; ++more) {
+    drop_first_point(q);
+    detail::Points trial = q;
+    detail::BandwidthSearch again = find_bandwidth_and_line_scale(trial, options);
+    again.near.clear();
+    const std::vector<detail::SubsetFit> refits = detail::fit_candidates(trial, options);
+    if (refits.empty()) break;
+    const NoiseFitResult further = conclude(trial, refits, again, known_white, lines, options);
+    if (further.N.status != TermStatus::resolved) continue;
+    if (!n) n = std::pair{further.N.ci95_low, further.N.ci95_high};
+    n->first = std::min(n->first, further.N.ci95_low);
+    n->second = std::max(n->second, further.N.ci95_high);
+  }
+  return n;
+}
+
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
@@ -274,94 +361,26 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   // 2. Every admissible subset, best first; the best is the chosen model.
   std::vector<detail::SubsetFit> fits = detail::fit_candidates(p, options);
   recheck_bandwidth(p, bandwidth, fits, options);
-  // The output filter of a real sensor can be a cascade (an analog anti-
-  // alias filter, then a digital decimation filter) that none of the
-  // modelled kinds follows; the first taus then pull every term (a first-
-  // order low-pass of 2 samples behind a Butterworth at 0.3 fs: N 44 % low
-  // and a Gauss-Markov term). When the chosen model's dispersion is above
-  // kMisfit, the first one to four points are left out and everything
-  // refitted: the fewest that bring it to kMisfit or below, else those that
-  // lower it most, if below kGain of what it was (keeping eight points). N
-  // is then the white level above the filter. N's interval is then the
-  // fit's own: the bandwidths the remaining first taus cannot tell apart
-  // include shapes that no longer touch the white level there (on these
-  // records the union over them had reached -87 %).
-  // Not with spectral lines: their Allan shape is fitted at the first taus
-  // (the line's factor), and without those taus a line's bumps further out
-  // were taken for an angle quantisation Q.
-  constexpr double kMisfit = 4.0;
-  constexpr double kGain = 0.7;
-  constexpr int kMostLeftOut = 4;
-  int left_out = 0;
-  const double first_tau = p.tau.front();
-  double last_left_out = first_tau;
-  if (p.line_avar.empty() && !fits.empty() && dispersion_of(p, fits.front()) > kMisfit) {
-    struct Trimmed {
-      detail::Points points;
-      detail::BandwidthSearch bandwidth;
-      std::vector<detail::SubsetFit> fits;
-      double dispersion = detail::kInf;
-      int left_out = 0;
-    };
-    std::optional<Trimmed> best;
-    detail::Points trimmed = p;
-    for (int k = 1; k <= kMostLeftOut && trimmed.y.size() > 8; ++k) {
-      drop_first_point(trimmed);
-      detail::Points q = trimmed;
-      detail::BandwidthSearch again = find_bandwidth_and_line_scale(q, options);
-      std::vector<detail::SubsetFit> refits = detail::fit_candidates(q, options);
-      if (refits.empty()) break;
-      const double d = dispersion_of(q, refits.front());
-      if (!best || d < best->dispersion) {
-        best = Trimmed{std::move(q), std::move(again), std::move(refits), d, k};
-      }
-      if (d <= kMisfit) break;
-    }
-    if (best && best->dispersion < kGain * dispersion_of(p, fits.front())) {
-      left_out = best->left_out;
-      last_left_out = p.tau[static_cast<std::size_t>(left_out) - 1];
-      p = std::move(best->points);
-      bandwidth = std::move(best->bandwidth);
-      bandwidth.near.clear();
-      fits = std::move(best->fits);
-    }
-  }
+  const LeftOut left_out = leave_out_unfollowed_first_taus(p, bandwidth, fits, options);
   if (fits.empty()) return degenerate(p);
-  // Where the filter's reach ends is itself uncertain: with taus left out,
-  // N's interval spans the fits with one and two taus more left out too
-  // (the filter still bends the first kept taus a little; on cascades N
-  // moved by 0.3-0.9 %, against a fit-own interval of +-0.3 %).
-  std::optional<std::pair<double, double>> next_n;
-  detail::Points q = p;
-  for (int more = 1; left_out > 0 && more <= 2 && q.y.size() > 8; ++more) {
-    drop_first_point(q);
-    detail::Points trial = q;
-    detail::BandwidthSearch again = find_bandwidth_and_line_scale(trial, options);
-    again.near.clear();
-    const std::vector<detail::SubsetFit> refits = detail::fit_candidates(trial, options);
-    if (refits.empty()) break;
-    const NoiseFitResult further = conclude(trial, refits, again, known_white, lines, options);
-    if (further.N.status != TermStatus::resolved) continue;
-    if (!next_n) next_n = std::pair{further.N.ci95_low, further.N.ci95_high};
-    next_n->first = std::min(next_n->first, further.N.ci95_low);
-    next_n->second = std::max(next_n->second, further.N.ci95_high);
-  }
+  const std::optional<std::pair<double, double>> next_n =
+      n_interval_further_in(p, left_out.count, known_white, lines, options);
   // 3-6. The evidence and the intervals; then the ramp and the
   // Gauss-Markov rules.
   NoiseFitResult r = conclude(p, fits, bandwidth, known_white, lines, options);
   std::string trimmed_why;
-  if (left_out > 0) {
+  if (left_out.count > 0) {
     trimmed_why = fmt::format(
         "the first {} tau(s) ({:.6g} s to {:.6g} s) were left out: no modelled output filter "
         "(first-order, moving average, Butterworth) followed them (the fit's dispersion was "
         "above 4 with them, and leaving them out lowered it by more than 30 %), so the terms rest "
         "on the taus from {:.6g} s; N's interval spans the fits with one and two more left out",
-        left_out, first_tau, last_left_out, p.tau.front());
+        left_out.count, left_out.first_tau_s, left_out.last_tau_s, p.tau.front());
   }
   auto mark = [&](NoiseFitResult& result) {
-    result.first_taus_left_out = left_out;
+    result.first_taus_left_out = left_out.count;
     result.first_taus_left_out_why = trimmed_why;
-    if (left_out > 0) result.message += "; " + trimmed_why;
+    if (left_out.count > 0) result.message += "; " + trimmed_why;
     if (next_n && result.N.status == TermStatus::resolved) {
       result.N.ci95_low = std::min(result.N.ci95_low, next_n->first);
       result.N.ci95_high = std::max(result.N.ci95_high, next_n->second);
