@@ -134,26 +134,23 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
     const double below = smooth[low > kLowestBin ? low - 1 : low];
     const double above = smooth[high + 1 < n ? high + 1 : high];
     if (!(peak > kBinRatio * below && peak > kBinRatio * above)) {
-      k = high + 1;
+      k = last + 1;  // a real line on the shoulder is still looked for
       continue;
     }
-    {
-      SpectralLine line;
-      line.peak_ratio = peak_ratio;
-      double weighted_f = 0.0;
-      excess = 0.0;
-      for (std::size_t b = low; b <= high; ++b) {
-        const double e = std::max(0.0, psd.psd[b] - floor[b]);
-        line.bin_frequency_hz.push_back(psd.frequency_hz[b]);
-        line.bin_variance.push_back(2.0 * e * df);
-        excess += e;
-        weighted_f += e * psd.frequency_hz[b];
-      }
-      line.frequency_hz = weighted_f / excess;
-      line.width_hz = psd.frequency_hz[high] - psd.frequency_hz[low];
-      line.variance = 2.0 * excess * df;
-      lines.push_back(std::move(line));
+    SpectralLine line;
+    line.peak_ratio = peak_ratio;
+    double line_excess = 0.0, weighted_f = 0.0;
+    for (std::size_t b = low; b <= high; ++b) {
+      const double e = std::max(0.0, psd.psd[b] - floor[b]);
+      line.bin_frequency_hz.push_back(psd.frequency_hz[b]);
+      line.bin_variance.push_back(2.0 * e * df);
+      line_excess += e;
+      weighted_f += e * psd.frequency_hz[b];
     }
+    line.frequency_hz = weighted_f / line_excess;
+    line.width_hz = psd.frequency_hz[high] - psd.frequency_hz[low];
+    line.variance = 2.0 * line_excess * df;
+    lines.push_back(std::move(line));
     k = high + 1;
   }
   std::sort(lines.begin(), lines.end(),
