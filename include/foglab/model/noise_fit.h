@@ -45,9 +45,10 @@
 //
 // When even so the chosen model's dispersion stays above 4 (an output
 // filter none of the kinds follows, such as a cascade of two), the first
-// tau is left out and everything refitted, while that lowers the
-// dispersion by more than 30 % (at most four taus, keeping eight points;
-// not with spectral lines): `NoiseFitResult::first_taus_left_out`; N's
+// one to four taus are left out and everything refitted: the fewest that
+// bring the dispersion to 4 or below, else those that lower it most, when
+// that is by more than 30 % (keeping eight points; not with spectral
+// lines): `NoiseFitResult::first_taus_left_out`; N's
 // interval is then the union of the fits with one and two more left out. A
 // Gauss-Markov candidate whose Tc is within eight samples is no random
 // bias but part of the output's bandwidth, and is left out.
