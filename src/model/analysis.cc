@@ -326,8 +326,9 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.gaps.assign(gaps.begin(), gaps.end());
   if (!gaps.empty()) r.notes.push_back(gap_note(rate_deg_h.size(), gaps, sample_rate_hz));
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
-  r.spikes = find_spikes(rate_deg_h, options.spikes);
-  r.steps = find_steps(rate_deg_h, options.steps);
+  const double lsb = r.output_quantisation.detected ? r.output_quantisation.lsb_deg_h : 0.0;
+  r.spikes = find_spikes(rate_deg_h, options.spikes, lsb);
+  r.steps = find_steps(rate_deg_h, options.steps, lsb);
   if (!r.steps.indices.empty()) {
     std::string list;
     for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
@@ -406,7 +407,9 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         q.lsb_deg_h < q.sample_sd_deg_h
             ? "which the fit takes as known: N is the sensor's own white level"
             : "which the fitted N includes: the step is not below the samples' spread, so the "
-              "rounding is not noise-like and the short-tau statistics are distorted"));
+              "rounding is not noise-like and the short-tau statistics are distorted (N, B and "
+              "the class then describe the output word, not the sensor; spikes must depart by "
+              "four steps, and steps be at least one)"));
   }
   r.evidence = evidence_of(s);
   r.psd = std::move(s.psd);

@@ -37,13 +37,15 @@ double robust_sd(std::span<const double> y) {
 
 }  // namespace
 
-Spikes find_spikes(std::span<double> y, const SpikeOptions& options) {
+Spikes find_spikes(std::span<double> y, const SpikeOptions& options, double lsb_deg_h) {
   Spikes s;
   const std::size_t n = y.size();
   if (n < 16) return s;
   s.robust_sd_deg_h = robust_sd(y);
   if (!(s.robust_sd_deg_h > 0.0)) return s;
-  s.threshold_deg_h = options.threshold * s.robust_sd_deg_h;
+  constexpr double kLeastSteps = 4.0;  // output steps a spike departs by at least
+  s.threshold_deg_h =
+      std::max(options.threshold * s.robust_sd_deg_h, kLeastSteps * std::max(0.0, lsb_deg_h));
   std::vector<std::size_t> found;
   for (std::size_t k = 1; k + 1 < n; ++k) {
     const double h = h_at(y, k);

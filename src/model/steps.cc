@@ -71,7 +71,7 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
 
 }  // namespace
 
-BiasSteps find_steps(std::span<double> y, const StepOptions& options) {
+BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb_deg_h) {
   BiasSteps steps;
   const auto n = static_cast<std::int64_t>(y.size());
   double mean = 0.0;
@@ -92,6 +92,7 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options) {
       if (c.index >= 0 && c.z > best.z) best = c;
     }
     if (best.index < 0 || !(best.z > options.threshold)) break;
+    if (!(std::fabs(best.size) > 0.0) || std::fabs(best.size) < lsb_deg_h) break;
     for (std::int64_t k = best.index; k < n; ++k) y[static_cast<std::size_t>(k)] -= best.size;
     steps.indices.push_back(best.index);
     steps.sizes_deg_h.push_back(best.size);

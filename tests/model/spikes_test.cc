@@ -15,6 +15,28 @@ std::vector<double> white(std::size_t n, std::uint64_t seed) {
   return test::mt_normal(n, seed, 5.0, 1.0);
 }
 
+// An output word whose step is ten times the noise: almost every sample
+// reads 0, one in about 700 reads one step up.
+std::vector<double> coarse_word(std::size_t n, std::uint64_t seed) {
+  std::vector<double> y = test::mt_normal(n, seed, 2.0, 1.0);
+  for (double& v : y) v = std::round(v / 10.0) * 10.0;
+  return y;
+}
+
+TEST(Spikes, OneStepExcursionsOfACoarseOutputWordAreNone) {
+  // The robust scale collapses there (most h are 0), and every one-step
+  // excursion had passed for a spike; given the output's step, a spike
+  // must depart by four of them.
+  std::vector<double> y = coarse_word(200000, 5);
+  std::vector<double> z = y;
+  EXPECT_GT(find_spikes(z).count, 100);  // without the step: the failure
+  EXPECT_EQ(find_spikes(y, {}, 10.0).count, 0);
+  y[1000] += 80.0;  // eight steps: a spike still
+  const Spikes s = find_spikes(y, {}, 10.0);
+  ASSERT_EQ(s.count, 1);
+  EXPECT_EQ(s.indices[0], 1000);
+}
+
 TEST(Spikes, IsolatedOutliersAreReplacedByTheirNeighboursMean) {
   std::vector<double> y = white(200000, 1);
   const std::vector<std::size_t> at = {10, 5000, 123456, 199990};

@@ -17,6 +17,28 @@ std::vector<double> white(std::size_t n, std::uint64_t seed) {
   return test::mt_normal(n, seed, 5.0, 1.0);
 }
 
+TEST(Steps, ACoarseOutputWordGivesNoEmptyOrRepeatedSteps) {
+  // An output word whose step is ten times the noise (almost every sample
+  // 0): no step of size 0, none repeated, none below the output's step (a
+  // step of size 0 had been found again and again, up to the limit).
+  std::vector<double> y = test::mt_normal(400000, 6, 2.0, 1.0);
+  for (double& v : y) v = std::round(v / 10.0) * 10.0;
+  for (const double lsb : {0.0, 10.0}) {
+    std::vector<double> z = y;
+    const BiasSteps s = find_steps(z, {}, lsb);
+    for (std::size_t i = 0; i < s.indices.size(); ++i) {
+      EXPECT_GT(std::fabs(s.sizes_deg_h[i]), std::max(0.0, lsb - 1e-12));
+      for (std::size_t j = 0; j < i; ++j) EXPECT_NE(s.indices[i], s.indices[j]);
+    }
+  }
+  // A real step of 30 (three output steps) is still found.
+  for (std::size_t k = 200000; k < y.size(); ++k) y[k] += 30.0;
+  const BiasSteps s = find_steps(y, {}, 10.0);
+  ASSERT_EQ(s.indices.size(), 1u);
+  EXPECT_NEAR(static_cast<double>(s.indices[0]), 200000.0, 200.0);
+  EXPECT_NEAR(s.sizes_deg_h[0], 30.0, 1.0);
+}
+
 TEST(Steps, TwoStepsAreFoundAndLevelled) {
   std::vector<double> y = white(400000, 1);
   for (std::size_t k = 100000; k < y.size(); ++k) y[k] += 0.3;  // 0.3 sample sd

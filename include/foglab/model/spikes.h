@@ -36,7 +36,12 @@ struct Spikes {
 };
 
 /// Finds the spikes of `rate_deg_h` and, with options.remove, replaces
-/// each by the mean of its neighbours in place.
-Spikes find_spikes(std::span<double> rate_deg_h, const SpikeOptions& options = {});
+/// each by the mean of its neighbours in place. `lsb_deg_h` > 0: the output
+/// word's step (model/output_quantisation.h); a spike then departs by at
+/// least four of them (on an output whose step exceeds its noise, most
+/// samples sit on one value, the robust scale collapses, and every
+/// one-step excursion had been taken for a spike: 6,751 in one record).
+Spikes find_spikes(std::span<double> rate_deg_h, const SpikeOptions& options = {},
+                   double lsb_deg_h = 0.0);
 
 }  // namespace foglab::model

@@ -36,7 +36,10 @@ struct BiasSteps {
 };
 
 /// Finds the bias steps of `rate_deg_h` and, with options.remove, levels
-/// the record in place.
-BiasSteps find_steps(std::span<double> rate_deg_h, const StepOptions& options = {});
+/// the record in place. A step smaller than `lsb_deg_h` (the output word's
+/// step; 0: unknown) or of size 0 is none, and ends the search (on a
+/// coarse output word one step of size 0 had been found again and again).
+BiasSteps find_steps(std::span<double> rate_deg_h, const StepOptions& options = {},
+                     double lsb_deg_h = 0.0);
 
 }  // namespace foglab::model
