@@ -18,20 +18,28 @@ double ma_autocovariance(int k, std::int64_t lag) {
   return a < k ? static_cast<double>(k - a) / (static_cast<double>(k) * k) : 0.0;
 }
 
-// m AVAR(m) of the moving average's samples with unit white level: the
-// variance of an m-average less the covariance of two neighbouring ones.
-double ma_allan_factor(int k, std::int64_t m) {
+// m AVAR(m) of a filtered white sequence of unit level whose samples have
+// the autocorrelation a(j) (zero beyond lag `reach`): the variance of an
+// m-average less the covariance of two neighbouring ones. The white
+// noise's counterpart of flicker_ratio().
+template <class Autocorrelation>
+double white_ratio(std::int64_t m, std::int64_t reach, Autocorrelation a) {
   double var = 0.0, cov = 0.0;
-  const std::int64_t reach = std::min<std::int64_t>(m - 1, k - 1);  // r_j = 0 beyond k - 1
-  for (std::int64_t j = -reach; j <= reach; ++j) {
-    var += static_cast<double>(m - (j < 0 ? -j : j)) * ma_autocovariance(k, j);
+  const std::int64_t inside = std::min(m - 1, reach);
+  for (std::int64_t j = -inside; j <= inside; ++j) {
+    var += static_cast<double>(m - (j < 0 ? -j : j)) * a(j < 0 ? -j : j);
   }
-  for (std::int64_t j = 1; j <= 2 * m - 1 && j < k; ++j) {
+  for (std::int64_t j = 1; j <= 2 * m - 1 && j <= reach; ++j) {
     const std::int64_t d = j - m;
-    cov += static_cast<double>(m - (d < 0 ? -d : d)) * ma_autocovariance(k, j);
+    cov += static_cast<double>(m - (d < 0 ? -d : d)) * a(j);
   }
   return (var - cov) / static_cast<double>(m);
 }
+
+// The lag-1 autocorrelation of the samples when a fraction phi of the white
+// noise passes a filter whose samples have autocovariance r0, r1 (per unit
+// white level) and the rest does not.
+double mixed_lag1(double phi, double r0, double r1) { return phi * r1 / ((1.0 - phi) + phi * r0); }
 
 // L(a) = a^2 ln|a| (0 at a = 0): flicker noise's semivariogram between
 // interval averages j samples apart is (L(j + 1) - 2 L(j) + L(j - 1)) / 4
@@ -93,27 +101,6 @@ const std::vector<double>& butterworth_autocorrelation(double cutoff_hz, double 
   if (cache.size() >= 64) cache.erase(cache.begin());
   cache.emplace_back(key, std::move(a));
   return cache.back().second;
-}
-
-// m AVAR(m) of a filtered white sequence of unit level with autocorrelation
-// a_j (j = 0 .. R, zero beyond): the variance of an m-average less the
-// covariance of two neighbouring ones, as ma_allan_factor(); for m > R in
-// closed form, 1 - 3 sum_j j a_j / m.
-double allan_factor_of(const std::vector<double>& a, std::int64_t m) {
-  const auto reach = static_cast<std::int64_t>(a.size()) - 1;
-  if (m > reach) {
-    double first_moment = 0.0;
-    for (std::int64_t j = 1; j <= reach; ++j) first_moment += static_cast<double>(j) * a[j];
-    return 1.0 - 3.0 * first_moment / static_cast<double>(m);
-  }
-  auto at = [&](std::int64_t j) { return j <= reach ? a[static_cast<std::size_t>(j)] : 0.0; };
-  double var = static_cast<double>(m) * a[0], cov = 0.0;
-  for (std::int64_t j = 1; j < m; ++j) var += 2.0 * static_cast<double>(m - j) * at(j);
-  for (std::int64_t j = 1; j <= 2 * m - 1 && j <= reach; ++j) {
-    const std::int64_t d = j - m;
-    cov += static_cast<double>(m - (d < 0 ? -d : d)) * at(j);
-  }
-  return (var - cov) / static_cast<double>(m);
 }
 
 }  // namespace
@@ -196,13 +183,16 @@ double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
   if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
   if (bandwidth.moving_average()) {
     const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
-    const double g = ma_allan_factor(bandwidth.moving_average_samples, m);
+    const int k = bandwidth.moving_average_samples;
+    const double g = white_ratio(m, k - 1, [k](std::int64_t j) { return ma_autocovariance(k, j); });
     return 1.0 - bandwidth.filtered_fraction * (1.0 - g);
   }
   if (bandwidth.butterworth()) {
     const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
-    const double g = allan_factor_of(
-        butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s), m);
+    const std::vector<double>& a =
+        butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s);
+    const double g = white_ratio(m, static_cast<std::int64_t>(a.size()) - 1,
+                                 [&a](std::int64_t j) { return a[static_cast<std::size_t>(j)]; });
     return 1.0 - bandwidth.filtered_fraction * (1.0 - g);
   }
   const double rho = filtered_lag1(bandwidth, sample_interval_s);
@@ -218,14 +208,13 @@ double white_lag1_correlation(const SensorBandwidth& bandwidth, double sample_in
   if (!bandwidth.any()) return 0.0;
   if (bandwidth.moving_average()) {
     const int k = bandwidth.moving_average_samples;
-    const double phi = bandwidth.filtered_fraction;
-    return phi * ma_autocovariance(k, 1) / ((1.0 - phi) + phi * ma_autocovariance(k, 0));
+    return mixed_lag1(bandwidth.filtered_fraction, ma_autocovariance(k, 0),
+                      ma_autocovariance(k, 1));
   }
   if (bandwidth.butterworth()) {
     const std::vector<double>& a =
         butterworth_autocorrelation(bandwidth.butterworth_cutoff_hz, sample_interval_s);
-    const double phi = bandwidth.filtered_fraction;
-    return a.size() > 1 ? phi * a[1] / ((1.0 - phi) + phi * a[0]) : 0.0;
+    return a.size() > 1 ? mixed_lag1(bandwidth.filtered_fraction, a[0], a[1]) : 0.0;
   }
   // White level S = phi S + (1 - phi) S; the filtered part's variance is
   // phi S (1 - rho) / (1 + rho), its lag-1 covariance rho times that; the

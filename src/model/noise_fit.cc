@@ -258,6 +258,22 @@ void drop_first_point(detail::Points& p) {
   drop(p.fixed_avar), drop(p.line_avar), drop(p.white_shape), drop(p.flicker_shape);
 }
 
+// `p` without its first `count` points, the bandwidth searched again and
+// every candidate refitted on the rest.
+struct Refit {
+  detail::Points points;
+  detail::BandwidthSearch bandwidth;
+  std::vector<detail::SubsetFit> fits;
+};
+
+Refit refit_without_first(const detail::Points& p, int count, const NoiseFitOptions& options) {
+  Refit r{p, {}, {}};
+  for (int i = 0; i < count; ++i) drop_first_point(r.points);
+  r.bandwidth = find_bandwidth_and_line_scale(r.points, options);
+  r.fits = detail::fit_candidates(r.points, options);
+  return r;
+}
+
 // The output filter of a real sensor can be a cascade (an analog anti-
 // alias filter, then a digital decimation filter) that none of the
 // modelled kinds follows; the first taus then pull every term (a first-
@@ -288,29 +304,18 @@ LeftOut leave_out_unfollowed_first_taus(detail::Points& p, detail::BandwidthSear
   if (!p.line_avar.empty() || fits.empty() || !(dispersion_of(p, fits.front()) > kMisfit)) {
     return left_out;
   }
-  struct Trimmed {
-    detail::Points points;
-    detail::BandwidthSearch bandwidth;
-    std::vector<detail::SubsetFit> fits;
-    double dispersion = detail::kInf;
-    int left_out = 0;
-  };
-  std::optional<Trimmed> best;
-  detail::Points trimmed = p;
-  for (int k = 1; k <= kMostLeftOut && trimmed.y.size() > 8; ++k) {
-    drop_first_point(trimmed);
-    detail::Points q = trimmed;
-    detail::BandwidthSearch again = find_bandwidth_and_line_scale(q, options);
-    std::vector<detail::SubsetFit> refits = detail::fit_candidates(q, options);
-    if (refits.empty()) break;
-    const double d = dispersion_of(q, refits.front());
-    if (!best || d < best->dispersion) {
-      best = Trimmed{std::move(q), std::move(again), std::move(refits), d, k};
-    }
+  std::optional<Refit> best;
+  double best_dispersion = detail::kInf;
+  int best_count = 0;
+  for (int k = 1; k <= kMostLeftOut && p.y.size() > static_cast<std::size_t>(7 + k); ++k) {
+    Refit trial = refit_without_first(p, k, options);
+    if (trial.fits.empty()) break;
+    const double d = dispersion_of(trial.points, trial.fits.front());
+    if (!best || d < best_dispersion) best = std::move(trial), best_dispersion = d, best_count = k;
     if (d <= kMisfit) break;
   }
-  if (!best || !(best->dispersion < kGain * dispersion_of(p, fits.front()))) return left_out;
-  left_out = {best->left_out, p.tau.front(), p.tau[static_cast<std::size_t>(best->left_out) - 1]};
+  if (!best || !(best_dispersion < kGain * dispersion_of(p, fits.front()))) return left_out;
+  left_out = {best_count, p.tau.front(), p.tau[static_cast<std::size_t>(best_count) - 1]};
   p = std::move(best->points);
   bandwidth = std::move(best->bandwidth);
   bandwidth.near.clear();
@@ -328,15 +333,13 @@ std::optional<std::pair<double, double>> n_interval_further_in(const detail::Poi
                                                                std::span<const SpectralLine> lines,
                                                                const NoiseFitOptions& options) {
   std::optional<std::pair<double, double>> n;
-  detail::Points q = p;
-  for (int more = 1; left_out > 0 && more <= 2 && q.y.size() > 8; ++more) {
-    drop_first_point(q);
-    detail::Points trial = q;
-    detail::BandwidthSearch again = find_bandwidth_and_line_scale(trial, options);
-    again.near.clear();
-    const std::vector<detail::SubsetFit> refits = detail::fit_candidates(trial, options);
-    if (refits.empty()) break;
-    const NoiseFitResult further = conclude(trial, refits, again, known_white, lines, options);
+  for (int more = 1; left_out > 0 && more <= 2 && p.y.size() > static_cast<std::size_t>(7 + more);
+       ++more) {
+    Refit trial = refit_without_first(p, more, options);
+    if (trial.fits.empty()) break;
+    trial.bandwidth.near.clear();
+    const NoiseFitResult further =
+        conclude(trial.points, trial.fits, trial.bandwidth, known_white, lines, options);
     if (further.N.status != TermStatus::resolved) continue;
     if (!n) n = std::pair{further.N.ci95_low, further.N.ci95_high};
     n->first = std::min(n->first, further.N.ci95_low);

@@ -196,17 +196,24 @@ class Search {
     return d;
   }
 
+  // The best of a grid of kTSteps + 1 values of ln T (or ln f_c tau0) from
+  // `lo` in steps of `step`, by kFractionSteps fractions, for kind `k`.
+  Trial best_on_grid(double lo, double step, int k) {
+    Trial best;
+    for (int s = 0; s <= kTSteps; ++s) {
+      for (int f = 1; f <= kFractionSteps; ++f) {
+        const double fraction = static_cast<double>(f) / kFractionSteps;
+        const double d = tried(fraction, lo + step * s, k);
+        if (d < best.deviance) best = {fraction, lo + step * s, d, k};
+      }
+    }
+    return best;
+  }
+
   Trial best() {
     const double lo = std::log(kShortestT), hi = std::log(kLongestT);
     const double t_step = (hi - lo) / kTSteps;
-    Trial best;
-    for (int s = 0; s <= kTSteps; ++s) {
-      for (int k = 1; k <= kFractionSteps; ++k) {
-        const Trial trial{static_cast<double>(k) / kFractionSteps, lo + t_step * s, 0.0};
-        const double d = tried(trial.fraction, trial.log_t);
-        if (d < best.deviance) best = {trial.fraction, trial.log_t, d};
-      }
-    }
+    Trial best = best_on_grid(lo, t_step, 1);
     // The moving averages.
     Trial best_ma;
     for (int k = 2; k <= kLongestMovingAverage; ++k) {
@@ -226,14 +233,7 @@ class Search {
     // The Butterworth cut-offs.
     const double c_lo = std::log(kLowestCutoff), c_hi = std::log(kHighestCutoff);
     const double c_step = (c_hi - c_lo) / kTSteps;
-    Trial best_bw;
-    for (int s = 0; butterworth_ && s <= kTSteps; ++s) {
-      for (int f = 1; f <= kFractionSteps; ++f) {
-        const double fraction = static_cast<double>(f) / kFractionSteps;
-        const double d = tried(fraction, c_lo + c_step * s, kButterworth);
-        if (d < best_bw.deviance) best_bw = {fraction, c_lo + c_step * s, d, kButterworth};
-      }
-    }
+    Trial best_bw = butterworth_ ? best_on_grid(c_lo, c_step, kButterworth) : Trial{};
     // Refinement from the best grid point: phi and T trade off along a
     // narrow valley (0.77 of the noise through a 25 % longer T looks much
     // the same), which steps along one coordinate at a time crawl down, so

@@ -42,21 +42,30 @@ double polynomial(const model::SystematicFit& s, double t_c) {
 
 // ---- the four plots ----------------------------------------------------------
 
+// A region from x_low to x_high shaded over the whole height of a plot
+// (whose y axis is logarithmic when `log_y`); it does not set the ranges.
+Series full_height_band(std::string title, const char* color, double opacity, double x_low,
+                        double x_high, bool log_y) {
+  Series region;
+  region.title = std::move(title);
+  region.style = SeriesStyle::band;
+  region.color = color;
+  region.fill_opacity = opacity;
+  region.sets_range = false;
+  region.x = {x_low, x_high};
+  const double bottom = log_y ? 1e-30 : -1e30;
+  region.y_low = {bottom, bottom};
+  region.y_high = {1e30, 1e30};
+  return region;
+}
+
 // The gaps of the time axis, shaded over the whole height.
 void mark_gaps(Plot& plot, const model::AnalysisResult& r) {
   const std::vector<GapSpan> spans = gap_spans_s(r.gaps, r.sample_rate_hz);
   for (std::size_t i = 0; i < spans.size(); ++i) {
-    Series region;
-    region.title =
-        i == 0 ? fmt::format("gap ({} found, nothing interpolated)", r.gaps.size()) : std::string();
-    region.style = SeriesStyle::band;
-    region.color = kGrey;
-    region.fill_opacity = 0.25;
-    region.sets_range = false;
-    region.x = {spans[i].start_s / kSecondsPerHour, spans[i].end_s / kSecondsPerHour};
-    region.y_low = {-1e30, -1e30};
-    region.y_high = {1e30, 1e30};
-    plot.series.push_back(std::move(region));
+    plot.series.push_back(full_height_band(
+        i == 0 ? fmt::format("gap ({} found, nothing interpolated)", r.gaps.size()) : std::string(),
+        kGrey, 0.25, spans[i].start_s / kSecondsPerHour, spans[i].end_s / kSecondsPerHour, false));
   }
 }
 
@@ -266,17 +275,10 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
     if (line.bin_frequency_hz.empty()) continue;
     const auto [low, high] =
         std::minmax_element(line.bin_frequency_hz.begin(), line.bin_frequency_hz.end());
-    Series region;
-    region.title = fmt::format("spectral line {} Hz, {} deg/h rms (in the fit as known noise)",
-                               g(line.frequency_hz), g(std::sqrt(line.variance)));
-    region.style = SeriesStyle::band;
-    region.color = kPurple;
-    region.fill_opacity = 0.2;
-    region.sets_range = false;
-    region.x = {*low - 0.5 * bin_hz, *high + 0.5 * bin_hz};
-    region.y_low = {1e-30, 1e-30};
-    region.y_high = {1e30, 1e30};
-    plot.series.push_back(std::move(region));
+    plot.series.push_back(full_height_band(
+        fmt::format("spectral line {} Hz, {} deg/h rms (in the fit as known noise)",
+                    g(line.frequency_hz), g(std::sqrt(line.variance))),
+        kPurple, 0.2, *low - 0.5 * bin_hz, *high + 0.5 * bin_hz, true));
   }
 
   const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N);
@@ -343,31 +345,15 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
       end *= 1.05;
     }
     if (end > a.tau_s.front()) {
-      Series region;
-      region.title = "sensor bandwidth (white level lowered > 1 %)";
-      region.style = SeriesStyle::band;
-      region.color = kGrey;
-      region.fill_opacity = 0.12;
-      region.sets_range = false;
-      region.x = {a.tau_s.front(), end};
-      region.y_low = {1e-30, 1e-30};
-      region.y_high = {1e30, 1e30};
-      plot.series.push_back(std::move(region));
+      plot.series.push_back(full_height_band("sensor bandwidth (white level lowered > 1 %)", kGrey,
+                                             0.12, a.tau_s.front(), end, true));
     }
   }
   if (const auto k = static_cast<std::size_t>(r.noise.first_taus_left_out);
       k > 0 && k < a.tau_s.size()) {
-    Series region;
-    region.title =
-        fmt::format("first {} tau(s) left out of the fit (no modelled filter follows)", k);
-    region.style = SeriesStyle::band;
-    region.color = kOrange;
-    region.fill_opacity = 0.12;
-    region.sets_range = false;
-    region.x = {a.tau_s.front(), std::sqrt(a.tau_s[k - 1] * a.tau_s[k])};
-    region.y_low = {1e-30, 1e-30};
-    region.y_high = {1e30, 1e30};
-    plot.series.push_back(std::move(region));
+    plot.series.push_back(full_height_band(
+        fmt::format("first {} tau(s) left out of the fit (no modelled filter follows)", k), kOrange,
+        0.12, a.tau_s.front(), std::sqrt(a.tau_s[k - 1] * a.tau_s[k]), true));
   }
   Series dev;
   dev.title = "OADEV";

@@ -213,8 +213,8 @@ TEST(SensorBandwidth, ButterworthFactorsEqualTheCookbookFiltersBruteForceSums) {
         EXPECT_NEAR(flicker_allan_factor(bw, m * tau0, tau0), 1.0 - phi * (1.0 - flicker), 1e-9)
             << "f_c " << fc_tau0 << " / tau0, phi " << phi << ", m " << m;
       }
-      // Far beyond the response: the closed form 1 - 3 sum j a_j / m
-      // against the brute force.
+      // Far beyond the response (the sums end at its reach) against the
+      // brute force.
       EXPECT_NEAR(white_allan_factor(bw, 700 * tau0, tau0),
                   1.0 - phi * (1.0 - filtered_white_allan_by_weights(h, 700)), 1e-10);
       // Lag 1 of the samples: phi a_1 / ((1 - phi) + phi a_0).

@@ -30,9 +30,9 @@
 // bilinear transform with pre-warping, butterworth_coefficients()) is the
 // third: the anti-alias or output filter of much gyro electronics. Its
 // samples' autocorrelation a_j is the impulse response's own (summed until
-// it is below 1e-16 of the first term), and the same sums give its Allan
-// variance exactly; beyond the response's reach R, as the closed form
-// 1 - 3 sum_j j a_j / m. (The first-order filter and the moving average
+// it is below 1e-16 of the first term), and the same sums as the moving
+// average's give its Allan variance exactly, in O(R) for a reach of R
+// lags. (The first-order filter and the moving average
 // had followed a second-order one only roughly: N 7-19 % high on a
 // Butterworth at 10-40 Hz sampled at 100 Hz.)
 //
