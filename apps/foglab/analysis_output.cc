@@ -213,6 +213,9 @@ nlohmann::json quantisation_json(const model::AnalysisResult& r) {
   j["share_of_white_variance"] = number(n > 0 ? std::pow(q.white_level_deg_h_sqrt_hz / n, 2)
                                               : std::nan(""));  // of the sensor's
   j["sample_sd_deg_h"] = number(q.sample_sd_deg_h);
+  j["step_sd_deg_h"] = number(q.step_sd_deg_h);
+  j["noise_like"] = q.noise_like;
+  j["white_variance_departure"] = number(q.white_variance_departure);
   j["taken_out_of_N"] = r.noise.known_white_deg_h_sqrt_hz > 0.0;
   return j;
 }
@@ -262,6 +265,8 @@ nlohmann::json units_json() {
       {"output_quantisation.white_level_deg_h_sqrt_hz", "deg/h/sqrt(Hz)"},
       {"output_quantisation.share_of_white_variance", "1 (of N^2)"},
       {"output_quantisation.sample_sd_deg_h", "deg/h"},
+      {"output_quantisation.step_sd_deg_h", "deg/h"},
+      {"output_quantisation.white_variance_departure", "1 (of the sensor's white variance)"},
       {"spectral_lines[].frequency_hz", "Hz"},
       {"spectral_lines[].width_hz", "Hz"},
       {"spectral_lines[].rms_deg_h", "deg/h"},

@@ -351,12 +351,11 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         r.spikes.removed ? "each was replaced by the mean of its neighbours before the analysis"
                          : "they were left in (not removed)"));
   }
-  // The output word's rounding, when noise-like (a step below the samples'
-  // spread), is white noise of a known level: the fit takes it as known, so
-  // that N is the sensor's own.
+  // The output word's rounding, when noise-like (a step of at most two
+  // sample-to-sample spreads, output_quantisation.h), is white noise of a known level: the fit
+  // takes it as known, so that N is the sensor's own.
   AnalysisOptions with_known = options;  // as given, but for the fit's known white noise
-  if (const OutputQuantisation& q = r.output_quantisation;
-      q.detected && q.lsb_deg_h < q.sample_sd_deg_h) {
+  if (const OutputQuantisation& q = r.output_quantisation; q.detected && q.noise_like) {
     with_known.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
   }
   r.sample_rate_hz = sample_rate_hz;
@@ -396,6 +395,15 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     r.notes.push_back(fit->note);
     r.systematic = std::move(fit);
   }
+  if (const OutputQuantisation& q = r.output_quantisation;
+      q.detected && q.noise_like && s.noise.N.status == TermStatus::resolved) {
+    // The rounding's share is known to within its departure from q^2 / 12
+    // (output_quantisation.h); N's interval takes it in.
+    const double spread =
+        q.white_variance_departure * std::pow(q.step_sd_deg_h, 2) / sample_rate_hz;
+    s.noise.N.ci95_low = std::sqrt(std::max(0.0, std::pow(s.noise.N.ci95_low, 2) - spread));
+    s.noise.N.ci95_high = std::sqrt(std::pow(s.noise.N.ci95_high, 2) + spread);
+  }
   if (const OutputQuantisation& q = r.output_quantisation; q.detected) {
     const double n = s.noise.model.N;
     r.notes.push_back(fmt::format(
@@ -404,10 +412,11 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         "{}",
         q.lsb_deg_h, q.distinct_values, q.samples_examined, q.white_level_deg_h_sqrt_hz,
         n > 0 ? 100.0 * std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : kNaN,
-        q.lsb_deg_h < q.sample_sd_deg_h
+        q.noise_like
             ? "which the fit takes as known: N is the sensor's own white level"
-            : "which the fitted N includes: the step is not below the samples' spread, so the "
-              "rounding is not noise-like and the short-tau statistics are distorted (N, B and "
+            : "which the fitted N includes: the step is more than twice the samples' "
+              "sample-to-sample spread, so the rounding is not noise-like and the short-tau "
+              "statistics are distorted (N, B and "
               "the class then describe the output word, not the sensor; spikes must depart by "
               "four steps, and steps be at least one)"));
   }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace foglab::model {
@@ -23,6 +24,11 @@ OutputQuantisation find_output_quantisation(std::span<const double> rate_deg_h,
   double ss = 0.0;
   for (double v : values) ss += (v - mean) * (v - mean);
   q.sample_sd_deg_h = std::sqrt(ss / static_cast<double>(values.size() - 1));
+  double squared_steps = 0.0;  // before sorting: neighbours in time
+  for (std::size_t k = 1; k < values.size(); ++k) {
+    squared_steps += (values[k] - values[k - 1]) * (values[k] - values[k - 1]);
+  }
+  const double step_variance = 0.5 * squared_steps / static_cast<double>(values.size() - 1);
 
   std::sort(values.begin(), values.end());
   // Distinct values, merging those equal to 1e-9 of the record's scale
@@ -48,6 +54,14 @@ OutputQuantisation find_output_quantisation(std::span<const double> rate_deg_h,
   q.detected = true;
   q.lsb_deg_h = lsb;
   q.white_level_deg_h_sqrt_hz = lsb / std::sqrt(12.0 * sample_rate_hz);
+  q.step_sd_deg_h = std::sqrt(std::max(0.0, step_variance - lsb * lsb / 12.0));
+  constexpr double kMostLsbPerSigma = 2.0;  // Widrow: departures 0.7 % at 2 sigma
+  q.noise_like = lsb <= kMostLsbPerSigma * q.step_sd_deg_h;
+  if (q.step_sd_deg_h > 0.0) {
+    const double ratio = q.step_sd_deg_h / lsb;
+    q.white_variance_departure =
+        4.0 * std::exp(-2.0 * std::numbers::pi * std::numbers::pi * ratio * ratio);
+  }
   return q;
 }
 

@@ -1,4 +1,6 @@
 // simulate -> identify round trips of the whole analysis (lab 2).
+#include "foglab/model/analysis.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,10 +8,10 @@
 #include <vector>
 
 #include "foglab/core/error.h"
-#include "foglab/model/analysis.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/sim/presets.h"
+#include "foglab/sim/sensor_output.h"
 #include "support/expect.h"
 
 namespace foglab::model {
@@ -144,6 +146,33 @@ TEST(Analysis, GaussMarkovRandomBiasIsNamedWithItsCorrelationTime) {
   }
   EXPECT_GE(named, 3);
   EXPECT_GE(covered, named - 1);
+}
+
+TEST(Analysis, OutputRoundingUpToTwoSampleSpreadsIsTakenOutOfN) {
+  // An output word of 1.8 sample sd: the rounding (LSB^2/12, 27 % of the
+  // sensor's white variance) was counted in N (+12 %) when the rule was a
+  // step below the samples' sd. Its share departs from LSB^2/12 by up to
+  // 0.9 % as the mean sits on a code or half-way between two (Sheppard's
+  // cross term); N's interval takes that in.
+  const double n_true = 0.3, fs = 100.0, sd = n_true * std::sqrt(fs), lsb = 1.8 * sd;
+  for (const double offset : {0.0, 0.25, 0.5}) {
+    sim::ErrorModel m;
+    m.noise.N = n_true;
+    m.bias = offset * lsb;
+    sim::Recording rec =
+        sim::generate(m, {}, {.sample_rate_hz = fs, .duration_s = 3600.0, .seed = 7});
+    sim::SensorOutput output;
+    output.lsb_deg_h = lsb;
+    sim::OutputChain chain(output, fs, 7, 0);
+    chain.apply(0, rec.rate_deg_h.data(), rec.rate_deg_h.size());
+    const AnalysisResult r = analyze(rec.rate_deg_h, {}, rec.sample_rate_hz);
+    ASSERT_TRUE(r.output_quantisation.detected) << offset;
+    EXPECT_TRUE(r.output_quantisation.noise_like) << offset;
+    EXPECT_GT(r.noise.known_white_deg_h_sqrt_hz, 0.0) << offset;
+    EXPECT_NEAR(r.noise.model.N, n_true, 0.01 * n_true) << offset;
+    EXPECT_LE(r.noise.N.ci95_low, n_true) << offset;
+    EXPECT_GE(r.noise.N.ci95_high, n_true) << offset;
+  }
 }
 
 TEST(Analysis, WithoutTemperatureTheSystematicStepIsSkippedWithANote) {
