@@ -15,6 +15,7 @@ constexpr double kSmoothing = 0.005;     // moving-average width, relative to f
 constexpr double kBinRatio = 3.0;        // a line's smoothed bins stand this far above the floor
 constexpr double kSkirtSignificance = 4.0;  // a found line extends while they stand this many
                                             // standard errors above the floor
+constexpr double kSkirtShare = 1e-3;        // of the line's peak excess, the least a skirt holds
 constexpr double kPeakRatio = 4.0;       // its highest smoothed bin this far
 constexpr double kSignificance = 10.0;   // its excess this many standard errors
 constexpr std::size_t kLowestBin = 64;   // in resolutions
@@ -117,14 +118,22 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
       k = last + 1;
       continue;
     }
-    // The skirts of a found line (a broad resonance's flanks) belong to it.
+    // The skirts of a found line (a broad resonance's flanks) belong to it,
+    // down to kSkirtShare of its peak's excess: below that a bin's excess
+    // is the floor's error, not the line (near a moving average's null the
+    // floor, a median over +-0.2 decade, runs 30-50 % off the filtered PSD,
+    // and a 20 Hz sinusoid behind a 4-sample average took 9 Hz of it as
+    // skirts, N then 1-2 % low with a deviance of 120-200).
+    double peak_excess = 0.0;
+    for (std::size_t b = k; b <= last; ++b)
+      peak_excess = std::max(peak_excess, smooth[b] - floor[b]);
+    auto skirt = [&](std::size_t b) {
+      return above_floor(smooth[b], floor[b], b, segments) &&
+             smooth[b] - floor[b] >= kSkirtShare * peak_excess;
+    };
     std::size_t low = k, high = last;
-    while (low > kLowestBin && above_floor(smooth[low - 1], floor[low - 1], low - 1, segments)) {
-      --low;
-    }
-    while (high + 1 < n && above_floor(smooth[high + 1], floor[high + 1], high + 1, segments)) {
-      ++high;
-    }
+    while (low > kLowestBin && skirt(low - 1)) --low;
+    while (high + 1 < n && skirt(high + 1)) ++high;
     // A line falls on both sides: its highest averaged bin stands kBinRatio
     // above the PSD where its skirts end. A steep roll-off of the output
     // filter (or a moving average's side lobe) can stand above the running

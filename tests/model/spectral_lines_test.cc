@@ -105,6 +105,39 @@ TEST(SpectralLine, AFiltersRollOffIsNoLineButALineOnItIs) {
   EXPECT_NEAR(lines[0].frequency_hz, 9.0, 0.01);
 }
 
+TEST(SpectralLine, ALinesSkirtsAreNotTheFiltersPassband) {
+  // A 20 Hz sinusoid behind a 4-sample moving average (its null at 25 Hz):
+  // the floor, a median over +-0.2 decade, runs 30-50 % under the filtered
+  // PSD below the line, and the skirt rule took 9 Hz of the passband as
+  // the line's skirts (its variance 2 % high, its frequency 19.7 Hz, the
+  // Allan fit's deviance 120-200 and N 1-2 % low). Skirts hold at least
+  // 1/1000 of the line's peak excess.
+  const std::size_t n = 720000;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const std::vector<double> x = white(150.0, n, seed + 20);
+    const std::vector<double> s = sinusoid(4500.0, 20.0, n);
+    std::vector<double> y(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      double sum = 0.0;
+      for (std::size_t j = 0; j < 4; ++j) sum += k >= j ? x[k - j] + s[k - j] : x[k] + s[k];
+      y[k] = sum / 4.0;
+    }
+    const double line_variance =
+        0.5 * std::pow(4500.0 * 0.25, 2);  // the average's gain at 20 Hz: 1/4
+    stats::WelchOptions w;
+    w.segment_length = 131072;
+    const std::vector<SpectralLine> lines = find_spectral_lines(stats::welch_psd(y, kFs, w));
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NEAR(lines[0].frequency_hz, 20.0, 0.01);
+    EXPECT_LT(lines[0].width_hz, 2.0);
+    EXPECT_NEAR(lines[0].variance / line_variance, 1.0, 0.005);
+    const AnalysisResult r = analyze(y, {}, kFs);
+    EXPECT_NEAR(r.noise.N.value / 150.0, 1.0, 0.01);
+    EXPECT_LT(r.noise.dispersion, 2.0);
+  }
+}
+
 TEST(SpectralLine, AnalysisKeepsALineOutOfTheNoiseTerms) {
   // White noise N = 150 deg/h/sqrt(Hz) and a 20 Hz line of 500 deg/h rms,
   // 2.78 h at 100 Hz: without the line the fit bent a Gauss-Markov term

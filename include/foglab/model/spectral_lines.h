@@ -11,8 +11,10 @@
 // segments scatters by about 1/sqrt(K)). Only bins from 64 times the
 // resolution up are searched. A line found extends over its skirts: the
 // neighbouring bins whose averaged PSD stays more than four of its standard
-// errors (sqrt(2 / (K bins averaged))) above the floor, so a broad
-// resonance's flanks are part of it, with their own frequencies (on the
+// errors (sqrt(2 / (K bins averaged))) above the floor and holds at least
+// 1/1000 of the line's highest excess (below that it is the floor's error:
+// near a moving average's null the floor runs 30-50 % off the PSD), so a
+// broad resonance's flanks are part of it, with their own frequencies (on the
 // ADIS16405 z axes the line grows from 2.5-3.3 Hz to 9.6-10.1 Hz wide, and
 // the bins hold three quarters of a resonance's variance instead of half).
 // A line falls on both sides: its highest averaged bin stands three times
