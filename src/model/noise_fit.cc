@@ -288,7 +288,7 @@ Refit refit_without_first(const detail::Points& p, int count, const NoiseFitOpti
 // refitted: the fewest that bring it to kMisfit or below, else those that
 // lower it most, if below kGain of what it was (keeping eight points). N
 // is then the white level above the filter. With spectral lines too
-// (their factor is then found again on the taus kept): a cascade with a
+// (which keep the factor found on all the taus): a cascade with a
 // sinusoid had kept its first taus, and N came out 11-12 % low with an
 // angle quantisation Q in the model; now within 1.6 %. (This had been
 // left out when a broad line's skirts were not yet part of it, and its
