@@ -11,6 +11,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
+#include "foglab/core/output.h"
 #include "foglab/core/version.h"
 
 namespace foglab::cli {
@@ -62,6 +63,7 @@ int run_command_line(int argc, char** argv) {
     for (auto& [command, action] : c->commands) {
       if (command->parsed()) action();
     }
+    finish_standard_output();  // a lost stdout is a failed run, not exit 0
     return kExitOk;
   } catch (const UsageError& e) {
     std::cerr << "foglab: error: " << in_cli_terms(e.what()) << "\n";

@@ -86,6 +86,9 @@ std::string to_table(const stats::AllanResult& r, const io::Series& series) {
 }
 
 void run(const AllanCommand& c) {
+  const RunPath inputs[] = {{"FILE", c.input.path}};
+  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  check_outputs(inputs, outputs);
   stats::AllanOptions options;
   options.kind = stats::allan_kind_from_string(c.kind);
   options.grid = parse_taus_option(c.taus, c.input.path);

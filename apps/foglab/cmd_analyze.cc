@@ -164,6 +164,12 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
 // ---- the command ---------------------------------------------------------
 
 void run(const AnalyzeCommand& c) {
+  const RunPath inputs[] = {{"FILE", c.input.path}};
+  const RunPath outputs[] = {{"--json", c.json_path},
+                             {"--csv", c.csv_path},
+                             {"--report", c.report_path},
+                             {"--kalibr", c.kalibr_path}};
+  check_outputs(inputs, outputs);
   model::AnalysisOptions options;
   options.systematic.degree = parse_temp_degree(c.temp_degree);
   options.grid = parse_taus_option(c.taus, c.input.path);

@@ -186,6 +186,10 @@ nlohmann::json units_json() {
 }
 
 void run(const GenerateCommand& c) {
+  const RunPath inputs[] = {
+      {"--temperature", c.temperature.starts_with("file:") ? c.temperature.substr(5) : ""}};
+  const RunPath outputs[] = {{"--out", c.out}, {"--truth", c.truth}};
+  check_outputs(inputs, outputs);
   sim::ErrorModel model;
   std::optional<double> preset_rate;
   if (!c.preset.empty()) {

@@ -201,6 +201,9 @@ sim::RateInput rate_input(const SimulateCommand& c, double default_rate_rad_s) {
 }
 
 void run_simulate(const SimulateCommand& c) {
+  const RunPath inputs[] = {{"--rate-file", c.rate_file}};
+  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  check_outputs(inputs, outputs);
   const sim::Coil coil = resolve_coil(c.coil, true);
   const sim::CoilNumbers n = sim::coil_numbers(coil);
   const bool closed = c.scheme == "closed-loop";
@@ -292,6 +295,8 @@ struct SweepCommand {
 };
 
 void run_sweep(const SweepCommand& c) {
+  const RunPath written[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  check_outputs({}, written);
   const sim::Coil coil = resolve_coil(c.coil, false);
   const sim::CoilNumbers n = sim::coil_numbers(coil);
   const bool closed = c.scheme == "closed-loop";

@@ -31,6 +31,9 @@ nlohmann::json spectrum_json(const stats::PsdResult& p) {
 }
 
 void run(const PsdCommand& c) {
+  const RunPath inputs[] = {{"FILE", c.input.path}};
+  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  check_outputs(inputs, outputs);
   const io::Series series = load_input(c.input);
   progress(fmt::format("Welch PSD of {} samples", series.values.size()));
   stats::WelchOptions options;

@@ -29,23 +29,13 @@ static_assert(std::endian::native == std::endian::little,
   throw UsageError(fmt::format("cannot write '{}': {}", path, reason));
 }
 
-/// The temporary beside `path`: ".NAME.tmpPID" in the same directory, so
-/// the final rename stays on one file system.
-std::string temporary_for(const std::string& path) {
-  const std::filesystem::path target(path);
-  if (target.filename().empty()) cannot_write(path, "not a file name");
-  return (target.parent_path() / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid()))
-      .string();
-}
-
-/// Renames the finished temporary over the target (removing it on failure).
-void move_into_place(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    cannot_write(path, ec.message());
+/// The target of a file output ("-" is refused: these formats go to files).
+OutputTarget file_target(const std::string& path, std::string_view what) {
+  OutputTarget t = output_target(path);
+  if (t.standard_output) {
+    cannot_write(path, fmt::format("a {} cannot go to standard output; give a file name", what));
   }
+  return t;
 }
 
 bool valid_matlab_name(const std::string& name) {
@@ -75,7 +65,8 @@ void write_mat(const std::string& path, std::span<const NamedVector> variables) 
     }
     if (v.values.empty()) cannot_write(path, fmt::format("variable '{}' is empty", v.name));
   }
-  const std::string tmp = temporary_for(path);
+  const OutputTarget target = file_target(path, "MAT file");
+  const std::string tmp = target.temporary();
   internal::MatioSession session;
   mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
   if (mat == nullptr) {
@@ -113,7 +104,7 @@ void write_mat(const std::string& path, std::span<const NamedVector> variables) 
     std::remove(tmp.c_str());
     cannot_write(path, reason);
   }
-  move_into_place(tmp, path);
+  commit_temporary(target, tmp);
 }
 
 void write_csv(const std::string& path, std::span<const NamedVector> columns,
@@ -164,27 +155,33 @@ constexpr std::size_t kDirectAlign = 4096;
 }  // namespace
 
 RawFileWriter::RawFileWriter(const std::string& path, RawType type)
-    : path_(path), tmp_(temporary_for(path)), type_(type) {
-  void* memory = nullptr;
-  if (posix_memalign(&memory, kDirectAlign, kStageBytes) != 0) throw std::bad_alloc();
-  buffer_ = static_cast<unsigned char*>(memory);
+    : target_(file_target(path, "raw file")), type_(type) {
+  // A device or a FIFO is written in place (no temporary); the buffer is
+  // taken only once the file is open.
+  if (target_.special) {
+    fd_ = open_in_place(target_);
+  } else {
+    tmp_ = target_.temporary();
 #ifdef O_DIRECT
-  fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_DIRECT, 0644);
-  direct_ = fd_ >= 0;
+    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_DIRECT, 0644);
+    direct_ = fd_ >= 0;
 #endif
-  if (fd_ < 0) fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd_ < 0) {
-    const int err = errno;
-    std::free(buffer_);
-    buffer_ = nullptr;
-    cannot_write(path, std::strerror(err));
+    if (fd_ < 0) fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd_ < 0) cannot_write(path, std::strerror(errno));
   }
+  void* memory = nullptr;
+  if (posix_memalign(&memory, kDirectAlign, kStageBytes) != 0) {
+    ::close(fd_);
+    if (!tmp_.empty()) std::remove(tmp_.c_str());
+    throw std::bad_alloc();
+  }
+  buffer_ = static_cast<unsigned char*>(memory);
 }
 
 RawFileWriter::~RawFileWriter() {
   if (fd_ >= 0) {
     ::close(fd_);
-    std::remove(tmp_.c_str());
+    if (!tmp_.empty()) std::remove(tmp_.c_str());
   }
   std::free(buffer_);
 }
@@ -192,8 +189,8 @@ RawFileWriter::~RawFileWriter() {
 void RawFileWriter::fail(const std::string& reason) {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  std::remove(tmp_.c_str());
-  cannot_write(path_, reason);
+  if (!tmp_.empty()) std::remove(tmp_.c_str());
+  cannot_write(target_.path, reason);
 }
 
 // Writes the first `bytes` staged bytes and keeps the rest at the front.
@@ -212,7 +209,7 @@ void RawFileWriter::flush(std::size_t bytes) {
 }
 
 void RawFileWriter::append(std::span<const double> values) {
-  if (fd_ < 0) cannot_write(path_, "the writer is closed");
+  if (fd_ < 0) cannot_write(target_.path, "the writer is closed");
   const std::size_t width = type_ == RawType::f32 ? 4 : 8;
   std::size_t i = 0;
   while (i < values.size()) {
@@ -235,7 +232,7 @@ void RawFileWriter::append(std::span<const double> values) {
 }
 
 void RawFileWriter::commit() {
-  if (fd_ < 0) cannot_write(path_, "the writer is closed");
+  if (fd_ < 0) cannot_write(target_.path, "the writer is closed");
   // Whole aligned blocks directly, then the tail through the page cache.
   flush(used_ - used_ % kDirectAlign);
 #ifdef O_DIRECT
@@ -248,10 +245,10 @@ void RawFileWriter::commit() {
   fd_ = -1;
   if (::close(fd) != 0) {
     const int err = errno;
-    std::remove(tmp_.c_str());
-    cannot_write(path_, std::strerror(err));
+    if (!tmp_.empty()) std::remove(tmp_.c_str());
+    cannot_write(target_.path, std::strerror(err));
   }
-  move_into_place(tmp_, path_);
+  if (!tmp_.empty()) commit_temporary(target_, tmp_);
 }
 
 }  // namespace foglab::io

@@ -289,7 +289,7 @@ Refit refit_without_first(const detail::Points& p, int count, const NoiseFitOpti
 // lower it most, if below kGain of what it was (keeping eight points). N
 // is then the white level above the filter. With spectral lines too
 // (which keep the factor found on all the taus): a cascade with a
-// sinusoid had kept its first taus, and N came out 11-12 % low with an
+// sinusoid had kept its first taus, and N came out 9-12.5 % low with an
 // angle quantisation Q in the model; now within 1.6 %. (This had been
 // left out when a broad line's skirts were not yet part of it, and its
 // bumps further out were taken for Q.) The bandwidths the remaining first taus cannot tell

@@ -4,6 +4,8 @@
 // directory (".NAME.tmpPID"), which is renamed over the target only once it
 // is complete and closed. On any failure the temporary is removed and the
 // target is left as it was (absent or the old file) — never half written.
+// Links are followed, and a target that is not a regular file (/dev/null,
+// a FIFO) is written in place (core/output.h).
 // Errors are UsageErrors "cannot write 'PATH': reason" (CLI exit code 2):
 // an unwritable destination is a problem with the arguments, not the data.
 //
@@ -20,6 +22,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "foglab/core/output.h"
 
 namespace foglab::io {
 
@@ -73,8 +77,8 @@ class RawFileWriter {
   void fail(const std::string& reason);
   void flush(std::size_t bytes);
 
-  std::string path_;
-  std::string tmp_;
+  OutputTarget target_;
+  std::string tmp_;  // the temporary; empty when written in place
   RawType type_;
   int fd_ = -1;
   bool direct_ = false;   // the file was opened with O_DIRECT (page cache bypassed)
