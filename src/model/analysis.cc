@@ -352,8 +352,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
                          : "they were left in (not removed)"));
   }
   // The output word's rounding, when noise-like (a step of at most two
-  // sample-to-sample spreads, output_quantisation.h), is white noise of a known level: the fit
-  // takes it as known, so that N is the sensor's own.
+  // sample-to-sample spreads, output_quantisation.h), is white noise of a
+  // known level: the fit takes it as known, so that N is the sensor's own.
   AnalysisOptions with_known = options;  // as given, but for the fit's known white noise
   if (const OutputQuantisation& q = r.output_quantisation; q.detected && q.noise_like) {
     with_known.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
@@ -416,9 +416,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
             ? "which the fit takes as known: N is the sensor's own white level"
             : "which the fitted N includes: the step is more than twice the samples' "
               "sample-to-sample spread, so the rounding is not noise-like and the short-tau "
-              "statistics are distorted (N, B and "
-              "the class then describe the output word, not the sensor; spikes must depart by "
-              "four steps, and steps be at least one)"));
+              "statistics are distorted (N, B and the class then describe the output word, not "
+              "the sensor; spikes must depart by four steps, and steps be at least one)"));
   }
   r.evidence = evidence_of(s);
   r.psd = std::move(s.psd);

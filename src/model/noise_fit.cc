@@ -292,10 +292,11 @@ Refit refit_without_first(const detail::Points& p, int count, const NoiseFitOpti
 // sinusoid had kept its first taus, and N came out 9-12.5 % low with an
 // angle quantisation Q in the model; now within 1.6 %. (This had been
 // left out when a broad line's skirts were not yet part of it, and its
-// bumps further out were taken for Q.) The bandwidths the remaining first taus cannot tell
-// apart include shapes that no longer touch the white level there (the
-// union of N over them had reached -87 %), so N's interval is not widened
-// over them; n_interval_further_in() widens it instead.
+// bumps further out were taken for Q.) The bandwidths the remaining first
+// taus cannot tell apart include shapes that no longer touch the white
+// level there (the union of N over them had reached -87 %), so N's
+// interval is not widened over them; n_interval_further_in() widens it
+// instead.
 struct LeftOut {
   int count = 0;
   double first_tau_s = 0.0, last_tau_s = 0.0;  ///< [s] the first and the last left out
