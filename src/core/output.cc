@@ -16,12 +16,19 @@
 #include "foglab/core/error.h"
 
 namespace foglab {
+
+void cannot_write(const std::string& path, const std::string& reason) {
+  throw UsageError(fmt::format("cannot write '{}': {}", path, reason));
+}
+
 namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void cannot_write(const std::string& path, const std::string& reason) {
-  throw UsageError(fmt::format("cannot write '{}': {}", path, reason));
+// Whether `st` is the file our standard output is (device and inode).
+bool is_standard_output(const struct stat& st) {
+  struct stat out {};
+  return ::fstat(STDOUT_FILENO, &out) == 0 && out.st_dev == st.st_dev && out.st_ino == st.st_ino;
 }
 
 // Writes all of `data` to `fd`, retrying on EINTR; false with errno set on
@@ -59,6 +66,7 @@ struct Identity {
   dev_t device = 0;
   ino_t inode = 0;
   bool character_device = false;
+  bool standard_output = false;  // the file our standard output is
   std::string normal;  // absolute, normal path (links resolved where they exist)
 };
 
@@ -70,6 +78,7 @@ Identity identity_of(const std::string& path) {
     id.device = st.st_dev;
     id.inode = st.st_ino;
     id.character_device = S_ISCHR(st.st_mode);
+    id.standard_output = is_standard_output(st);
   }
   std::error_code ec;
   const fs::path normal = fs::weakly_canonical(fs::absolute(path, ec), ec);
@@ -105,8 +114,7 @@ OutputTarget output_target(const std::string& path) {
     // Our own standard output under another name (/dev/stdout, the file
     // the shell redirected it to): written through it, in order with the
     // rest of what goes there, not through a second descriptor.
-    struct stat out {};
-    if (::fstat(STDOUT_FILENO, &out) == 0 && out.st_dev == st.st_dev && out.st_ino == st.st_ino) {
+    if (is_standard_output(st)) {
       t.standard_output = true;
       t.file = path;
       return t;
@@ -188,12 +196,7 @@ void write_text_file(const std::string& path, std::string_view content) {
   const OutputTarget t = output_target(path);
   if (t.standard_output) {
     std::cout << content;
-    std::cout.flush();
-    if (!std::cout) {
-      throw DataError(
-          "cannot write to standard output (the output is lost: a full disk or a "
-          "closed stream?)");
-    }
+    finish_standard_output();
     return;
   }
   if (t.special) {
@@ -225,15 +228,10 @@ void check_outputs(std::span<const RunPath> inputs, std::span<const RunPath> out
     seen.emplace_back(&in, identity_of(in.path));
   }
   const std::size_t input_count = seen.size();
-  struct stat standard {};
-  const bool has_standard = ::fstat(STDOUT_FILENO, &standard) == 0;
   for (const RunPath& out : outputs) {
     if (out.path.empty()) continue;
     const Identity id = identity_of(out.path);
-    const bool to_standard =
-        out.path == "-" || (has_standard && id.exists && !id.character_device &&
-                            id.device == standard.st_dev && id.inode == standard.st_ino);
-    if (to_standard) {
+    if (out.path == "-" || (id.standard_output && !id.character_device)) {
       if (standard_output != nullptr) {
         throw UsageError(fmt::format(
             "{} {} and {} {}: only one output can go to standard output (the two would be "

@@ -25,10 +25,6 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "raw output assumes a little-endian host");
 
-[[noreturn]] void cannot_write(const std::string& path, const std::string& reason) {
-  throw UsageError(fmt::format("cannot write '{}': {}", path, reason));
-}
-
 /// The target of a file output ("-" is refused: these formats go to files).
 OutputTarget file_target(const std::string& path, std::string_view what) {
   OutputTarget t = output_target(path);

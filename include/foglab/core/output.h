@@ -21,6 +21,10 @@
 
 namespace foglab {
 
+/// Throws UsageError "cannot write 'PATH': REASON" (an unwritable
+/// destination is a problem with the arguments).
+[[noreturn]] void cannot_write(const std::string& path, const std::string& reason);
+
 /// Where an output path leads (see above).
 struct OutputTarget {
   std::string path;              ///< as given, for messages
