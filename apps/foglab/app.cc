@@ -7,6 +7,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <system_error>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -40,6 +41,19 @@ std::unique_ptr<CommandLine> make_command_line() {
   add(register_lab1);
   return c;
 }
+
+namespace {
+
+// Nothing was written: outputs are rendered before any is written, and an
+// unfinished one is removed on the way out (core/output.h).
+int out_of_memory() {
+  std::cerr << "foglab: error: out of memory: the record and its analysis need more memory "
+               "(or threads) than this process may use (analyze: 10-40 bytes per sample; see "
+               "bench/RESULTS.md); no output was written\n";
+  return kExitInternal;
+}
+
+}  // namespace
 
 int run_command_line(int argc, char** argv) {
   std::unique_ptr<CommandLine> c = make_command_line();
@@ -75,10 +89,14 @@ int run_command_line(int argc, char** argv) {
     std::cerr << "foglab: error: " << in_cli_terms(e.what()) << "\n";
     return kExitData;
   } catch (const std::bad_alloc&) {
-    // Nothing was written (outputs are rendered before any is written).
-    std::cerr << "foglab: error: out of memory: the record and its analysis need more memory "
-                 "than this process may use (analyze: 10-40 bytes per sample; see "
-                 "bench/RESULTS.md); no output was written\n";
+    return out_of_memory();
+  } catch (const std::system_error& e) {
+    // A thread that could not start (its stack is memory too: `ulimit -v`).
+    if (e.code() == std::errc::resource_unavailable_try_again ||
+        e.code() == std::errc::not_enough_memory) {
+      return out_of_memory();
+    }
+    std::cerr << "foglab: internal error: " << e.what() << "\n";
     return kExitInternal;
   } catch (const std::exception& e) {
     std::cerr << "foglab: internal error: " << e.what() << "\n";

@@ -1,13 +1,17 @@
 #include "cli_common.h"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <regex>
 
 #include "foglab/core/error.h"
+#include "foglab/io/channels.h"
 #include "foglab/io/sample.h"
 
 namespace foglab::cli {
@@ -30,6 +34,52 @@ void add_input_options(CLI::App& command, InputOptions& options, bool file_optio
       ->capture_default_str();
   command.add_option("--time", options.time_channel,
                      "time variable/column used for the sample rate (default t/time/time_s)");
+  command.add_flag("--decimal-comma", options.decimal_comma,
+                   "text: numbers written with a decimal comma (0,25); fields separated by "
+                   "tabs, semicolons or blanks");
+  command
+      .add_option("--max-samples", options.max_samples,
+                  "the most samples read from the record (default: what 1/16 of the free "
+                  "memory holds); an endless stream stops there with an error")
+      ->check(CLI::PositiveNumber);
+}
+
+std::size_t default_max_samples() {
+  std::uint64_t bytes = 0;
+  if (std::FILE* meminfo = std::fopen("/proc/meminfo", "r")) {
+    char line[256];
+    while (std::fgets(line, sizeof line, meminfo) != nullptr) {
+      unsigned long long kib = 0;
+      if (std::sscanf(line, "MemAvailable: %llu kB", &kib) == 1) bytes = kib * 1024;
+    }
+    std::fclose(meminfo);
+  }
+  if (bytes == 0) {
+    bytes = static_cast<std::uint64_t>(::sysconf(_SC_AVPHYS_PAGES)) *
+            static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  }
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    bytes = std::min<std::uint64_t>(bytes, limit.rlim_cur);
+  }
+  return static_cast<std::size_t>(std::max<std::uint64_t>(bytes / 16 / sizeof(double), 1000000));
+}
+
+std::string json_text(const nlohmann::json& document) {
+  return document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+io::ReadOptions read_options(const InputOptions& options) {
+  io::ReadOptions read;
+  read.channel = options.channel;
+  read.sample_rate_hz = options.sample_rate_hz;
+  read.format = parse_format_option(options.format, options.path);
+  read.unit = parse_units_option(options.units, options.path);
+  read.time_channel = options.time_channel;
+  read.max_magnitude = io::kMaxSampleMagnitude;  // 1e308 overflows the statistics
+  read.decimal_comma = options.decimal_comma;
+  read.max_samples = options.max_samples ? *options.max_samples : default_max_samples();
+  return read;
 }
 
 stats::TauGrid parse_taus_option(const std::string& text, const std::string& path) {
@@ -66,14 +116,7 @@ io::Series load_input(const InputOptions& options) {
     return sample;
   }
   progress(fmt::format("reading '{}'", options.path));
-  io::ReadOptions read;
-  read.channel = options.channel;
-  read.sample_rate_hz = options.sample_rate_hz;
-  read.format = parse_format_option(options.format, options.path);
-  read.unit = parse_units_option(options.units, options.path);
-  read.time_channel = options.time_channel;
-  read.max_magnitude = io::kMaxSampleMagnitude;  // 1e308 overflows the statistics
-  io::Series series = io::read_series(options.path, read);
+  io::Series series = io::read_series(options.path, read_options(options));
   for (const std::string& text : series.notes) note(text);
   if (!series.gaps.empty()) {
     const std::int64_t missing = missing_samples(series.gaps);
@@ -86,7 +129,7 @@ io::Series load_input(const InputOptions& options) {
   }
   if (options.channel.empty() && series.available_channels.size() > 1) {
     note(fmt::format("'{}' has channels {}; using '{}' (choose with --channel)", options.path,
-                     fmt::join(series.available_channels, ", "), series.channel));
+                     io::list_names(series.available_channels), series.channel));
   }
   return series;
 }
@@ -182,6 +225,8 @@ constexpr FlagOfField kFlagsOfFields[] = {
     {R"(ReadOptions::time_channel)", "--time"},
     {R"(ReadOptions::unit)", "--units"},
     {R"(ReadOptions::format)", "--format"},
+    {R"(ReadOptions::decimal_comma)", "--decimal-comma"},
+    {R"(ReadOptions::max_samples)", "--max-samples"},
     {R"(TauGrid::min_clusters)", "--min-clusters"},
     {R"(TauGrid::taus_s)", "--taus"},
     {R"re(parse_tau_grid\("([^"]*)"\))re", "--taus '$1'"},
@@ -204,16 +249,6 @@ std::string in_cli_terms(std::string message) {
   }();
   for (const auto& [field, flag] : rules) message = std::regex_replace(message, field, flag);
   return message;
-}
-
-std::filesystem::path output_directory(const std::string& out) {
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec || !std::filesystem::is_directory(out)) {
-    throw UsageError(fmt::format("--out '{}': cannot create the directory: {}", out,
-                                 ec ? ec.message() : "a file of that name exists"));
-  }
-  return out;
 }
 
 sim::Lab2Options lab2_options(std::uint64_t seed, const std::optional<double>& hours) {

@@ -28,9 +28,26 @@ struct InputOptions {
   std::string format = "auto";
   std::string units = "deg/h";
   std::string time_channel;
+  bool decimal_comma = false;
+  std::optional<std::size_t> max_samples;  ///< empty: default_max_samples()
 };
 
-/// Adds FILE and --channel/--fs/--format/--units/--time to `command`.
+/// The most samples a record may have when --max-samples is not given:
+/// what a sixteenth of the memory free for this process holds (available
+/// memory, within `ulimit -v`), at least a million.
+std::size_t default_max_samples();
+
+/// A JSON document as text, indented by 2, with a final newline. Bytes that
+/// are not UTF-8 (a file name or a column name in Latin-1) become U+FFFD
+/// instead of an error.
+std::string json_text(const nlohmann::json& document);
+
+/// The ReadOptions of `options` (channel, rate, format, units, time,
+/// decimal comma, sample limit, kMaxSampleMagnitude).
+io::ReadOptions read_options(const InputOptions& options);
+
+/// Adds FILE and --channel/--fs/--format/--units/--time/--decimal-comma/
+/// --max-samples to `command`.
 void add_input_options(CLI::App& command, InputOptions& options, bool file_optional);
 
 /// --taus parsed; a UsageError names the option and, when given, `path`.
@@ -80,10 +97,6 @@ std::string sample_rate_source_text(const io::Series& series);
 /// The one place where the library's vocabulary meets the command line's;
 /// run_command_line() applies it to every error and note.
 std::string in_cli_terms(std::string message);
-
-/// Creates the output directory `out` (and its parents) when needed and
-/// returns it; UsageError naming --out when it cannot be a directory.
-std::filesystem::path output_directory(const std::string& out);
 
 /// The lab-2 variant options from the commands' --seed and hidden --hours
 /// (shorter runs; UsageError unless > 0).

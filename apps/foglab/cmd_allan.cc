@@ -7,6 +7,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "foglab/core/numeric.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/stats/allan.h"
@@ -96,6 +97,10 @@ void run(const AllanCommand& c) {
   options.confidence = !c.no_ci;
   const InputKind input = input_kind_from_string(c.input_kind);
   io::Series series = load_input(c.input);
+  naming_the_input(series, [&] {
+    require_varying(series.values, input == InputKind::rate ? "deg/h" : "(deg/h)*s (phase)");
+    return 0;
+  });
   const std::size_t samples = series.values.size();
   progress(fmt::format("{} of {} samples{}", stats::to_string(options.kind), samples,
                        options.confidence ? " with noise identification and intervals" : ""));
@@ -106,7 +111,7 @@ void run(const AllanCommand& c) {
   });
   series.values.resize(samples);  // only the count is used below
   // Render everything first, then write: a failure never leaves half the outputs.
-  const std::string json = c.json_path.empty() ? "" : to_json(result, series, c).dump(2) + "\n";
+  const std::string json = c.json_path.empty() ? "" : json_text(to_json(result, series, c));
   const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
   if (!c.json_path.empty()) write_text_file(c.json_path, json);
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);

@@ -58,11 +58,11 @@ void check_temperature_option(const AnalyzeCommand& c) {
         "--temp {}: the built-in sample has no temperature channel (its only channel is Y1)",
         c.temp_channel));
   }
-  if (c.input.path == "-") {
+  if (io::is_stream(c.input.path)) {
     throw UsageError(fmt::format(
-        "--temp {}: standard input is read once, so a temperature cannot be read from it too; "
-        "save the data to a file",
-        c.temp_channel));
+        "--temp {}: {} is read once (standard input, a FIFO or a device), so a temperature "
+        "cannot be read from it too; save the data to a file",
+        c.temp_channel, c.input.path == "-" ? "standard input" : "'" + c.input.path + "'"));
   }
 }
 
@@ -85,10 +85,11 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
         "record mean)");
     return {};
   }
-  if (path == "-") {
+  if (io::is_stream(path)) {
     tell(
-        "data from standard input: no temperature read, the systematic part is a constant "
-        "(the record mean)");
+        fmt::format("data from {} (read once): no temperature read, the systematic part is a "
+                    "constant (the record mean)",
+                    path == "-" ? "standard input" : "the stream '" + path + "'"));
     return {};
   }
 
@@ -109,7 +110,7 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
     } else if (!found && !index) {
       throw UsageError(fmt::format("--temp {}: '{}' has no channel '{}'; its channels are {}",
                                    c.temp_channel, path, c.temp_channel,
-                                   fmt::join(series.available_channels, ", ")));
+                                   io::list_names(series.available_channels)));
     }
     if (name.empty()) name = found ? *found : c.temp_channel;
   } else {
@@ -133,7 +134,7 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
                       "constant (the record mean); name one with --temp",
                       wanted.empty() ? std::string("paired with channel " + series.channel)
                                      : fmt::format("{}", fmt::join(wanted, " or ")),
-                      path, fmt::join(series.available_channels, ", ")));
+                      path, io::list_names(series.available_channels)));
       return {};
     }
   }
@@ -143,13 +144,10 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   }
 
   progress(fmt::format("reading temperature '{}' from '{}'", name, path));
-  io::ReadOptions read;
+  io::ReadOptions read = read_options(c.input);
   read.channel = name;
   read.sample_rate_hz = series.sample_rate_hz;  // the rate's, already checked
-  read.format = io::input_format_from_string(c.input.format);
-  read.unit = RateUnit::deg_per_hour;  // identity: degC stay degC
-  read.time_channel = c.input.time_channel;
-  read.max_magnitude = io::kMaxSampleMagnitude;
+  read.unit = RateUnit::deg_per_hour;           // identity: degC stay degC
   io::Series t = io::read_series(path, read);
   for (const std::string& text : t.notes) note(text);
   if (t.values.size() != series.values.size()) {
@@ -219,7 +217,7 @@ void run(const AnalyzeCommand& c) {
   json_input.taus = c.taus;
   json_input.notes = notes;
   const std::string json =
-      c.json_path.empty() ? "" : analysis_json(result, json_input, options).dump(2) + "\n";
+      c.json_path.empty() ? "" : json_text(analysis_json(result, json_input, options));
   const std::string csv = c.csv_path.empty() ? "" : analysis_csv(result);
   std::string html, yaml;
   if (!c.report_path.empty()) {

@@ -220,12 +220,14 @@ void run(const GenerateCommand& c) {
   } else {
     throw UsageError("--fs is required (the sample rate in Hz) unless a --preset gives one");
   }
-  if (!(options.sample_rate_hz > 0.0) || !std::isfinite(options.sample_rate_hz)) {
-    throw UsageError(fmt::format("--fs must be > 0 Hz, got {}", options.sample_rate_hz));
+  if (!(options.sample_rate_hz >= kMinSampleRateHz && options.sample_rate_hz <= kMaxSampleRateHz)) {
+    throw UsageError(fmt::format("--fs must be from {:g} to {:g} Hz, got {}", kMinSampleRateHz,
+                                 kMaxSampleRateHz, options.sample_rate_hz));
   }
   if (!c.hours) throw UsageError("--hours is required (the duration in hours)");
-  if (!(*c.hours > 0.0) || !std::isfinite(*c.hours)) {
-    throw UsageError(fmt::format("--hours must be > 0, got {}", *c.hours));
+  if (!(*c.hours > 0.0 && *c.hours <= 1e6)) {
+    throw UsageError(
+        fmt::format("--hours must be in (0, 1e6] (a century is 876600 h), got {}", *c.hours));
   }
   options.duration_s = *c.hours * 3600.0;
   options.seed = c.seed;
@@ -313,7 +315,7 @@ void run(const GenerateCommand& c) {
           {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
           {"accuracy_class", std::string(to_string(verdict.accuracy_class))},
           {"class_decided_by", std::string(to_string(verdict.decided_by))}}}};
-    write_text_file(c.truth, truth.dump(2) + "\n");
+    write_text_file(c.truth, json_text(truth));
   }
   if (c.truth != "-") {
     std::cout << fmt::format(
@@ -348,9 +350,12 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--input-rate", c->input_rate, "constant input rate [deg/h]");
   cmd->add_option("--fs", c->sample_rate_hz, "sample rate [Hz] (default: the preset's)");
   cmd->add_option("--hours", c->hours, "duration [h]")->required();
-  cmd->add_option("--seed", c->seed, "random seed (same seed, same bits)")->capture_default_str();
+  cmd->add_option("--seed", c->seed, "random seed (same seed, same bits)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--stream", c->stream, "independent stream number for one seed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--temperature", c->temperature,
                   "const, const:25, ramp:10, ramp:10@20 or file:PATH")
       ->capture_default_str();

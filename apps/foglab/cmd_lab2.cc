@@ -133,6 +133,13 @@ std::vector<PendingRun> generated_runs(const Lab2Command& c, std::vector<Generat
 std::vector<PendingRun> file_runs(const Lab2Command& c) {
   std::vector<PendingRun> runs;
   for (const std::string& path : c.files) {
+    if (io::is_stream(path)) {
+      throw UsageError(
+          fmt::format("'{}' is read once (standard input, a FIFO or a device), "
+                      "and lab2 reads each file's runs and temperatures in turn: "
+                      "save it to a file",
+                      path));
+    }
     // Every variable of the file, usable or not (a char or complex Y1 is
     // not a channel, but the reader says why when it is asked for it).
     const std::vector<std::string> variables = io::list_variables(path);
@@ -141,6 +148,7 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
     };
     io::ReadOptions read;
     read.max_magnitude = io::kMaxSampleMagnitude;  // 1e308 would overflow the statistics
+    read.max_samples = default_max_samples();
     auto read_channel = [&](const char* name, std::optional<double> sample_rate_hz) {
       read.channel = name;
       read.sample_rate_hz = sample_rate_hz;
@@ -151,7 +159,7 @@ std::vector<PendingRun> file_runs(const Lab2Command& c) {
     if (!present(kRateNames[0]) && !present(kRateNames[1])) {
       throw DataError(fmt::format(
           "'{}': no Y1 or Y2 variable (the lab's layout is f, t, Y1, Y2, T1, T2); it has {}", path,
-          variables.empty() ? std::string("none") : fmt::format("{}", fmt::join(variables, ", "))));
+          variables.empty() ? std::string("none") : io::list_names(variables)));
     }
     for (std::size_t k = 0; k < 2; ++k) {
       if (!present(kRateNames[k])) {
@@ -230,6 +238,8 @@ void run(const Lab2Command& c) {
   }
   model::AnalysisOptions options;
   options.systematic.degree = parse_degree(c.temp_degree);
+  // Made first, so a bad --out is said before the work; filled at the end.
+  OutputFolder folder("--out", c.out);
 
   std::vector<Output> outputs;
   std::vector<GeneratedFile> generated;
@@ -255,8 +265,7 @@ void run(const Lab2Command& c) {
     p.rate_deg_h = {};
     p.temperature_c = {};
     p.json.temp_degree = c.temp_degree;
-    outputs.push_back(
-        {p.stem + ".json", analysis_json(p.run.result, p.json, options).dump(2) + "\n"});
+    outputs.push_back({p.stem + ".json", json_text(analysis_json(p.run.result, p.json, options))});
     outputs.push_back({p.stem + "_allan.csv", analysis_csv(p.run.result)});
     runs.push_back(std::move(p.run));
   }
@@ -277,7 +286,6 @@ void run(const Lab2Command& c) {
   outputs.push_back({"lab2_table.csv", rep.csv});
 
   // Everything is rendered: now write (each file atomically).
-  const std::filesystem::path dir = output_directory(c.out);
   for (const GeneratedFile& f : generated) {
     const sim::Recording& constant = f.runs[0];
     const sim::Recording& ramp = f.runs[1];
@@ -285,15 +293,16 @@ void run(const Lab2Command& c) {
     const std::vector<io::NamedVector> vars = {
         {"f", {&fs, 1}},         {"t", constant.time_s},         {"Y1", constant.rate_deg_h},
         {"Y2", ramp.rate_deg_h}, {"T1", constant.temperature_c}, {"T2", ramp.temperature_c}};
-    io::write_mat((dir / f.name).string(), vars);
+    io::write_mat(folder.file(f.name), vars);
   }
-  for (const Output& o : outputs) write_text_file((dir / o.name).string(), o.text);
+  for (const Output& o : outputs) write_text_file(folder.file(o.name), o.text);
+  folder.commit();
 
   std::cout << rep.markdown_summary;
   std::cout << fmt::format(
       "Report: {}\n(also in '{}': report.md, lab2_table.csv, and for each run its analysis "
       "<file>_<channel>.json, Allan table _allan.csv and Kalibr _imu.yaml{})\n",
-      (dir / "report.html").string(), c.out,
+      folder.final_file("report.html"), c.out,
       generated.empty() ? "" : "; the generated data in the lab's layout");
 }
 
@@ -315,7 +324,8 @@ std::function<void()> register_lab2(CLI::App& app) {
   variant->excludes(files);
   cmd->add_option("--seed", c->seed, "seed of the generated data (as foglab lab2-data)")
       ->capture_default_str()
-      ->excludes(files);
+      ->excludes(files)
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", c->out,
                   "directory for report.html, report.md, lab2_table.csv and each run's JSON, "
                   "CSV and imu.yaml (created if needed)")

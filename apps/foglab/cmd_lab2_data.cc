@@ -152,7 +152,7 @@ std::string answers_csv(const nlohmann::json& rows) {
 
 void run(const Lab2DataCommand& c) {
   const std::vector<sim::Lab2Variant> variants = sim::lab2_variants(lab2_options(c.seed, c.hours));
-  const std::filesystem::path dir = output_directory(c.out);
+  OutputFolder folder("--out", c.out);
 
   nlohmann::json rows = nlohmann::json::array();
   nlohmann::json gyros = nlohmann::json::array();
@@ -173,7 +173,7 @@ void run(const Lab2DataCommand& c) {
                                                  {"Y2", recs[1].rate_deg_h},
                                                  {"T1", recs[0].temperature_c},
                                                  {"T2", recs[1].temperature_c}};
-      io::write_mat((dir / g.file_name).string(), vars);
+      io::write_mat(folder.file(g.file_name), vars);
       for (const sim::Lab2Run& r : g.runs) rows.push_back(run_json(v, g, r));
       gyros.push_back({{"file", g.file_name},
                        {"gyro", g.name},
@@ -202,8 +202,9 @@ void run(const Lab2DataCommand& c) {
         "by sensor jitter): compare bias_at_t_ref_deg_h with mean(Y1) instead."}},
       {"gyros", gyros},
       {"runs", rows}};
-  write_text_file((dir / "answers.json").string(), answers.dump(2) + "\n");
-  write_text_file((dir / "answers.csv").string(), answers_csv(rows));
+  write_text_file(folder.file("answers.json"), json_text(answers));
+  write_text_file(folder.file("answers.csv"), answers_csv(rows));
+  folder.commit();
   std::cout << fmt::format("wrote 12 files, answers.json and answers.csv to '{}' (seed {})\n",
                            c.out, c.seed)
             << table;
@@ -219,7 +220,8 @@ std::function<void()> register_lab2_data(CLI::App& app) {
       "the answer key answers.json/answers.csv");
   cmd->add_option("--out", c->out, "directory to write (created if needed)")->required();
   cmd->add_option("--seed", c->seed, "random seed of the variant design and the noise")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--hours", c->hours, "")->group("");  // hidden: shorter runs
   return [c] { run(*c); };
 }

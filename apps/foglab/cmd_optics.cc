@@ -18,6 +18,7 @@
 #include "foglab/core/output.h"
 #include "foglab/core/units.h"
 #include "foglab/core/version.h"
+#include "foglab/io/channels.h"
 #include "foglab/io/reader.h"
 #include "foglab/report/lab1.h"
 #include "foglab/sim/lab1.h"
@@ -126,7 +127,7 @@ struct CoilCommand {
 void run_coil(const CoilCommand& c) {
   const sim::Coil coil = resolve_coil(c.coil, false);
   const sim::CoilNumbers n = sim::coil_numbers(coil);
-  if (!c.json_path.empty()) write_text_file(c.json_path, coil_json(coil, n).dump(2) + "\n");
+  if (!c.json_path.empty()) write_text_file(c.json_path, json_text(coil_json(coil, n)));
   if (c.json_path == "-") return;
   std::cout << fmt::format(
       "coil: {} (L = {:.6g} m, R = {:.6g} m, lambda = {:.6g} nm, n_g = {:.6g})\n"
@@ -170,7 +171,15 @@ sim::RateInput rate_input(const SimulateCommand& c, double default_rate_rad_s) {
   const int given =
       (c.rate_deg_s ? 1 : 0) + (c.ramp.empty() ? 0 : 1) + (c.rate_file.empty() ? 0 : 1);
   if (given > 1) throw UsageError("give one of --rate, --ramp and --rate-file");
-  if (c.rate_deg_s) return sim::RateInput::constant(*c.rate_deg_s / kDegPerRad);
+  if (c.rate_deg_s) {
+    if (!(std::fabs(*c.rate_deg_s) <= sim::kMaxInputRateRadS * kDegPerRad)) {
+      throw UsageError(
+          fmt::format("--rate must be finite and at most {:g} deg/s in magnitude, "
+                      "got {}",
+                      sim::kMaxInputRateRadS * kDegPerRad, *c.rate_deg_s));
+    }
+    return sim::RateInput::constant(*c.rate_deg_s / kDegPerRad);
+  }
   if (!c.ramp.empty()) return parse_ramp(c.ramp);
   if (!c.rate_file.empty()) {
     // A text or MAT file with a time column (t) and a rate column [deg/s].
@@ -180,17 +189,30 @@ sim::RateInput rate_input(const SimulateCommand& c, double default_rate_rad_s) {
     read.unit = RateUnit::deg_per_hour;  // identity: the values stay deg/s
     read.sample_rate_hz = 1.0;
     read.channel = "rate";
+    if (io::is_stream(c.rate_file)) {
+      throw UsageError(
+          fmt::format("--rate-file '{}' is read once (standard input, a FIFO or a "
+                      "device), and its t and rate columns are read in turn: save "
+                      "it to a file",
+                      c.rate_file));
+    }
     const std::vector<std::string> channels = io::list_channels(c.rate_file);
     if (std::find(channels.begin(), channels.end(), "rate") == channels.end() ||
         std::find(channels.begin(), channels.end(), "t") == channels.end()) {
       throw DataError(fmt::format(
           "--rate-file '{}': needs columns (or variables) t [s] and rate [deg/s]; it has {}",
-          c.rate_file, fmt::join(channels, ", ")));
+          c.rate_file, io::list_names(channels)));
     }
     io::Series rate = io::read_series(c.rate_file, read);
     read.channel = "t";
     io::Series t = io::read_series(c.rate_file, read);
     for (double& v : rate.values) v /= kDegPerRad;
+    if (t.values.size() < 2) {
+      throw DataError(
+          fmt::format("--rate-file '{}': one row only; a rate profile needs at least "
+                      "two (the simulated time is the span of its t column)",
+                      c.rate_file));
+    }
     try {
       return sim::RateInput::profile(std::move(t.values), std::move(rate.values));
     } catch (const UsageError& e) {
@@ -263,7 +285,7 @@ void run_simulate(const SimulateCommand& c) {
     j["final_output"] = number(last_output);
     j["steady_state_output"] = number(sim::steady_state_output(coil, last_rate, o));
   }
-  if (!c.json_path.empty()) write_text_file(c.json_path, j.dump(2) + "\n");
+  if (!c.json_path.empty()) write_text_file(c.json_path, json_text(j));
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
   if (c.json_path == "-" || c.csv_path == "-") return;
   std::cout << fmt::format(
@@ -317,8 +339,9 @@ void run_sweep(const SweepCommand& c) {
     throw UsageError(fmt::format("--method '{}': expected time or analytic", c.method));
   }
   const double range = c.range_deg_s ? *c.range_deg_s / kDegPerRad : n.omega_pi2_rad_s;
-  if (!(range > 0.0) || !std::isfinite(range)) {
-    throw UsageError(fmt::format("--range must be > 0 deg/s, got {}", *c.range_deg_s));
+  if (!(range > 0.0 && range <= sim::kMaxInputRateRadS)) {
+    throw UsageError(fmt::format("--range must be in (0, {:g}] deg/s, got {}",
+                                 sim::kMaxInputRateRadS * kDegPerRad, *c.range_deg_s));
   }
   const sim::SweepResult s = closed ? sim::sweep_closed_loop(coil, range, o, {}, so)
                                     : sim::sweep_open_loop(coil, range, o, so);
@@ -353,7 +376,7 @@ void run_sweep(const SweepCommand& c) {
       csv += fmt::format("{:.10g},{:.10g},{:.10g}\n", rates_deg[i], outputs[i], sfs[i]);
     }
   }
-  if (!c.json_path.empty()) write_text_file(c.json_path, j.dump(2) + "\n");
+  if (!c.json_path.empty()) write_text_file(c.json_path, json_text(j));
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
   if (c.json_path == "-" || c.csv_path == "-") return;
   std::cout << fmt::format(
@@ -388,6 +411,7 @@ struct Lab1Command {
 
 void run_lab1(const Lab1Command& c) {
   const sim::Coil coil = sim::lab1_coil(c.variant);
+  OutputFolder folder("--out", c.out);  // a bad --out is said before the work
   progress(fmt::format("running lab 1 on Table 4 variant {}", c.variant));
   sim::Lab1Options options;
   const sim::Lab1Result result = sim::run_lab1(coil, options);
@@ -432,14 +456,14 @@ void run_lab1(const Lab1Command& c) {
         {"checks.*", "1 (fractions)"}}},
       {"foglab_version", std::string(version())}};
 
-  const std::filesystem::path dir = output_directory(c.out);
-  write_text_file((dir / "report.html").string(), rep.html);
-  write_text_file((dir / "report.md").string(), rep.markdown);
-  write_text_file((dir / "sweeps.csv").string(), rep.sweep_csv);
-  write_text_file((dir / "lab1.json").string(), j.dump(2) + "\n");
+  write_text_file(folder.file("report.html"), rep.html);
+  write_text_file(folder.file("report.md"), rep.markdown);
+  write_text_file(folder.file("sweeps.csv"), rep.sweep_csv);
+  write_text_file(folder.file("lab1.json"), json_text(j));
+  folder.commit();
   std::cout << rep.markdown;
   std::cout << fmt::format("Report: {}\n(also in '{}': report.md, sweeps.csv, lab1.json)\n",
-                           (dir / "report.html").string(), c.out);
+                           folder.final_file("report.html"), c.out);
 }
 
 }  // namespace

@@ -35,6 +35,10 @@ void run(const PsdCommand& c) {
   const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
   check_outputs(inputs, outputs);
   const io::Series series = load_input(c.input);
+  naming_the_input(series, [&] {
+    require_varying(series.values);
+    return 0;
+  });
   progress(fmt::format("Welch PSD of {} samples", series.values.size()));
   stats::WelchOptions options;
   options.segment_length = c.segment;
@@ -69,7 +73,7 @@ void run(const PsdCommand& c) {
     j["smoothed"]["bins_per_decade"] = c.smooth_per_decade;
     j["source"] = input_json(series);
     j["foglab_version"] = std::string(version());
-    json = j.dump(2) + "\n";
+    json = json_text(j);
   }
   std::string csv;
   if (!c.csv_path.empty()) {
@@ -104,7 +108,8 @@ std::function<void()> register_psd(CLI::App& app) {
       "psd", "two-sided power spectral density of the rate by Welch's method (Hann window)");
   add_input_options(*cmd, c->input, /*file_optional=*/true);
   cmd->add_option("--segment", c->segment,
-                  "segment length in samples (default: largest power of two <= N/4)");
+                  "segment length in samples (default: largest power of two <= N/4)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--overlap", c->overlap, "segment overlap fraction in [0, 1)")
       ->capture_default_str();
   cmd->add_option("--smooth", c->smooth_per_decade,

@@ -1,13 +1,15 @@
 #include "foglab/core/numeric.h"
 
+#include <fmt/format.h>
 #include <omp.h>
 #include <sys/mman.h>
 
-#include <cstdint>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
+
+#include "foglab/core/error.h"
 
 namespace foglab {
 
@@ -99,6 +101,17 @@ RobustSpread robust_spread(std::span<const double> values) {
   for (std::size_t i = 0; i < work.size(); ++i) work[i] = std::fabs(values[i] - r.centre);
   r.spread = 1.4826 * median_in_place(work);
   return r;
+}
+
+void require_varying(std::span<const double> values, std::string_view unit) {
+  if (values.size() < 2) return;  // too short: each analysis says so
+  const auto [low, high] = std::minmax_element(values.begin(), values.end());
+  if (*low == *high) {
+    throw DataError(
+        fmt::format("the record is constant: all {} samples equal {:g} {}, so there "
+                    "is no noise to analyse",
+                    values.size(), *low, unit));
+  }
 }
 
 }  // namespace foglab

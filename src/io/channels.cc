@@ -1,6 +1,8 @@
 // foglab — the channel-naming rules (channels.h).
 #include "foglab/io/channels.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 
@@ -56,6 +58,18 @@ std::optional<std::string> find_channel(const std::vector<std::string>& channels
     if (lower_case(c) == key && !is_time_channel_name(key, NameMatch::exact)) return c;
   }
   return std::nullopt;
+}
+
+std::string list_names(const std::vector<std::string>& names) {
+  auto cut = [](const std::string& name) {
+    return name.size() <= 40 ? name : name.substr(0, 37) + "...";
+  };
+  std::string out;
+  const bool all = names.size() <= kListedNames;
+  const std::size_t head = all ? names.size() : kListedNames - 2;
+  for (std::size_t k = 0; k < head; ++k) out += (k > 0 ? ", " : "") + cut(names[k]);
+  if (!all) out += fmt::format(", ..., {} ({} in all)", cut(names.back()), names.size());
+  return out;
 }
 
 }  // namespace foglab::io

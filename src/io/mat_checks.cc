@@ -107,7 +107,7 @@ std::optional<double> mat4_variable_bytes(const unsigned char* header, bool litt
 
 // v5/v7: a 128-byte header, then elements "type (4 bytes), size (4 bytes),
 // data" of type matrix (14) or compressed matrix (15).
-void check_mat5_layout(const std::string& path, std::uint64_t size) {
+std::size_t check_mat5_layout(const std::string& path, std::uint64_t size) {
   FilePtr file(std::fopen(path.c_str(), "rb"));
   unsigned char header[128];
   if (!file || size < 128 || !read_at(file.get(), 0, header, sizeof(header))) {
@@ -150,6 +150,7 @@ void check_mat5_layout(const std::string& path, std::uint64_t size) {
       throw_truncated(path, index + 1, offset, 8.0, count);
     }
   }
+  return index;
 }
 
 // v4: per variable a 20-byte header "type, mrows, ncols, imagf, namlen"

@@ -112,6 +112,11 @@ Series read_raw(const std::string& path, const ReadOptions& options, InputFormat
     total += got;
     const std::size_t available = carried + got;
     const std::size_t whole = available / element_bytes;
+    if (options.max_samples && series.values.size() + whole > *options.max_samples) {
+      throw_data_error(path, fmt::format("more than {} samples: the limit for one record "
+                                         "(ReadOptions::max_samples)",
+                                         *options.max_samples));
+    }
     for (std::size_t i = 0; i < whole; ++i) {
       series.values.push_back(decode(block.data() + i * element_bytes, element_bytes));
     }

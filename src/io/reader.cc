@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/io/channels.h"
 #include "readers_internal.h"
 
 namespace foglab::io {
@@ -45,6 +47,14 @@ struct stat stat_readable(const std::string& path) {
   if (S_ISDIR(info.st_mode)) {
     throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(EISDIR)));
   }
+  // A FIFO (or a device) is opened once, by the reader: an open and close
+  // here would take the writer's data or leave it blocked.
+  if (!S_ISREG(info.st_mode)) {
+    if (::access(path.c_str(), R_OK) != 0) {
+      throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
+    }
+    return info;
+  }
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
     throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
@@ -54,6 +64,16 @@ struct stat stat_readable(const std::string& path) {
 }
 
 }  // namespace
+
+}  // namespace internal
+
+bool is_stream(const std::string& path) {
+  struct stat info {};
+  return path == "-" ||
+         (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode) && !S_ISDIR(info.st_mode));
+}
+
+namespace internal {
 
 void require_readable(const std::string& path) {
   if (path != "-") stat_readable(path);
@@ -66,9 +86,7 @@ std::optional<std::uint64_t> regular_file_size(const std::string& path) {
   return static_cast<std::uint64_t>(info.st_size);
 }
 
-std::string join_names(const std::vector<std::string>& names) {
-  return fmt::format("{}", fmt::join(names, ", "));
-}
+std::string join_names(const std::vector<std::string>& names) { return list_names(names); }
 
 std::string format_value(double value) { return fmt::format("{:.12g}", value); }
 
@@ -176,10 +194,11 @@ TimeAxis time_axis_of(const std::string& path, std::string_view name,
 }
 
 void check_file_sample_rate(const std::string& path, double rate_hz, std::string_view source) {
-  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
-    throw_data_error(path, fmt::format("sample rate from {} is {} Hz; expected a positive, "
-                                       "finite rate",
-                                       source, format_value(rate_hz)));
+  if (!(rate_hz >= kMinSampleRateHz && rate_hz <= kMaxSampleRateHz)) {
+    throw_data_error(
+        path, fmt::format("sample rate from {} is {} Hz; expected a positive, "
+                          "finite rate from {:g} to {:g} Hz",
+                          source, format_value(rate_hz), kMinSampleRateHz, kMaxSampleRateHz));
   }
 }
 
@@ -218,6 +237,12 @@ void check_format_source(const std::string& path, InputFormat format) {
     throw UsageError("MAT files cannot be read from standard input: give a file name");
   }
   internal::require_readable(path);
+  if (format == InputFormat::mat && is_stream(path)) {
+    throw UsageError(
+        fmt::format("'{}' is not a regular file (a FIFO or a device): a MAT file "
+                    "is read by seeking in it; save it to a file",
+                    path));
+  }
 }
 
 std::string describe_non_finite(double value) {
@@ -308,12 +333,13 @@ Series read_series(const std::string& path, const ReadOptions& options) {
     throw UsageError(fmt::format("invalid largest sample magnitude {} for {}: expected > 0",
                                  internal::format_value(options.max_magnitude), quoted_path(path)));
   }
-  if (options.sample_rate_hz &&
-      !(std::isfinite(*options.sample_rate_hz) && *options.sample_rate_hz > 0.0)) {
+  if (options.sample_rate_hz && !(*options.sample_rate_hz >= kMinSampleRateHz &&
+                                  *options.sample_rate_hz <= kMaxSampleRateHz)) {
     throw UsageError(fmt::format(
         "invalid sample rate ReadOptions::sample_rate_hz {} for {}: expected a positive, "
-        "finite rate in Hz",
-        internal::format_value(*options.sample_rate_hz), quoted_path(path)));
+        "finite rate from {:g} to {:g} Hz",
+        internal::format_value(*options.sample_rate_hz), quoted_path(path), kMinSampleRateHz,
+        kMaxSampleRateHz));
   }
   const InputFormat format = resolve_format(path, options.format);
   check_format_source(path, format);

@@ -139,8 +139,9 @@ Series read_raw(const std::string& path, const ReadOptions& options, InputFormat
 
 // Structural checks of a MAT file before matio reads it (mat_checks.cc);
 // each throws DataError naming the file.
-/// v5/v7: every top-level element lies inside the file's `size` bytes.
-void check_mat5_layout(const std::string& path, std::uint64_t size);
+/// v5/v7: every top-level element lies inside the file's `size` bytes;
+/// returns how many there are.
+std::size_t check_mat5_layout(const std::string& path, std::uint64_t size);
 /// v4: every variable (header, name, data) lies inside the file.
 void check_mat4_layout(const std::string& path, std::uint64_t size);
 /// A file without v5's header marks whose first bytes read as a v4 header

@@ -2,11 +2,15 @@
 //
 // Rules (also in reader.h):
 //   * Lines whose first non-blank character is '#' are comments, and so is
-//     the rest of a line after '#'; blank lines are skipped. "\r\n" endings
-//     and a UTF-8 byte-order mark are accepted.
+//     the rest of a line after '#'; blank lines are skipped. "\n", "\r\n"
+//     and "\r" endings, a UTF-8 byte-order mark and UTF-16 with a byte-order
+//     mark (converted) are accepted; a NUL byte in the first block is
+//     binary data. A line may hold 1 MiB, a table 10,000 columns.
 //   * The delimiter is that of the first non-comment line: a tab if it has
-//     one, else a comma if it has one, else runs of spaces/tabs. Fields are
-//     trimmed, and one pair of surrounding double quotes is removed.
+//     one, else a semicolon if it has one, else a comma if it has one (not
+//     with ReadOptions::decimal_comma, where "0,25" is a number), else runs
+//     of spaces/tabs. Fields are trimmed, and one pair of surrounding double
+//     quotes is removed.
 //   * That first line is a header of names when any of its fields is not a
 //     number; otherwise it is data and the columns are named "1", "2", ...
 //   * Every row must have as many fields as the first line. Only the cells
@@ -16,6 +20,7 @@
 // The file is read in blocks, so memory is the chosen column(s) only; the
 // numbers are parsed with std::from_chars.
 #include <fmt/format.h>
+#include <iconv.h>
 
 #include <algorithm>
 #include <array>
@@ -39,7 +44,11 @@
 namespace foglab::io::internal {
 namespace {
 
-// Reads a file or standard input line by line through one growing buffer.
+// Reads a file or standard input line by line through one buffer, within
+// bounds: a line may hold at most kMaxLineBytes, and the first block read
+// decides what the file is — text with "\n", "\r\n" or "\r" line ends,
+// UTF-16 with a byte-order mark (converted to UTF-8 with iconv), or binary
+// data (a NUL byte, a MAT or HDF5 signature), which is refused at once.
 class LineReader {
  public:
   explicit LineReader(const std::string& path) : path_(path) {
@@ -53,9 +62,11 @@ class LineReader {
       owned_ = true;
     }
     buffer_.resize(kBlockBytes);
+    first_block();
   }
   ~LineReader() {
     if (owned_) std::fclose(file_);
+    if (converter_ != nullptr) iconv_close(converter_);
   }
   LineReader(const LineReader&) = delete;
   LineReader& operator=(const LineReader&) = delete;
@@ -64,9 +75,10 @@ class LineReader {
   bool next(std::string_view& line) {
     while (true) {
       const char* start = buffer_.data() + begin_;
-      const void* newline = std::memchr(start, '\n', end_ - begin_);
+      const void* newline = std::memchr(start, line_end_, end_ - begin_);
       if (newline != nullptr) {
         const auto length = static_cast<std::size_t>(static_cast<const char*>(newline) - start);
+        if (length > kMaxLineBytes) too_long();
         line = trim_cr(std::string_view(start, length));
         begin_ += length + 1;
         ++line_number_;
@@ -79,6 +91,7 @@ class LineReader {
         ++line_number_;
         return true;
       }
+      if (end_ - begin_ > kMaxLineBytes) too_long();
       fill();
     }
   }
@@ -88,10 +101,88 @@ class LineReader {
 
  private:
   static constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+
+  [[noreturn]] void too_long() const {
+    throw_data_error(path_, fmt::format("line {} is longer than {} MiB: not a table of numbers",
+                                        line_number_ + 1, kMaxLineBytes >> 20));
+  }
 
   static std::string_view trim_cr(std::string_view line) {
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     return line;
+  }
+
+  // What the file is, from its first block.
+  void first_block() {
+    raw_.resize(kBlockBytes);
+    std::size_t got = read_raw(raw_.data(), raw_.size());
+    raw_.resize(got);
+    const std::string_view head(reinterpret_cast<const char*>(raw_.data()), got);
+    const bool le = head.starts_with("\xFF\xFE");
+    if (le || head.starts_with("\xFE\xFF")) {
+      converter_ = iconv_open("UTF-8", le ? "UTF-16LE" : "UTF-16BE");
+      if (converter_ == reinterpret_cast<iconv_t>(-1)) {
+        converter_ = nullptr;
+        throw_data_error(path_,
+                         "the file is UTF-16 text, which this system cannot convert: "
+                         "save it as UTF-8");
+      }
+      raw_.erase(raw_.begin(), raw_.begin() + 2);
+      convert();
+    } else {
+      if (head.starts_with("\x89HDF") || (got > 516 && head.substr(512, 4) == "\x89HDF")) {
+        throw_data_error(path_,
+                         "this is an HDF5 file, not text: a MAT v7.3 file needs the extension "
+                         ".mat or the format mat; other HDF5 files cannot be read (export the "
+                         "data as CSV)");
+      }
+      if (head.starts_with("MATLAB ") && head.find("MAT-file") != std::string_view::npos) {
+        throw_data_error(path_,
+                         "this is a MAT file, not text: give it the extension .mat or the "
+                         "format mat");
+      }
+      if (head.find('\0') != std::string_view::npos) {
+        const std::size_t at = head.find('\0');
+        throw_data_error(path_, fmt::format("byte {} is a NUL: binary data, not text (a raw "
+                                            "record needs the extension .f32/.f64 or the "
+                                            "format f32/f64, a MAT file the extension .mat or "
+                                            "the format mat)",
+                                            at + 1));
+      }
+      std::memcpy(buffer_.data(), raw_.data(), got);
+      end_ = got;
+      raw_.clear();
+      if (got == 0) eof_ = true;
+    }
+    // Old Mac text: line ends are "\r" only.
+    const std::string_view text(buffer_.data(), end_);
+    if (text.find('\n') == std::string_view::npos && text.find('\r') != std::string_view::npos) {
+      line_end_ = '\r';
+    }
+  }
+
+  std::size_t read_raw(unsigned char* out, std::size_t size) {
+    const std::size_t got = std::fread(out, 1, size, file_);
+    if (got < size && std::ferror(file_)) {
+      throw_data_error(path_, fmt::format("read error: {}", std::strerror(errno)));
+    }
+    return got;
+  }
+
+  // UTF-16 -> UTF-8 for what raw_ holds; an incomplete character waits.
+  void convert() {
+    char* in = reinterpret_cast<char*>(raw_.data());
+    std::size_t in_left = raw_.size();
+    char* out = buffer_.data() + end_;
+    std::size_t out_left = buffer_.size() - end_;
+    const std::size_t result = iconv(converter_, &in, &in_left, &out, &out_left);
+    if (result == static_cast<std::size_t>(-1) && errno == EILSEQ) {
+      throw_data_error(path_,
+                       fmt::format("the UTF-16 text is not valid near line {}", line_number_ + 1));
+    }
+    end_ = static_cast<std::size_t>(out - buffer_.data());
+    raw_.erase(raw_.begin(), raw_.end() - static_cast<std::ptrdiff_t>(in_left));
   }
 
   void fill() {
@@ -99,28 +190,44 @@ class LineReader {
     std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
     end_ -= begin_;
     begin_ = 0;
-    if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);
-    const std::size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
-    if (got == 0) {
-      if (std::ferror(file_)) {
-        throw_data_error(path_, fmt::format("read error: {}", std::strerror(errno)));
+    if (buffer_.size() - end_ < kBlockBytes / 2) buffer_.resize(buffer_.size() * 2);
+    if (converter_ == nullptr) {
+      const std::size_t got =
+          read_raw(reinterpret_cast<unsigned char*>(buffer_.data() + end_), buffer_.size() - end_);
+      if (got == 0) eof_ = true;
+      end_ += got;
+      return;
+    }
+    // At most 3 bytes of UTF-8 per 2 bytes of UTF-16: read what fits.
+    const std::size_t kept = raw_.size();
+    const std::size_t want = (buffer_.size() - end_) / 2;
+    raw_.resize(kept + want);
+    const std::size_t got = read_raw(raw_.data() + kept, want);
+    raw_.resize(kept + got);
+    const std::size_t before = end_;
+    convert();  // also what an earlier call had no room for
+    if (got == 0 && end_ == before) {
+      if (!raw_.empty()) {
+        throw_data_error(path_, "the UTF-16 text ends in the middle of a character");
       }
       eof_ = true;
     }
-    end_ += got;
   }
 
   std::string path_;
   std::FILE* file_ = nullptr;
   bool owned_ = false;
   std::vector<char> buffer_;
+  std::vector<unsigned char> raw_;  // UTF-16 bytes not yet converted
+  iconv_t converter_ = nullptr;
+  char line_end_ = '\n';
   std::size_t begin_ = 0;
   std::size_t end_ = 0;
   bool eof_ = false;
   std::size_t line_number_ = 0;
 };
 
-enum class Delimiter { comma, tab, whitespace };
+enum class Delimiter { comma, tab, semicolon, whitespace };
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
@@ -160,7 +267,9 @@ std::size_t split(std::string_view line, Delimiter delimiter, Visit&& visit) {
     }
     return count;
   }
-  const char separator = delimiter == Delimiter::comma ? ',' : '\t';
+  const char separator = delimiter == Delimiter::comma       ? ','
+                         : delimiter == Delimiter::semicolon ? ';'
+                                                             : '\t';
   std::size_t first = 0;
   while (true) {
     const auto next = line.find(separator, first);
@@ -174,6 +283,27 @@ std::size_t split(std::string_view line, Delimiter delimiter, Visit&& visit) {
 }
 
 // Parses a whole field as a double (also "nan", "inf"; a leading '+').
+bool parse_number(std::string_view field, double& value);
+
+// The field with its one decimal comma made a point ("0,25" -> "0.25"), if
+// it has exactly one comma and no point; else nullopt.
+std::optional<std::string> comma_to_point(std::string_view field) {
+  const auto comma = field.find(',');
+  if (comma == std::string_view::npos || field.find(',', comma + 1) != std::string_view::npos ||
+      field.find('.') != std::string_view::npos) {
+    return std::nullopt;
+  }
+  std::string out(field);
+  out[comma] = '.';
+  return out;
+}
+
+// A number written with a decimal comma ("0,25", "-1,5e-3").
+bool parse_comma_number(std::string_view field, double& value) {
+  const std::optional<std::string> pointed = comma_to_point(field);
+  return pointed && parse_number(*pointed, value);
+}
+
 bool parse_number(std::string_view field, double& value) {
   const char* first = field.data();
   const char* last = first + field.size();
@@ -241,7 +371,33 @@ struct Layout {
   std::size_t first_line_number = 0;
 };
 
-std::optional<Layout> read_layout(const std::string& path, LineReader& reader) {
+std::string shorten(std::string_view text);
+
+// The most columns a table may have (a line of 1 MiB could hold half a
+// million); a wider one is not a recording.
+constexpr std::size_t kMaxColumns = 10000;
+
+// Whether `content` reads as numbers with decimal commas separated by
+// blanks or semicolons ("0,01 1,25", "0,01;1,25"): then the commas are not
+// the delimiter.
+bool looks_like_decimal_commas(std::string_view content) {
+  if (content.find(',') == std::string_view::npos) return false;
+  const Delimiter delimiter =
+      content.find(';') != std::string_view::npos ? Delimiter::semicolon : Delimiter::whitespace;
+  bool all = true;
+  std::size_t with_comma = 0;
+  const std::size_t count = split(content, delimiter, [&](std::size_t, std::string_view field) {
+    double ignored = 0.0;
+    if (parse_comma_number(field, ignored)) {
+      ++with_comma;
+    } else if (!parse_number(field, ignored)) {
+      all = false;
+    }
+  });
+  return all && with_comma > 0 && (count > 1 || delimiter == Delimiter::whitespace);
+}
+
+std::optional<Layout> read_layout(const std::string& path, LineReader& reader, bool decimal_comma) {
   std::string_view line;
   bool first = true;
   while (reader.next(line)) {
@@ -252,33 +408,40 @@ std::optional<Layout> read_layout(const std::string& path, LineReader& reader) {
     const bool binary = std::any_of(content.begin(), content.end(), [](char c) {
       return static_cast<unsigned char>(c) < 0x20 && c != '\t';
     });
-    if (content.rfind("\x89HDF", 0) == 0) {
-      throw_data_error(path,
-                       "this is an HDF5 file, not text: a MAT v7.3 file needs the extension "
-                       ".mat or the format mat; other HDF5 files cannot be read (export the "
-                       "data as CSV)");
-    }
-    if (content.rfind("MATLAB ", 0) == 0 && content.find("MAT-file") != std::string_view::npos) {
-      throw_data_error(path,
-                       "this is a MAT file, not text: give it the extension .mat or the "
-                       "format mat");
-    }
     if (binary) {
       throw_data_error(path, fmt::format("line {} holds binary data, not text: a raw record "
                                          "needs the extension .f32/.f64 or the format f32/f64, "
                                          "a MAT file the extension .mat or the format mat",
                                          reader.line_number()));
     }
+    const bool tab = content.find('\t') != std::string_view::npos;
+    const bool semicolon = content.find(';') != std::string_view::npos;
+    if (!decimal_comma && !tab && looks_like_decimal_commas(content)) {
+      throw_data_error(path, fmt::format("line {} ('{}') reads as numbers with decimal commas: "
+                                         "give ReadOptions::decimal_comma to read them so",
+                                         reader.line_number(), shorten(content)));
+    }
     Layout layout;
-    layout.delimiter = content.find('\t') != std::string_view::npos  ? Delimiter::tab
+    layout.delimiter = tab                                           ? Delimiter::tab
+                       : semicolon                                   ? Delimiter::semicolon
+                       : decimal_comma                               ? Delimiter::whitespace
                        : content.find(',') != std::string_view::npos ? Delimiter::comma
                                                                      : Delimiter::whitespace;
     std::vector<std::string> fields;
-    split(content, layout.delimiter,
-          [&](std::size_t, std::string_view field) { fields.emplace_back(field); });
+    const std::size_t count =
+        split(content, layout.delimiter, [&](std::size_t k, std::string_view field) {
+          if (k < kMaxColumns) fields.emplace_back(field);
+        });
+    if (count > kMaxColumns) {
+      throw_data_error(path, fmt::format("line {} has {} columns; a table may have at most {}",
+                                         reader.line_number(), count, kMaxColumns));
+    }
     for (const std::string& field : fields) {
       double ignored = 0.0;
-      if (!parse_number(field, ignored)) layout.has_header = true;
+      const bool number = decimal_comma
+                              ? parse_comma_number(field, ignored) || parse_number(field, ignored)
+                              : parse_number(field, ignored);
+      if (!number) layout.has_header = true;
     }
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const bool named = layout.has_header && !fields[k].empty();
@@ -368,7 +531,7 @@ std::string shorten(std::string_view text) {
 
 Series read_text(const std::string& path, const ReadOptions& options) {
   LineReader reader(path);
-  const std::optional<Layout> found = read_layout(path, reader);
+  const std::optional<Layout> found = read_layout(path, reader, options.decimal_comma);
   if (!found) throw_data_error(path, "no data (the file is empty or has only comments)");
   const Layout& layout = *found;
 
@@ -404,16 +567,17 @@ Series read_text(const std::string& path, const ReadOptions& options) {
   auto parse_cell = [&](std::string_view field, std::size_t index, std::size_t line_number) {
     double value = 0.0;
     if (parse_number(field, value)) return value;
+    if (options.decimal_comma && parse_comma_number(field, value)) return value;
     if (field.empty()) {
       throw_data_error(
           path, fmt::format("line {}, {} is empty", line_number, column_label(layout, index)));
     }
-    const bool semicolons = field.find(';') != std::string_view::npos;
+    const bool comma = !options.decimal_comma && parse_comma_number(field, value);
     throw_data_error(path, fmt::format("line {}, {}: '{}' is not a number{}", line_number,
                                        column_label(layout, index), shorten(field),
-                                       semicolons ? " (semicolon-separated tables are not "
-                                                    "supported: use commas, tabs or spaces)"
-                                                  : ""));
+                                       comma ? " (a decimal comma: give "
+                                               "ReadOptions::decimal_comma to read it so)"
+                                             : ""));
   };
   auto take_row = [&](std::string_view content, std::size_t line_number) {
     if (series.values.empty() && file_bytes > 0) reserve_for(content);
@@ -429,6 +593,11 @@ Series read_text(const std::string& path, const ReadOptions& options) {
                                          line_number, count, columns, layout.first_line_number,
                                          layout.has_header ? " (" + join_names(layout.names) + ")"
                                                            : std::string()));
+    }
+    if (options.max_samples && series.values.size() == *options.max_samples) {
+      throw_data_error(path, fmt::format("more than {} samples (at line {}): the limit for one "
+                                         "record (ReadOptions::max_samples)",
+                                         *options.max_samples, line_number));
     }
     series.values.push_back(parse_cell(value_field, column, line_number));
     if (need_time) {
@@ -462,7 +631,7 @@ Series read_text(const std::string& path, const ReadOptions& options) {
 
 std::vector<std::string> list_text_channels(const std::string& path) {
   LineReader reader(path);
-  const std::optional<Layout> layout = read_layout(path, reader);
+  const std::optional<Layout> layout = read_layout(path, reader, /*decimal_comma=*/false);
   if (!layout) throw_data_error(path, "no data (the file is empty or has only comments)");
   return layout->names;
 }

@@ -64,13 +64,25 @@ void write_mat(const std::string& path, std::span<const NamedVector> variables) 
   const OutputTarget target = file_target(path, "MAT file");
   const std::string tmp = target.temporary();
   internal::MatioSession session;
+  errno = 0;
   mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
   if (mat == nullptr) {
     const int err = errno;
-    std::remove(tmp.c_str());
-    cannot_write(path, session_reason(session, err != 0 ? std::strerror(err) : "cannot create"));
+    discard_temporary(tmp);
+    if (err != 0) write_failed(path, err);
+    cannot_write(path, session_reason(session, "cannot create"));
   }
+  // matio 1.5 does not check every fwrite(): a write cut short by a full
+  // disk or `ulimit -f` can end in "success" with a truncated file. So the
+  // system's word is taken from errno after each call, and the file's
+  // layout is walked before it is put in place.
   bool ok = true;
+  int storage_errno = 0;
+  auto note_errno = [&storage_errno] {
+    if (errno == ENOSPC || errno == EDQUOT || errno == EFBIG || errno == EIO) {
+      storage_errno = errno;
+    }
+  };
   std::string reason;
   for (const NamedVector& v : variables) {
     size_t dims[2] = {v.values.size(), 1};
@@ -83,7 +95,9 @@ void write_mat(const std::string& path, std::span<const NamedVector> variables) 
       reason = session_reason(session, fmt::format("cannot create variable '{}'", v.name));
       break;
     }
+    errno = 0;
     const int status = Mat_VarWrite(mat, var, MAT_COMPRESSION_ZLIB);
+    note_errno();
     Mat_VarFree(var);
     if (status != 0 || !session.messages(false).empty()) {
       ok = false;
@@ -91,14 +105,28 @@ void write_mat(const std::string& path, std::span<const NamedVector> variables) 
       break;
     }
   }
+  errno = 0;
   const bool closed = Mat_Close(mat) == 0;
+  note_errno();
   if (ok && !closed) {
     ok = false;
     reason = session_reason(session, "closing the file failed");
   }
+  if (storage_errno != 0) ok = false;
+  if (ok) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(tmp, ec);
+    try {
+      ok = !ec && internal::check_mat5_layout(tmp, size) == variables.size();
+    } catch (const DataError&) {
+      ok = false;
+    }
+    if (!ok) reason = "the file written is incomplete (the disk may be full)";
+  }
   if (!ok) {
-    std::remove(tmp.c_str());
-    cannot_write(path, reason);
+    discard_temporary(tmp);
+    if (storage_errno != 0) write_failed(path, storage_errno);
+    throw DataError(fmt::format("cannot write '{}': {}", path, reason));
   }
   commit_temporary(target, tmp);
 }
@@ -163,12 +191,16 @@ RawFileWriter::RawFileWriter(const std::string& path, RawType type)
     direct_ = fd_ >= 0;
 #endif
     if (fd_ < 0) fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd_ < 0) cannot_write(path, std::strerror(errno));
+    if (fd_ < 0) {
+      const int err = errno;
+      discard_temporary(tmp_);
+      write_failed(path, err);
+    }
   }
   void* memory = nullptr;
   if (posix_memalign(&memory, kDirectAlign, kStageBytes) != 0) {
     ::close(fd_);
-    if (!tmp_.empty()) std::remove(tmp_.c_str());
+    if (!tmp_.empty()) discard_temporary(tmp_);
     throw std::bad_alloc();
   }
   buffer_ = static_cast<unsigned char*>(memory);
@@ -177,16 +209,16 @@ RawFileWriter::RawFileWriter(const std::string& path, RawType type)
 RawFileWriter::~RawFileWriter() {
   if (fd_ >= 0) {
     ::close(fd_);
-    if (!tmp_.empty()) std::remove(tmp_.c_str());
+    if (!tmp_.empty()) discard_temporary(tmp_);
   }
   std::free(buffer_);
 }
 
-void RawFileWriter::fail(const std::string& reason) {
+void RawFileWriter::fail(int error_number) {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  if (!tmp_.empty()) std::remove(tmp_.c_str());
-  cannot_write(target_.path, reason);
+  if (!tmp_.empty()) discard_temporary(tmp_);
+  write_failed(target_.path, error_number);
 }
 
 // Writes the first `bytes` staged bytes and keeps the rest at the front.
@@ -196,7 +228,7 @@ void RawFileWriter::flush(std::size_t bytes) {
     const ssize_t n = ::write(fd_, buffer_ + done, bytes - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      fail(std::strerror(errno));
+      fail(errno);
     }
     done += static_cast<std::size_t>(n);
   }
@@ -233,7 +265,7 @@ void RawFileWriter::commit() {
   flush(used_ - used_ % kDirectAlign);
 #ifdef O_DIRECT
   if (direct_ && used_ > 0 && fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) & ~O_DIRECT) != 0) {
-    fail(std::strerror(errno));
+    fail(errno);
   }
 #endif
   flush(used_);
@@ -241,8 +273,8 @@ void RawFileWriter::commit() {
   fd_ = -1;
   if (::close(fd) != 0) {
     const int err = errno;
-    if (!tmp_.empty()) std::remove(tmp_.c_str());
-    cannot_write(target_.path, std::strerror(err));
+    if (!tmp_.empty()) discard_temporary(tmp_);
+    write_failed(target_.path, err);
   }
   if (!tmp_.empty()) commit_temporary(target_, tmp_);
 }

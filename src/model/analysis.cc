@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "foglab/model/spectral_lines.h"
 
 namespace foglab::model {
@@ -108,12 +109,26 @@ void add_reported_allan(Statistics& s, const stats::AllanResult& all, double fs,
   }
 }
 
+// A deviation of 0 is no noise at that tau: the fit (log deviations) cannot
+// take it, and it is a property of the data, not of the options.
+void require_noise(const stats::AllanResult& all) {
+  for (std::size_t k = 0; k < all.tau_s.size(); ++k) {
+    if (!(all.dev[k] > 0.0)) {
+      throw DataError(fmt::format(
+          "the Allan deviation is 0 at tau {:g} s: the record (less its temperature part) "
+          "repeats exactly over that time, so there is no noise to model",
+          all.tau_s[k]));
+    }
+  }
+}
+
 // The noise model of a residual from its OADEV `all`. `record` and `degree`
 // (> 0) give the polynomial in temperature removed from it: the fit then
 // allows for what removing it did to each term (detrend_factors).
 NoiseFitResult residual_noise_model(const stats::AllanResult& all, const AnalysisOptions& options,
                                     const TemperatureRecord* record, int degree,
                                     std::span<const SpectralLine> lines) {
+  require_noise(all);
   if (record && degree > 0) {
     const DetrendFactors factors = detrend_factors(*record, degree, all.tau_s);
     return fit_noise_model(all, options.noise_fit, &factors, lines);
@@ -202,6 +217,7 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
         "model needs 3 or more (a few hundred samples)",
         rate.size(), fs, cubic_allan.tau_s.size()));
   }
+  require_noise(cubic_allan);
   const DetrendFactors cubic_factors = detrend_factors(record, cubic_degree, cubic_allan.tau_s);
   std::future<NoiseFitResult> cubic_noise = std::async(std::launch::async, [&] {
     return fit_noise_model(cubic_allan, options.noise_fit, &cubic_factors, lines);
@@ -321,6 +337,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         "meaningful noise model)",
         rate_deg_h.size()));
   }
+  require_varying(rate_deg_h);
   check_gaps(gaps, static_cast<std::int64_t>(rate_deg_h.size()), "analyze");
   AnalysisResult r;
   r.gaps.assign(gaps.begin(), gaps.end());

@@ -47,14 +47,44 @@ bool parse_number(std::string_view text, double& value) {
       text));
 }
 
-TemperatureProfile read_profile_file(const std::string& path) {
-  std::ifstream in(path);
+// A profile is a short table; a larger file (or /dev/zero) is refused
+// before memory runs out.
+constexpr std::size_t kMaxProfileBytes = std::size_t{64} << 20;
+
+std::string read_bounded(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(fmt::format("{}: cannot open the temperature profile", path));
+  std::string text(kMaxProfileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (const auto nul = text.find('\0'); nul != std::string::npos) {
+    throw DataError(
+        fmt::format("{}: byte {} of the temperature profile is a NUL: binary data, "
+                    "not a text table of (time_s, temperature_c) rows",
+                    path, nul + 1));
+  }
+  if (text.size() > kMaxProfileBytes) {
+    throw DataError(
+        fmt::format("{}: the temperature profile is larger than {} MiB: not a "
+                    "table of (time_s, temperature_c) rows",
+                    path, kMaxProfileBytes >> 20));
+  }
+  return text;
+}
+
+std::string_view shortened(std::string_view text) {
+  return text.size() <= 60 ? text : text.substr(0, 60);
+}
+
+TemperatureProfile read_profile_file(const std::string& path) {
+  const std::string text = read_bounded(path);
   TemperatureProfile profile;
   profile.kind = TemperatureKind::file;
-  std::string line;
   int line_number = 0;
-  while (std::getline(in, line)) {
+  for (std::size_t begin = 0; begin < text.size();) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    const std::string_view line(text.data() + begin, end - begin);
+    begin = end + 1;
     ++line_number;
     std::string_view body(line);
     if (const auto hash = body.find('#'); hash != std::string_view::npos) body = body.substr(0, hash);
@@ -71,9 +101,9 @@ TemperatureProfile read_profile_file(const std::string& path) {
     double t = 0.0;
     double temp = 0.0;
     if (fields.size() != 2 || !parse_number(fields[0], t) || !parse_number(fields[1], temp)) {
-      throw DataError(fmt::format(
-          "{}:{}: expected two finite numbers 'time_s temperature_c', got '{}'", path,
-          line_number, line));
+      throw DataError(
+          fmt::format("{}:{}: expected two finite numbers 'time_s temperature_c', got '{}'", path,
+                      line_number, shortened(line)));
     }
     if (!profile.profile_time_s.empty() && !(t > profile.profile_time_s.back())) {
       throw DataError(fmt::format("{}:{}: time {} s is not after the previous time {} s", path,

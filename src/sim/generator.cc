@@ -35,6 +35,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
+#include "foglab/core/units.h"
 #include "generator_internal.h"
 
 namespace foglab::sim {
@@ -69,19 +70,43 @@ enum Process : std::uint64_t {
   kFlickerStart = 2000,      // + component index: the stationary start
 };
 
+// The largest magnitude of a model coefficient, a bias or a temperature in
+// its unit: far beyond any gyro (a navigation FOG's N is 1e-3 deg/h/sqrt(Hz),
+// a MEMS one's 1e2), small enough that no sample of a run can overflow.
+constexpr double kMaxCoefficient = 1e9;
+constexpr double kMaxTemperatureC = 1e4;
+
 void check_nonnegative(std::string_view name, double value, std::string_view unit) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw UsageError(fmt::format("{} must be a finite number >= 0 {}, got {}", name, unit, value));
+  if (!(value >= 0.0 && value <= kMaxCoefficient)) {
+    throw UsageError(
+        fmt::format("{} must be in [0, {:g}] {}, got {}", name, kMaxCoefficient, unit, value));
   }
 }
 
-void check_finite(std::string_view name, double value) {
-  if (!std::isfinite(value)) throw UsageError(fmt::format("{} must be finite, got {}", name, value));
+void check_finite(std::string_view name, double value, double limit = kMaxCoefficient) {
+  if (!(std::fabs(value) <= limit)) {
+    throw UsageError(
+        fmt::format("{} must be finite and at most {:g} in magnitude, got {}", name, limit, value));
+  }
+}
+
+// Every generated sample is finite (a model within the limits above could
+// still overflow through a high-degree temperature polynomial).
+void check_samples(std::int64_t first, const double* rate, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!std::isfinite(rate[i])) {
+      throw UsageError(
+          fmt::format("the model gives a rate of {} at sample {}: its options are "
+                      "too large (a temperature coefficient, a bias)",
+                      rate[i], first + static_cast<std::int64_t>(i) + 1));
+    }
+  }
 }
 
 std::int64_t validate(const ErrorModel& m, const TemperatureProfile& t, const GeneratorOptions& o) {
-  if (!std::isfinite(o.sample_rate_hz) || o.sample_rate_hz <= 0.0) {
-    throw UsageError(fmt::format("sample_rate_hz must be > 0 [Hz], got {}", o.sample_rate_hz));
+  if (!(o.sample_rate_hz >= kMinSampleRateHz && o.sample_rate_hz <= kMaxSampleRateHz)) {
+    throw UsageError(fmt::format("sample_rate_hz must be in [{:g}, {:g}] Hz, got {}",
+                                 kMinSampleRateHz, kMaxSampleRateHz, o.sample_rate_hz));
   }
   if (!std::isfinite(o.duration_s) || o.duration_s <= 0.0) {
     throw UsageError(fmt::format("duration_s must be > 0 [s], got {}", o.duration_s));
@@ -108,8 +133,8 @@ std::int64_t validate(const ErrorModel& m, const TemperatureProfile& t, const Ge
   for (std::size_t k = 0; k < m.temp_coefs.size(); ++k) {
     check_finite(fmt::format("temp_coefs[{}]", k), m.temp_coefs[k]);
   }
-  check_finite("temperature start_c", t.start_c);
-  check_finite("temperature span_c", t.span_c);
+  check_finite("temperature start_c", t.start_c, kMaxTemperatureC);
+  check_finite("temperature span_c", t.span_c, kMaxTemperatureC);
   check_nonnegative("temperature jitter_c", t.jitter_c, "[degC]");
   if (t.kind == TemperatureKind::file) {
     if (t.profile_time_s.empty() || t.profile_time_s.size() != t.profile_temperature_c.size()) {
@@ -119,7 +144,8 @@ std::int64_t validate(const ErrorModel& m, const TemperatureProfile& t, const Ge
     }
     for (std::size_t i = 0; i < t.profile_time_s.size(); ++i) {
       check_finite(fmt::format("temperature profile time[{}]", i), t.profile_time_s[i]);
-      check_finite(fmt::format("temperature profile temperature[{}]", i), t.profile_temperature_c[i]);
+      check_finite(fmt::format("temperature profile temperature[{}]", i),
+                   t.profile_temperature_c[i], kMaxTemperatureC);
       if (i > 0 && !(t.profile_time_s[i] > t.profile_time_s[i - 1])) {
         throw UsageError(fmt::format("temperature profile: time[{}] = {} s is not after time[{}] = {} s",
                                      i, t.profile_time_s[i], i - 1, t.profile_time_s[i - 1]));
@@ -552,6 +578,7 @@ void generate(const ErrorModel& model, const TemperatureProfile& temperature,
       auto& set = buffers[static_cast<std::size_t>(which)];
       engine.block(first, count, set[0].data(), set[1].data(), set[2].data());
       if (chained) chain.apply(first, set[1].data(), count);
+      check_samples(first, set[1].data(), count);
       finish_sink();  // the previous block, whose buffers are reused next
       Block block;
       block.first_index = first;
@@ -591,6 +618,7 @@ Recording generate(const ErrorModel& model, const TemperatureProfile& temperatur
     if (model.output.any()) {
       chain.apply(static_cast<std::int64_t>(first), r.rate_deg_h.data() + first, count);
     }
+    check_samples(static_cast<std::int64_t>(first), r.rate_deg_h.data() + first, count);
   }
   return r;
 }

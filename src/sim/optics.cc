@@ -29,6 +29,15 @@ void check_positive(double v, const char* what) {
   }
 }
 
+// v in [low, high] (low excluded when `open_low`), else a UsageError.
+void check_within(double v, double low, double high, const char* what, bool open_low = true) {
+  const bool above = open_low ? v > low : v >= low;
+  if (!(above && v <= high)) {
+    throw UsageError(fmt::format("{} must be in {}{:g}, {:g}], got {}", what, open_low ? "(" : "[",
+                                 low, high, v));
+  }
+}
+
 /// The drive's half-period index at sample k (square: even = +pi/4).
 std::int64_t half_index(double position) {
   return static_cast<std::int64_t>(std::floor(position + kEdgeEpsilon));
@@ -69,11 +78,12 @@ OpticsResult run(const Coil& coil, const RateInput& rate, double duration_s, con
   if (!(o.gate_fraction >= 0.0 && o.gate_fraction < 0.5)) {
     throw UsageError(fmt::format("the gate fraction must be in [0, 0.5), got {}", o.gate_fraction));
   }
-  if (!(o.modulation_frequency_hz >= 0.0) || !std::isfinite(o.modulation_frequency_hz)) {
+  if (!(o.modulation_frequency_hz >= 0.0 &&
+        o.modulation_frequency_hz <= kMaxModulationFrequencyHz)) {
     throw UsageError(
-        fmt::format("the modulation frequency must be >= 0 Hz (0: the proper one), "
+        fmt::format("the modulation frequency must be in [0, {:g}] Hz (0: the proper one), "
                     "got {}",
-                    o.modulation_frequency_hz));
+                    kMaxModulationFrequencyHz, o.modulation_frequency_hz));
   }
   check_positive(o.source_intensity, "the source intensity");
   check_positive(o.detector_gain, "the detector gain");
@@ -216,7 +226,7 @@ OpticsResult run(const Coil& coil, const RateInput& rate, double duration_s, con
 
 SweepResult sweep(const Coil& coil, double range_rad_s, const OpticsOptions& options,
                   const ClosedLoopOptions* loop, const SweepOptions& s) {
-  check_positive(range_rad_s, "the sweep range [rad/s]");
+  check_within(range_rad_s, 0.0, kMaxInputRateRadS, "the sweep range [rad/s]");
   if (s.settle_periods < 0 || s.average_periods < 1) {
     throw UsageError(
         fmt::format("sweep: settle periods must be >= 0 and average periods >= 1, "
@@ -258,10 +268,10 @@ SweepResult sweep(const Coil& coil, double range_rad_s, const OpticsOptions& opt
 }  // namespace
 
 CoilNumbers coil_numbers(const Coil& coil) {
-  check_positive(coil.length_m, "the fibre length [m]");
-  check_positive(coil.radius_m, "the coil radius [m]");
-  check_positive(coil.wavelength_m, "the wavelength [m]");
-  check_positive(coil.group_index, "the group index");
+  check_within(coil.length_m, 0.0, kMaxFibreLengthM, "the fibre length [m]");
+  check_within(coil.radius_m, 0.0, kMaxCoilRadiusM, "the coil radius [m]");
+  check_within(coil.wavelength_m, kMinWavelengthM, kMaxWavelengthM, "the wavelength [m]", false);
+  check_within(coil.group_index, 1.0, kMaxGroupIndex, "the group index", false);
   CoilNumbers n;
   n.scale_factor_s =
       4.0 * kPi * coil.radius_m * coil.length_m / (coil.wavelength_m * kSpeedOfLightM_S);
@@ -314,15 +324,23 @@ Modulation modulation_from_string(std::string_view text) {
 }
 
 RateInput RateInput::constant(double rate_rad_s) {
-  if (!std::isfinite(rate_rad_s)) throw UsageError("the input rate must be finite");
+  if (!(std::fabs(rate_rad_s) <= kMaxInputRateRadS)) {
+    throw UsageError(
+        fmt::format("the input rate must be finite and at most {:g} rad/s in "
+                    "magnitude, got {}",
+                    kMaxInputRateRadS, rate_rad_s));
+  }
   RateInput r;
   r.rate_rad_s = rate_rad_s;
   return r;
 }
 
 RateInput RateInput::ramp(double start_rad_s, double end_rad_s, double duration_s) {
-  if (!std::isfinite(start_rad_s) || !std::isfinite(end_rad_s)) {
-    throw UsageError("the ramp's rates must be finite");
+  if (!(std::fabs(start_rad_s) <= kMaxInputRateRadS && std::fabs(end_rad_s) <= kMaxInputRateRadS)) {
+    throw UsageError(
+        fmt::format("the ramp's rates must be finite and at most {:g} rad/s in "
+                    "magnitude, got {} and {}",
+                    kMaxInputRateRadS, start_rad_s, end_rad_s));
   }
   check_positive(duration_s, "the ramp duration [s]");
   RateInput r;
@@ -341,8 +359,11 @@ RateInput RateInput::profile(std::vector<double> time_s, std::vector<double> rat
                     time_s.size(), rate_rad_s.size()));
   }
   for (std::size_t i = 0; i < time_s.size(); ++i) {
-    if (!std::isfinite(time_s[i]) || !std::isfinite(rate_rad_s[i])) {
-      throw UsageError(fmt::format("rate profile point {}: time and rate must be finite", i + 1));
+    if (!std::isfinite(time_s[i]) || !(std::fabs(rate_rad_s[i]) <= kMaxInputRateRadS)) {
+      throw UsageError(
+          fmt::format("rate profile point {}: the time must be finite and the rate "
+                      "at most {:g} rad/s in magnitude, got {} s and {} rad/s",
+                      i + 1, kMaxInputRateRadS, time_s[i], rate_rad_s[i]));
     }
     if (i > 0 && !(time_s[i] > time_s[i - 1])) {
       throw UsageError(fmt::format("rate profile point {}: times must increase ({} s after {} s)",

@@ -146,16 +146,15 @@ TEST(CliGenerate, BadOptionsAreUsageErrorsWithAMessage) {
   const std::vector<Case> cases = {
       {"generate --N 1 --hours 1" + out, "--fs is required"},
       {"generate --N 1 --fs 10" + out, "--hours"},
-      {"generate --N 1 --fs 0 --hours 1" + out, "--fs must be > 0"},
-      {"generate --N 1 --fs 10 --hours -2" + out, "--hours must be > 0"},
+      {"generate --N 1 --fs 0 --hours 1" + out, "--fs must be from 1e-06 to 1e+09 Hz"},
+      {"generate --N 1 --fs 10 --hours -2" + out, "--hours must be in (0, 1e6]"},
       {"generate --N 1 --fs 10 --hours 1 --out " + quote(dir / "x.txt"),
        "unknown output type '.txt'"},
       {"generate --preset nope --fs 10 --hours 1" + out, "unknown preset 'nope'"},
       {"generate --N 1 --fs 10 --hours 1 --temp-coef 1,x" + out, "'x' is not a number"},
       {"generate --N -1 --fs 10 --hours 0.01" + out, "N"},
       {"generate --N 1 --fs 10 --hours 0.01 --temperature bogus" + out, "bogus"},
-      {"generate --N 1 --fs 10 --hours 0.01 --out " + quote(dir / "no" / "x.mat"),
-       "cannot write"},
+      {"generate --N 1 --fs 10 --hours 0.01 --out " + quote(dir / "no" / "x.mat"), "cannot write"},
   };
   for (const Case& c : cases) {
     const test::CliRun r = run_foglab(c.args);

@@ -303,17 +303,74 @@ TEST_F(TextReaderTest, RaggedRowIsReported) {
             "'" + path + "': line 3 has 2 column(s), expected 3 as in line 1 (t, rate, temp)");
 }
 
-TEST_F(TextReaderTest, SemicolonsGetAHint) {
-  const std::string path = write("excel.csv", "t;rate\n0;1\n");
-  const std::string message = message_of<DataError>([&] { read_series(path, with_fs(1.0)); });
-  EXPECT_THAT(message, HasSubstr("line 2, column 1 (t;rate): '0;1' is not a number"));
-  EXPECT_THAT(message, HasSubstr("semicolon-separated tables are not supported"));
+TEST_F(TextReaderTest, SemicolonsSeparateFieldsAndDecimalCommasNeedTheOption) {
+  // Spreadsheets in much of Europe write "t;rate" and "0,5".
+  const std::string path = write("excel.csv", "t;rate\n0;1,5\n1;-2,25e-1\n2;3\n");
+  ReadOptions options;
+  options.channel = "rate";
+  const std::string message = message_of<DataError>([&] { read_series(path, options); });
+  EXPECT_THAT(message, HasSubstr("line 2, column 2 (rate): '1,5' is not a number (a decimal "
+                                 "comma: give ReadOptions::decimal_comma"));
+  options.decimal_comma = true;
+  const Series s = read_series(path, options);
+  EXPECT_EQ(s.values, (std::vector<double>{1.5, -0.225, 3.0}));
+  EXPECT_DOUBLE_EQ(s.sample_rate_hz, 1.0);
+}
+
+// UTF-16 (converted with iconv in blocks): a table of 3 MB, so that the
+// conversion runs out of room and resumes several times, and a file cut in
+// the middle of a character.
+TEST_F(TextReaderTest, Utf16WithAByteOrderMarkIsReadInFull) {
+  std::string text = "t,rate\r\n";
+  std::vector<double> expected;
+  for (int i = 0; i < 150000; ++i) {
+    text += std::to_string(i) + "," + std::to_string(i % 97) + ".25\r\n";
+    expected.push_back(i % 97 + 0.25);
+  }
+  for (const bool little_endian : {true, false}) {
+    SCOPED_TRACE(little_endian ? "LE" : "BE");
+    std::string bytes = little_endian ? "\xFF\xFE" : "\xFE\xFF";
+    for (const char c : text) bytes += little_endian ? std::string{c, '\0'} : std::string{'\0', c};
+    ReadOptions options;
+    options.channel = "rate";
+    const Series s = read_series(write("utf16.csv", bytes), options);
+    EXPECT_EQ(s.values, expected);
+    EXPECT_DOUBLE_EQ(s.sample_rate_hz, 1.0);
+    bytes.pop_back();  // half a character at the end
+    EXPECT_THAT(message_of<DataError>([&] { read_series(write("cut.csv", bytes), options); }),
+                HasSubstr("ends in the middle of a character"));
+  }
+}
+
+TEST_F(TextReaderTest, CarriageReturnsAloneEndLines) {
+  const std::string path = write("mac.csv", "# old Mac\rt,rate\r0,1\r1,2\r2,4\r");
+  ReadOptions options;
+  options.channel = "rate";
+  EXPECT_EQ(read_series(path, options).values, (std::vector<double>{1.0, 2.0, 4.0}));
+}
+
+TEST_F(TextReaderTest, TheSampleLimitAndTheLineLengthAreBounds) {
+  std::string rows;
+  for (int i = 0; i < 50; ++i) rows += std::to_string(i) + "\n";
+  ReadOptions options = with_fs(1.0);
+  options.max_samples = 40;
+  EXPECT_THAT(message_of<DataError>([&] { read_series(write("rows.txt", rows), options); }),
+              HasSubstr("more than 40 samples (at line 41)"));
+  options.max_samples = 50;
+  EXPECT_EQ(read_series(write("rows.txt", rows), options).values.size(), 50u);
+  const std::string long_line = "1\n2\n" + std::string((1 << 20) + 10, '7') + "\n";
+  EXPECT_THAT(message_of<DataError>([&] { read_series(write("long.txt", long_line), with_fs(1)); }),
+              HasSubstr("line 3 is longer than 1 MiB"));
 }
 
 TEST_F(TextReaderTest, BinaryDataIsNotTakenForText) {
-  const std::string path = write("record.dat", std::string("\x00\x00\xf0\x3f\x01\x02", 6));
+  const std::string path = write("record.dat", std::string("\x01\x02\xf0\x3f\x00\x02", 6));
   EXPECT_THAT(message_of<DataError>([&] { read_series(path, with_fs(1.0)); }),
-              HasSubstr("'" + path + "': line 1 holds binary data, not text"));
+              HasSubstr("'" + path + "': byte 5 is a NUL: binary data, not text"));
+  // Control characters without a NUL: still not text.
+  const std::string control = write("control.dat", std::string("1\x01\x02\n2\n", 6));
+  EXPECT_THAT(message_of<DataError>([&] { read_series(control, with_fs(1.0)); }),
+              HasSubstr("line 1 holds binary data, not text"));
 }
 
 TEST_F(TextReaderTest, AMatFileUnderAnotherNameIsRecognised) {

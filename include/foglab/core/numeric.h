@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace foglab {
@@ -52,6 +53,12 @@ double compensated_sum(std::span<const double> values);
 
 /// Compensated arithmetic mean of `values` (0 for an empty span).
 double compensated_mean(std::span<const double> values);
+
+/// Throws DataError "the record is constant: all N samples equal X UNIT,
+/// so there is no noise to analyse" when every value is the same (an
+/// analysis of it would give deviations of 0, which no model fits). A
+/// record of fewer than 2 samples passes (too short is said elsewhere).
+void require_varying(std::span<const double> values, std::string_view unit = "deg/h");
 
 /// The median of `values` (of an even count, the upper of the middle two),
 /// found by reordering them in place (std::nth_element). Not empty.

@@ -13,17 +13,32 @@
 //   (renaming a temporary over /dev/null had replaced the device node).
 // Before anything is computed, check_outputs() refuses an output that is an
 // input of the same run or another of its outputs.
+//
+// Every temporary is registered while it exists: a command-line run that
+// installs remove_temporaries_on_interrupt() removes them all on SIGINT,
+// SIGTERM or SIGHUP and exits 128+signal. A folder of outputs
+// (OutputFolder) is built in a temporary folder and put in place whole.
 #pragma once
 
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace foglab {
 
 /// Throws UsageError "cannot write 'PATH': REASON" (an unwritable
 /// destination is a problem with the arguments).
 [[noreturn]] void cannot_write(const std::string& path, const std::string& reason);
+
+/// Throws for a failed write, flush or close of `path` with the system's
+/// `error_number`: DataError (exit 3) when the system could not store the
+/// result — a full disk or quota (ENOSPC, EDQUOT), the file size limit
+/// (EFBIG, `ulimit -f`), a reader that went away (EPIPE), a closed
+/// descriptor (EBADF), an I/O error (EIO) — and UsageError (exit 2) for a
+/// destination that cannot be written at all (permissions, a missing
+/// folder).
+[[noreturn]] void write_failed(const std::string& path, int error_number);
 
 /// Where an output path leads (see above).
 struct OutputTarget {
@@ -35,7 +50,8 @@ struct OutputTarget {
   /// The temporary a regular target is written to first: ".NAME.tmpPID"
   /// beside `file`, so the final rename stays on one file system. A special
   /// target that must be written through a file (a MAT file to /dev/null)
-  /// gets one in the temporary directory instead.
+  /// gets one in the temporary directory instead. The name is registered
+  /// (register_temporary) before it is returned.
   std::string temporary() const;
 };
 
@@ -44,8 +60,8 @@ struct OutputTarget {
 OutputTarget output_target(const std::string& path);
 
 /// Puts a finished temporary in place: renamed over a regular target,
-/// copied into a special one (and removed). On failure the temporary is
-/// removed and UsageError names the path and the system's reason.
+/// copied into a special one (and removed), and forgotten. On failure the
+/// temporary is removed and write_failed() names the path and the reason.
 void commit_temporary(const OutputTarget& target, const std::string& temporary);
 
 /// Opens a special target for writing in place (never created or
@@ -75,5 +91,51 @@ void check_outputs(std::span<const RunPath> inputs, std::span<const RunPath> out
 /// Flushes standard output and throws DataError when anything written to it
 /// was lost (a full disk, a closed stream); called once at the end of a run.
 void finish_standard_output();
+
+/// Records that `path` (a file, or a folder with everything in it) is an
+/// unfinished output, to be removed if the run is interrupted.
+void register_temporary(const std::string& path);
+
+/// Removes a registered temporary (file or folder) and forgets it.
+void discard_temporary(const std::string& path);
+
+/// For a command-line program, called first in main() before any thread
+/// starts: SIGINT, SIGTERM and SIGHUP are taken by one thread that removes
+/// every registered temporary, says so on standard error and exits with
+/// 128+signal; SIGXFSZ and SIGPIPE are ignored, so that a write beyond
+/// `ulimit -f` or to a closed pipe fails (EFBIG, EPIPE) and takes the
+/// normal error path. A temporary being put in place is finished first:
+/// the signal waits for the rename (or a folder's whole swap).
+void remove_temporaries_on_interrupt();
+
+/// A folder of outputs (lab1, lab2, lab2-data --out) that appears whole or
+/// not at all. The files are written into a temporary folder
+/// ".NAME.tmpPID" beside the target; commit() renames it into place when
+/// the target does not exist, or moves the files into an existing target
+/// one by one (each replacing its old version) with interruptions held off
+/// until all are moved. Destroyed without commit(), it removes what was
+/// written and the target stays as it was.
+class OutputFolder {
+ public:
+  /// Throws UsageError naming `option` when `path` is a file, or a folder
+  /// cannot be created beside it.
+  OutputFolder(std::string option, const std::string& path);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  /// Where the output `name` is written now (inside the temporary folder).
+  std::string file(std::string_view name) const;
+  /// Where the output `name` will be once committed, for messages.
+  std::string final_file(std::string_view name) const;
+  /// Puts the folder in place (see above).
+  void commit();
+
+ private:
+  std::string option_;
+  std::string path_;       // as given
+  std::string target_;     // links followed
+  std::string temporary_;  // empty once committed
+};
 
 }  // namespace foglab

@@ -40,6 +40,13 @@ std::string_view to_string(InputKind kind);
 InputKind input_kind_from_string(std::string_view text);
 
 inline constexpr double kSecondsPerHour = 3600.0;
+
+/// The sample rates foglab takes [Hz], from files, options and the
+/// generator: one sample in 11.6 days to 1 GHz. Outside them a rate is a
+/// mistake (an `f` of 1e300 or 1e-300 in a file), and the statistics'
+/// frequencies and times would overflow.
+inline constexpr double kMinSampleRateHz = 1e-6;
+inline constexpr double kMaxSampleRateHz = 1e9;
 inline constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 }  // namespace foglab

@@ -52,4 +52,11 @@ std::vector<std::string> paired_temperature_names(std::string_view rate_channel)
 std::optional<std::string> find_channel(const std::vector<std::string>& channels,
                                         std::string_view name, NameMatch match);
 
+/// Channel names for a message: "a, b, c"; with more than kListedNames,
+/// the first ones, "...", the last one and the count ("(1200 in all)"),
+/// each name cut to 40 characters — a file with a million columns or a
+/// megabyte name gives a message of one line.
+std::string list_names(const std::vector<std::string>& names);
+inline constexpr std::size_t kListedNames = 8;
+
 }  // namespace foglab::io

@@ -4,12 +4,15 @@
 //   * MAT files v4, v5, v7 (compressed) and v7.3 (HDF5), read through matio.
 //     Variables are chosen by name; the lab's layout is `f` (sample rate,
 //     Hz), `t` (time, s), `Y1`, `Y2` (rate, deg/h), `T1`, `T2` (degC).
-//   * Text: CSV, TSV or whitespace-separated columns, an optional header
-//     line of names, `#` comment lines; a column is chosen by header name or
-//     by 1-based index.
+//   * Text: CSV, TSV, semicolon- or whitespace-separated columns, an
+//     optional header line of names, `#` comment lines; UTF-8 or UTF-16
+//     with a byte-order mark, any line ends; decimal commas with
+//     ReadOptions::decimal_comma; a column is chosen by header name or by
+//     1-based index.
 //   * Raw little-endian float32/float64 (`.f32`/`.f64` or an explicit
 //     format); these carry no sample rate, so one must be given.
-//   * "-" reads text (or raw, with an explicit format) from standard input.
+//   * "-" reads text (or raw, with an explicit format) from standard input;
+//     a FIFO or a device is read once too (is_stream()).
 //
 // The sample rate comes, in this order, from ReadOptions::sample_rate_hz,
 // from a MAT variable `f`, or from a uniformly sampled time column (`t`,
@@ -104,6 +107,16 @@ struct ReadOptions {
   /// limit by default, so that any finite double round-trips; the CLI's
   /// analyses use kMaxSampleMagnitude.
   double max_magnitude = std::numeric_limits<double>::infinity();
+  /// Text: numbers are written with a decimal comma ("0,25"); the fields
+  /// are then separated by tabs, semicolons or blanks, never commas.
+  /// Without it, a table that looks so is refused with that hint.
+  bool decimal_comma = false;
+  /// The most samples read from one file (text or raw); more is a
+  /// DataError naming the limit. No limit by default; the CLI sets one
+  /// from the memory available (--max-samples), so that an endless
+  /// stream (/dev/zero, a FIFO) ends with a message, not the machine's
+  /// memory.
+  std::optional<std::size_t> max_samples;
 };
 
 /// A limit for ReadOptions::max_magnitude: far beyond any gyro's rate or
@@ -147,6 +160,11 @@ struct Series {
 /// DataError too), and that there is at least one sample. Throws UsageError
 /// / DataError as described above.
 Series read_series(const std::string& path, const ReadOptions& options);
+
+/// Whether `path` can be read only once: standard input ("-"), a FIFO, a
+/// device. Such a source is opened once, and a second channel (a
+/// temperature) cannot be read from it.
+bool is_stream(const std::string& path);
 
 /// Names of the data channels (variables or columns) in a file.
 std::vector<std::string> list_channels(const std::string& path,

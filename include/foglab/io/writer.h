@@ -6,8 +6,9 @@
 // target is left as it was (absent or the old file) — never half written.
 // Links are followed, and a target that is not a regular file (/dev/null,
 // a FIFO) is written in place (core/output.h).
-// Errors are UsageErrors "cannot write 'PATH': reason" (CLI exit code 2):
-// an unwritable destination is a problem with the arguments, not the data.
+// Errors are "cannot write 'PATH': reason" (core/output.h write_failed()):
+// a UsageError (exit 2) for an unwritable destination, a DataError (exit 3)
+// when the system could not store the result (a full disk, `ulimit -f`).
 //
 // MAT files are MATLAB 5 level files (what MATLAB `save -v7` and Octave
 // `save -mat` write) with zlib-compressed variables, loadable by MATLAB,
@@ -69,12 +70,12 @@ class RawFileWriter {
   RawFileWriter& operator=(const RawFileWriter&) = delete;
 
   void append(std::span<const double> values);
-  /// Closes and renames into place; throws UsageError on failure.
+  /// Closes and renames into place; throws as write_failed() on failure.
   void commit();
   std::uint64_t samples() const { return samples_; }
 
  private:
-  void fail(const std::string& reason);
+  void fail(int error_number);
   void flush(std::size_t bytes);
 
   OutputTarget target_;

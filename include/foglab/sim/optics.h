@@ -84,8 +84,23 @@ struct CoilNumbers {
   double modulation_frequency_hz = 0.0;  ///< f_m = 1/(2 tau0) [Hz]
 };
 
-/// The coil's numbers. Throws UsageError for a non-positive or non-finite
-/// length, radius, wavelength or group index.
+/// The physical ranges a coil is checked against: far wider than any gyro
+/// (lengths of 1 m to 10 km, radii of 1 to 20 cm, 0.8 to 1.6 um sources),
+/// narrow enough that every derived number is finite.
+inline constexpr double kMaxFibreLengthM = 1e6;  ///< 1000 km
+inline constexpr double kMaxCoilRadiusM = 100.0;
+inline constexpr double kMinWavelengthM = 1e-7;  ///< 100 nm
+inline constexpr double kMaxWavelengthM = 1e-4;  ///< 100 um
+inline constexpr double kMaxGroupIndex = 10.0;
+/// The largest input rate or sweep range [rad/s] the simulations take
+/// (about 5.7 million deg/s).
+inline constexpr double kMaxInputRateRadS = 1e5;
+/// The highest modulation frequency [Hz] a simulation takes.
+inline constexpr double kMaxModulationFrequencyHz = 1e12;
+
+/// The coil's numbers. Throws UsageError naming the quantity for a length,
+/// radius, wavelength or group index outside (0, max] (the group index:
+/// [1, max]; the wavelength: [min, max]).
 CoilNumbers coil_numbers(const Coil& coil);
 
 inline constexpr int kLab1Variants = 6;
