@@ -90,15 +90,16 @@ void check_finite(std::string_view name, double value, double limit = kMaxCoeffi
   }
 }
 
-// Every generated sample is finite (a model within the limits above could
-// still overflow through a high-degree temperature polynomial).
+// Every generated sample is finite and within what foglab reads back (a
+// model within the limits above could still overflow through a high-degree
+// temperature polynomial).
 void check_samples(std::int64_t first, const double* rate, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
-    if (!std::isfinite(rate[i])) {
+    if (!(std::fabs(rate[i]) <= kMaxSampleMagnitude)) {
       throw UsageError(
-          fmt::format("the model gives a rate of {} at sample {}: its options are "
-                      "too large (a temperature coefficient, a bias)",
-                      rate[i], first + static_cast<std::int64_t>(i) + 1));
+          fmt::format("the model gives a rate of {} at sample {} (beyond {:g} deg/h): its "
+                      "options are too large (a temperature coefficient, a bias)",
+                      rate[i], first + static_cast<std::int64_t>(i) + 1, kMaxSampleMagnitude));
     }
   }
 }

@@ -34,6 +34,10 @@ double spike_probability(const SensorOutput& output, double sample_rate_hz) {
   return output.spike_rate_per_hour / (3600.0 * sample_rate_hz);
 }
 
+// The largest amplitude, step, spike or output step [deg/h] and filter
+// time constant [s]: far beyond any sensor, and no sample can overflow.
+constexpr double kMaxSize = 1e9;
+
 void check(bool ok, std::string_view field, double value, std::string_view expected) {
   if (!ok) {
     throw UsageError(fmt::format("SensorOutput::{} = {}: expected {}", field, value, expected));
@@ -53,29 +57,29 @@ void validate(const SensorOutput& o, double sample_rate_hz) {
     check(std::isfinite(s.frequency_hz) && s.frequency_hz > 0.0 &&
               s.frequency_hz < 0.5 * sample_rate_hz,
           "sinusoids[].frequency_hz", s.frequency_hz, "> 0 and below half the sample rate");
-    check(std::isfinite(s.amplitude_deg_h) && s.amplitude_deg_h >= 0.0,
-          "sinusoids[].amplitude_deg_h", s.amplitude_deg_h, "a finite number >= 0");
+    check(s.amplitude_deg_h >= 0.0 && s.amplitude_deg_h <= kMaxSize, "sinusoids[].amplitude_deg_h",
+          s.amplitude_deg_h, "in [0, 1e9]");
     check(std::isfinite(s.phase_rad), "sinusoids[].phase_rad", s.phase_rad, "a finite number");
   }
   for (const BiasStep& s : o.steps) {
     check(std::isfinite(s.time_s) && s.time_s >= 0.0, "steps[].time_s", s.time_s,
           "a finite time >= 0");
-    check(std::isfinite(s.size_deg_h), "steps[].size_deg_h", s.size_deg_h, "a finite number");
+    check(std::fabs(s.size_deg_h) <= kMaxSize, "steps[].size_deg_h", s.size_deg_h,
+          "at most 1e9 in magnitude");
   }
   check(o.moving_average_samples >= 1 && o.moving_average_samples <= 100000,
         "moving_average_samples", o.moving_average_samples, "1 .. 100000");
-  check(std::isfinite(o.filter_time_constant_s) && o.filter_time_constant_s >= 0.0,
-        "filter_time_constant_s", o.filter_time_constant_s, "a finite number >= 0");
+  check(o.filter_time_constant_s >= 0.0 && o.filter_time_constant_s <= kMaxSize,
+        "filter_time_constant_s", o.filter_time_constant_s, "in [0, 1e9]");
   check(std::isfinite(o.butterworth_cutoff_hz) && o.butterworth_cutoff_hz >= 0.0 &&
             o.butterworth_cutoff_hz < 0.5 * sample_rate_hz,
         "butterworth_cutoff_hz", o.butterworth_cutoff_hz,
         ">= 0 (0: none) and below half the sample rate");
   check(std::isfinite(o.spike_rate_per_hour) && o.spike_rate_per_hour >= 0.0, "spike_rate_per_hour",
         o.spike_rate_per_hour, "a finite number >= 0");
-  check(std::isfinite(o.spike_size_deg_h) && o.spike_size_deg_h >= 0.0, "spike_size_deg_h",
-        o.spike_size_deg_h, "a finite number >= 0");
-  check(std::isfinite(o.lsb_deg_h) && o.lsb_deg_h >= 0.0, "lsb_deg_h", o.lsb_deg_h,
-        "a finite number >= 0");
+  check(o.spike_size_deg_h >= 0.0 && o.spike_size_deg_h <= kMaxSize, "spike_size_deg_h",
+        o.spike_size_deg_h, "in [0, 1e9]");
+  check(o.lsb_deg_h >= 0.0 && o.lsb_deg_h <= kMaxSize, "lsb_deg_h", o.lsb_deg_h, "in [0, 1e9]");
   for (const Dropout& d : o.dropouts) {
     check(std::isfinite(d.start_s) && d.start_s >= 0.0, "dropouts[].start_s", d.start_s,
           "a finite time >= 0");

@@ -152,8 +152,9 @@ void validate(std::size_t n, double sample_rate_hz, const WelchOptions& options)
     throw UsageError(fmt::format(
         "welch_psd: segment_length must not exceed {} (FFTW's limit), got {}", INT_MAX, length));
   }
-  if (!(options.overlap >= 0.0 && options.overlap < 1.0)) {
-    throw UsageError(fmt::format("welch_psd: overlap must be in [0, 1), got {}", options.overlap));
+  if (!(options.overlap >= 0.0 && options.overlap <= kMaxWelchOverlap)) {
+    throw UsageError(fmt::format("welch_psd: overlap must be in [0, {}], got {}", kMaxWelchOverlap,
+                                 options.overlap));
   }
 }
 

@@ -520,6 +520,14 @@ TEST(CliNumbers, AbsurdOrDegenerateValuesAreRefusedNamingThem) {
       {"generate --N 1 --fs 10 --hours 0.01 --bias 1e300" + out, 2, {"bias"}},
       {"generate --N 1 --fs 10 --hours 0.01 --seed -1" + out, 2, {"--seed"}},
       {"psd " + quote(record) + " --segment -5", 2, {"--segment"}},
+      {"psd " + quote(record) + " --overlap 0.999999", 2, {"overlap", "0.95"}},
+      {"generate --N 1 --fs 10 --hours 0.01 --lsb 1e300" + out, 2, {"--lsb"}},
+      {"generate --N 1 --fs 10 --hours 0.01 --sine 1:1e300" + out, 2, {"--sine"}},
+      {"generate --N 1 --fs 10 --hours 0.01 --temperature ramp:1e4 --temp-coef "
+       "1e9,1e9,1e9,1e9,1e9,1e9,1e9,1e9,1e9,1e9,1e9,1e9" +
+           out,
+       2,
+       {"the model gives a rate", "too large"}},
       {"allan " + quote(dir / "constant.csv"), 3, {"the record is constant", "500 samples"}},
       {"psd " + quote(dir / "constant.csv"), 3, {"the record is constant"}},
       {"analyze " + quote(dir / "constant.csv"), 3, {"the record is constant", "2.5 deg/h"}},

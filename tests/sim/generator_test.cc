@@ -201,7 +201,8 @@ TEST(Generator, ValidatesOptionsAndModelNamingParameterAndValue) {
   const TemperatureProfile t;
   GeneratorOptions o = options(10.0, 100);
   o.sample_rate_hz = -2.0;
-  EXPECT_THAT(error_message({}, t, o), HasSubstr("sample_rate_hz must be > 0 [Hz], got -2"));
+  EXPECT_THAT(error_message({}, t, o),
+              HasSubstr("sample_rate_hz must be in [1e-06, 1e+09] Hz, got -2"));
   o = options(10.0, 100);
   o.duration_s = 0.0;
   EXPECT_THAT(error_message({}, t, o), HasSubstr("duration_s must be > 0 [s], got 0"));
@@ -213,25 +214,26 @@ TEST(Generator, ValidatesOptionsAndModelNamingParameterAndValue) {
     set(m);
     return error_message(m, t, o);
   };
-  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.N = -1.0; }),
-              HasSubstr("N must be a finite number >= 0"));
+  EXPECT_THAT(bad([](ErrorModel& m) { m.noise.N = -1.0; }), HasSubstr("N must be in [0, 1e+09]"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.N = -1.0; }), HasSubstr("got -1"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.B = -0.5; }),
-              HasSubstr("B must be a finite number >= 0 [deg/h], got -0.5"));
+              HasSubstr("B must be in [0, 1e+09] [deg/h], got -0.5"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.K = std::nan(""); }),
-              HasSubstr("K must be a finite number >= 0"));
+              HasSubstr("K must be in [0, 1e+09]"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.R = -3.0; }), HasSubstr("R must be"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.Q = INFINITY; }),
-              HasSubstr("Q must be a finite number >= 0 [deg/h*s], got inf"));
+              HasSubstr("Q must be in [0, 1e+09] [deg/h*s], got inf"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.gm_sigma = -1.0; }), HasSubstr("gm_sigma must be"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.noise.gm_sigma = 1.0; }),
               HasSubstr("gm_tc must be > 0 [s] when gm_sigma > 0 (gm_sigma = 1), got 0"));
   EXPECT_THAT(bad([](ErrorModel& m) { m.bias = NAN; }), HasSubstr("bias must be finite"));
-  EXPECT_THAT(bad([](ErrorModel& m) { m.temp_coefs = {1.0, INFINITY}; }),
-              HasSubstr("temp_coefs[1] must be finite, got inf"));
+  EXPECT_THAT(bad([](ErrorModel& m) {
+                m.temp_coefs = {1.0, INFINITY};
+              }),
+              HasSubstr("temp_coefs[1] must be finite and at most 1e+09 in magnitude, got inf"));
   TemperatureProfile jittery;
   jittery.jitter_c = -0.1;
-  EXPECT_THAT(error_message({}, jittery, o), HasSubstr("jitter_c must be a finite number >= 0"));
+  EXPECT_THAT(error_message({}, jittery, o), HasSubstr("jitter_c must be in [0, 1e+09]"));
   TemperatureProfile file;
   file.kind = TemperatureKind::file;
   file.profile_time_s = {0.0, 0.0};

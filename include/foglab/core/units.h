@@ -47,6 +47,12 @@ inline constexpr double kSecondsPerHour = 3600.0;
 /// frequencies and times would overflow.
 inline constexpr double kMinSampleRateHz = 1e-6;
 inline constexpr double kMaxSampleRateHz = 1e9;
+
+/// The largest magnitude of a sample [deg/h] (or degC) foglab reads or
+/// generates: far beyond any gyro's rate or temperature, and small enough
+/// that the sums of squares and powers the statistics form over a record
+/// cannot overflow (1e308 would).
+inline constexpr double kMaxSampleMagnitude = 1e30;
 inline constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 }  // namespace foglab

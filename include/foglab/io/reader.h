@@ -119,10 +119,8 @@ struct ReadOptions {
   std::optional<std::size_t> max_samples;
 };
 
-/// A limit for ReadOptions::max_magnitude: far beyond any gyro's rate or
-/// temperature, and small enough that the sums of squares and powers the
-/// statistics form over a record cannot overflow (1e308 would).
-inline constexpr double kMaxSampleMagnitude = 1e30;
+/// A limit for ReadOptions::max_magnitude (core/units.h).
+inline constexpr double kMaxSampleMagnitude = foglab::kMaxSampleMagnitude;
 
 /// One channel read from a file, converted to foglab's units.
 struct Series {

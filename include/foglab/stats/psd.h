@@ -25,12 +25,16 @@
 
 namespace foglab::stats {
 
+inline constexpr double kMaxWelchOverlap = 0.95;
+
 struct WelchOptions {
   /// Samples per segment; 0 chooses the largest power of two not above
   /// N/4 (at least 16, at most N, at most 2^20). Must be >= 16 and <= N when
   /// given.
   std::size_t segment_length = 0;
-  /// Fraction of a segment shared with the next, in [0, 1).
+  /// Fraction of a segment shared with the next, in [0, kMaxWelchOverlap]
+  /// (beyond it segments add FFT work, not information: 0.999999 had
+  /// meant a million FFTs for a record of a few).
   double overlap = 0.5;
 };
 
