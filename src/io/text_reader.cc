@@ -286,10 +286,15 @@ std::size_t split(std::string_view line, Delimiter delimiter, Visit&& visit) {
 bool parse_number(std::string_view field, double& value);
 
 // The field with its one decimal comma made a point ("0,25" -> "0.25"), if
-// it has exactly one comma and no point; else nullopt.
+// it has exactly one comma, between two digits, and no point; else nullopt
+// ("1," of "1, 2, 3" is no decimal comma).
 std::optional<std::string> comma_to_point(std::string_view field) {
   const auto comma = field.find(',');
-  if (comma == std::string_view::npos || field.find(',', comma + 1) != std::string_view::npos ||
+  auto digit = [&](std::size_t i) {
+    return i < field.size() && std::isdigit(static_cast<unsigned char>(field[i])) != 0;
+  };
+  if (comma == std::string_view::npos || comma == 0 || !digit(comma - 1) || !digit(comma + 1) ||
+      field.find(',', comma + 1) != std::string_view::npos ||
       field.find('.') != std::string_view::npos) {
     return std::nullopt;
   }
@@ -377,9 +382,9 @@ std::string shorten(std::string_view text);
 // million); a wider one is not a recording.
 constexpr std::size_t kMaxColumns = 10000;
 
-// Whether `content` reads as numbers with decimal commas separated by
-// blanks or semicolons ("0,01 1,25", "0,01;1,25"): then the commas are not
-// the delimiter.
+// Whether `content` reads as two or more numbers with decimal commas
+// separated by blanks or semicolons ("0,01 1,25", "0,01;1,25"): then the
+// commas are not the delimiter.
 bool looks_like_decimal_commas(std::string_view content) {
   if (content.find(',') == std::string_view::npos) return false;
   const Delimiter delimiter =
@@ -394,7 +399,8 @@ bool looks_like_decimal_commas(std::string_view content) {
       all = false;
     }
   });
-  return all && with_comma > 0 && (count > 1 || delimiter == Delimiter::whitespace);
+  // One field ("0,5") is as much two integer columns: read as before.
+  return all && with_comma > 0 && count > 1;
 }
 
 std::optional<Layout> read_layout(const std::string& path, LineReader& reader, bool decimal_comma) {

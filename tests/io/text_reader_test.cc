@@ -363,6 +363,18 @@ TEST_F(TextReaderTest, TheSampleLimitAndTheLineLengthAreBounds) {
               HasSubstr("line 3 is longer than 1 MiB"));
 }
 
+TEST_F(TextReaderTest, CommasBetweenIntegersStayDelimiters) {
+  // "0, 1, 25" and a headerless "0,5" are comma-separated integers, not
+  // decimal commas.
+  ReadOptions options = with_fs(1.0);
+  options.channel = "3";
+  EXPECT_EQ(read_series(write("spaced.csv", "0, 1, 25\n1, 2, 26\n"), options).values,
+            (std::vector<double>{25.0, 26.0}));
+  options.channel = "2";
+  EXPECT_EQ(read_series(write("pairs.csv", "0,5\n1,7\n"), options).values,
+            (std::vector<double>{5.0, 7.0}));
+}
+
 TEST_F(TextReaderTest, BinaryDataIsNotTakenForText) {
   const std::string path = write("record.dat", std::string("\x01\x02\xf0\x3f\x00\x02", 6));
   EXPECT_THAT(message_of<DataError>([&] { read_series(path, with_fs(1.0)); }),
