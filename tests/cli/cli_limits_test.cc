@@ -215,7 +215,7 @@ TEST(CliInterrupt, AFolderIsThePreviousOneOrTheCompleteNewOne) {
 TEST(CliWriteErrors, TheFileSizeLimitIsExit3AndLosesNothing) {
   const test::TempDir dir;
   std::ofstream(dir / "old.mat") << "the previous file\n";
-  for (const std::string& name : {"old.mat", "x.csv", "x.f64"}) {
+  for (const std::string name : {"old.mat", "x.csv", "x.f64"}) {
     SCOPED_TRACE(name);
     // 64 KiB limit; 10 h at 10 Hz is 2.9 MB raw.
     const ShellRun r =
@@ -241,7 +241,7 @@ TEST(CliWriteErrors, AFullDiskIsExit3AndKeepsThePreviousFile) {
   fs::create_directory(dir / "small");
   // Inside the namespace: a 256 KiB disk with a previous file on it; what
   // is left there afterwards is listed before the namespace goes.
-  for (const std::string& name : {"x.f64", "x.mat", "x.csv"}) {
+  for (const std::string name : {"x.f64", "x.mat", "x.csv"}) {
     SCOPED_TRACE(name);
     const std::string small = (dir / "small").string();
     const std::string target = small + "/" + name;
@@ -281,9 +281,12 @@ TEST(CliWriteErrors, DevicesAreWrittenInPlaceAndAFullOneIsExit3) {
   const test::TempDir dir;
   if (!can_mount_tmpfs(dir)) GTEST_SKIP() << "needs root and unshare -m (a private /dev)";
   const std::string record = make_record(dir);
+  // With what a run needs there besides the devices under test: /dev/shm
+  // (LLVM's OpenMP registers in it) and the random devices.
   const std::string setup =
       "mount -t tmpfs tmpfs /dev && mknod -m 666 /dev/null c 1 3 && mknod -m 666 /dev/full c 1 7 "
-      "&& ln -s /proc/self/fd/1 /dev/stdout";
+      "&& mknod -m 666 /dev/zero c 1 5 && mknod -m 666 /dev/urandom c 1 9 "
+      "&& mkdir /dev/shm && mount -t tmpfs tmpfs /dev/shm && ln -s /proc/self/fd/1 /dev/stdout";
   auto in_namespace = [&](const std::string& args) {
     return shell("unshare -m sh -c \"" + setup + " && $F " + args +
                      "; rc=\\$?; stat -c %F /dev/null /dev/full > '" + dir.file("kinds") +
@@ -450,14 +453,14 @@ TEST(CliText, LineEndsEncodingsAndDecimalCommasGiveTheSameNumbers) {
     return r.exit_code == 0 ? nlohmann::json::parse(r.out)["dev"] : nlohmann::json();
   };
   const nlohmann::json expected = dev_of(quote(record) + " --channel rate");
-  for (const std::string& name : {"cr.csv", "crlf.csv", "le.csv", "be.csv"}) {
+  for (const std::string name : {"cr.csv", "crlf.csv", "le.csv", "be.csv"}) {
     SCOPED_TRACE(name);
     EXPECT_EQ(dev_of(quote(dir / name) + " --channel rate"), expected);
   }
   EXPECT_EQ(dev_of(quote(dir / "semi.csv") + " --channel rate --decimal-comma"), expected);
   EXPECT_EQ(dev_of(quote(dir / "blanks.txt") + " --channel 2 --fs 10 --decimal-comma"), expected);
   // Without the option: said, not misread.
-  for (const std::string& name : {"semi.csv", "blanks.txt"}) {
+  for (const std::string name : {"semi.csv", "blanks.txt"}) {
     SCOPED_TRACE(name);
     const test::CliRun r =
         test::run_foglab("allan " + quote(dir / name) + " --channel 2 --fs 10 --json -");
@@ -473,7 +476,7 @@ TEST(CliText, NamesThatAreNotUtf8ReachJsonReplacedNotAsAnError) {
   std::string text = test::read_file(make_record(dir));
   text.replace(text.find("\nt,rate") + 3, 4, "vitesse_\xe9");
   std::ofstream(latin1_name, std::ios::binary) << text;
-  for (const std::string& command : {"allan", "analyze"}) {
+  for (const std::string command : {"allan", "analyze"}) {
     SCOPED_TRACE(command);
     const test::CliRun r =
         test::run_foglab(command + " " + quote(latin1_name) + " --channel 2 --json -");
