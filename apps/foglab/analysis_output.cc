@@ -5,9 +5,13 @@
 
 #include <cmath>
 #include <optional>
+#include <string_view>
+#include <utility>
 
 #include "cli_common.h"
 #include "foglab/core/version.h"
+#include "foglab/report/imu.h"
+#include "foglab/report/report.h"
 
 namespace foglab::cli {
 namespace {
@@ -378,6 +382,88 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"options", {{"taus", in.taus}, {"temp_degree", in.temp_degree}}},
           {"units", units_json()},
           {"foglab_version", std::string(version())}};
+}
+
+namespace {
+
+/// `key` with its rate unit in the accelerometer's: deg_h -> m_s2,
+/// deg2_h2 -> m2_s4.
+std::string accelerometer_key(std::string key) {
+  for (const auto& [from, to] :
+       {std::pair<std::string_view, std::string_view>{"deg2_h2", "m2_s4"}, {"deg_h", "m_s2"}}) {
+    for (std::size_t at = key.find(from); at != std::string::npos;
+         at = key.find(from, at + to.size())) {
+      key.replace(at, from.size(), to);
+    }
+  }
+  return key;
+}
+
+nlohmann::json in_accelerometer_terms(const nlohmann::json& j) {
+  if (j.is_object()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : j.items()) {
+      out[accelerometer_key(key)] = in_accelerometer_terms(value);
+    }
+    return out;
+  }
+  if (j.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& value : j) out.push_back(in_accelerometer_terms(value));
+    return out;
+  }
+  if (j.is_string()) return in_sensor_units(j.get<std::string>(), Sensor::accelerometer);
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json accelerometer_json(nlohmann::json gyro_form) {
+  // The class and the angle random walk are a gyroscope's; the velocity
+  // random walk (sensor_terms_json()) takes the latter's place.
+  gyro_form.erase("arw_deg_per_sqrt_h");
+  if (gyro_form.contains("units")) gyro_form["units"].erase("arw_deg_per_sqrt_h");
+  for (const char* key : {"accuracy_class", "accuracy_class_decided_by",
+                          "class_by_bias_instability", "class_by_arw"}) {
+    gyro_form[key] = nullptr;
+  }
+  nlohmann::json out = in_accelerometer_terms(gyro_form);
+  out["accuracy_class_note"] = std::string(report::kNoAccelerometerClass);
+  return out;
+}
+
+nlohmann::json sensor_terms_json(const model::AnalysisResult& r, Sensor sensor) {
+  const report::FilterNoise f = report::filter_noise(r, sensor);
+  const double factor = report::kalibr_factor(sensor);
+  const double fs = r.sample_rate_hz;
+  const bool gyro = sensor == Sensor::gyroscope;
+  const std::string density =
+      gyro ? "noise_density_rad_s_per_sqrt_hz" : "noise_density_m_s2_per_sqrt_hz";
+  const std::string walk = gyro ? "random_walk_rad_s2_per_sqrt_hz" : "random_walk_m_s3_per_sqrt_hz";
+  const std::string per_sample = gyro ? "_rad_s" : "_m_s2";
+  nlohmann::json j = {
+      {density, number(f.white * factor)},
+      {density + "_resolved", f.white_resolved},
+      {density + "_from", f.white_source},
+      {walk, number(f.random_walk * factor)},
+      {walk + "_resolved", f.random_walk_resolved},
+      {walk + "_from", f.random_walk_source},
+      {"white_noise_per_sample" + per_sample, number(f.white * factor * std::sqrt(fs))},
+      {"random_walk_per_sample" + per_sample, number(f.random_walk * factor / std::sqrt(fs))},
+      {"sample_rate_hz", fs},
+      {"of",
+       "continuous-time densities in Kalibr's units; per sample: the standard deviation at the "
+       "sample rate (white: density x sqrt(rate); random walk: K / sqrt(rate))"}};
+  if (gyro) {
+    j["arw_deg_per_sqrt_h"] = number(r.arw_deg_sqrt_h);
+    j["bias_instability_deg_h"] = number(r.bias_instability_deg_h);
+  } else {
+    j["velocity_random_walk_m_s_per_sqrt_h"] =
+        number(report::velocity_random_walk_m_s_sqrt_h(f.white));
+    j["bias_instability_m_s2"] = number(r.bias_instability_deg_h);
+    j["bias_instability_mg"] = number(r.bias_instability_deg_h / kStandardGravity * 1000.0);
+  }
+  return j;
 }
 
 // ---- CSV: the Allan table of the residual with the fitted model ----------

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "foglab/core/units.h"
 #include "foglab/model/analysis.h"
 
 namespace foglab::cli {
@@ -25,6 +26,19 @@ struct AnalysisJsonInput {
 /// The whole analysis as JSON (docs/json.md).
 nlohmann::json analysis_json(const model::AnalysisResult& result, const AnalysisJsonInput& input,
                              const model::AnalysisOptions& options);
+
+/// The analysis of an accelerometer channel in the accelerometer's terms:
+/// analysis_json()'s document with every deg/h in its keys, units and
+/// sentences in m/s^2 (`adev_deg_h` -> `adev_m_s2`, `psd_deg2_h2_per_hz` ->
+/// `psd_m2_s4_per_hz`), the angle random walk replaced by the velocity
+/// random walk, and the accuracy class null: the lab manual's Table 1 is a
+/// table of gyroscopes.
+nlohmann::json accelerometer_json(nlohmann::json gyro_form);
+
+/// The noise parameters in the terms a navigation filter or Kalibr uses for
+/// `sensor`, each with its unit in its name, continuous-time and per sample
+/// at the record's rate (see report/imu.h for the conversions).
+nlohmann::json sensor_terms_json(const model::AnalysisResult& result, Sensor sensor);
 
 /// The Allan table of the residual with the fitted model and each term's part.
 std::string analysis_csv(const model::AnalysisResult& result);

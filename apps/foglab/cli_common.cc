@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <mutex>
 #include <regex>
 
 #include "foglab/core/error.h"
@@ -30,8 +31,13 @@ void add_input_options(CLI::App& command, InputOptions& options, bool file_optio
                      "sample rate [Hz]; default: the file's f variable or time column");
   command.add_option("--format", options.format, "auto, mat, text, f32 or f64")
       ->capture_default_str();
-  command.add_option("--units", options.units, "unit of the samples: deg/h, deg/s or rad/s")
-      ->capture_default_str();
+  command
+      .add_option("--units", options.units,
+                  "unit of the samples: deg/h, deg/s, rad/s (gyroscope) or m/s^2, g, mg "
+                  "(accelerometer); analyze also takes a list by sensor or channel: "
+                  "gyro=deg/s,accel=g or ax=mg,gx=rad/s")
+      ->capture_default_str()
+      ->each([&options](const std::string&) { options.units_given = true; });
   command.add_option("--time", options.time_channel,
                      "time variable/column used for the sample rate (default t/time/time_s)");
   command.add_flag("--decimal-comma", options.decimal_comma,
@@ -105,6 +111,86 @@ RateUnit parse_units_option(const std::string& text, const std::string& path) {
   } catch (const UsageError& e) {
     throw UsageError(fmt::format("--units {} for '{}': {}", text, path, e.what()));
   }
+}
+
+UnitSpec parse_unit_spec(const std::string& text, const std::string& path) {
+  UnitSpec spec;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    start = comma + 1;
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos) {
+      if (spec.all) {
+        throw UsageError(fmt::format(
+            "--units {} for '{}': one unit for every channel, or NAME=UNIT items (gyro=deg/s, "
+            "accel=g, ax=mg), not two bare units",
+            text, path));
+      }
+      spec.all = parse_units_option(item, path);
+      continue;
+    }
+    const std::string name = item.substr(0, equals);
+    const SampleUnit unit = parse_units_option(item.substr(equals + 1), path);
+    const bool gyro = name == "gyro" || name == "gyroscope" || name == "gyroscopes";
+    const bool accel = name == "accel" || name == "accelerometer" || name == "accelerometers";
+    if (gyro || accel) {
+      const Sensor sensor = gyro ? Sensor::gyroscope : Sensor::accelerometer;
+      if (sensor_of(unit) != sensor) {
+        throw UsageError(fmt::format(
+            "--units {} for '{}': {} is a unit of {}, not of the {}'s {}", text, path,
+            to_string(unit), sensor_of(unit) == Sensor::gyroscope ? "angular rate" : "acceleration",
+            to_string(sensor), gyro ? "angular rate" : "acceleration"));
+      }
+      (gyro ? spec.gyroscope : spec.accelerometer) = unit;
+    } else if (name.empty()) {
+      throw UsageError(fmt::format("--units {} for '{}': '{}' names no channel", text, path, item));
+    } else {
+      spec.channels.emplace_back(name, unit);
+    }
+  }
+  return spec;
+}
+
+namespace {
+/// "a gyroscope's", "an accelerometer's".
+std::string sensor_owner(Sensor sensor) {
+  return sensor == Sensor::gyroscope ? "a gyroscope's" : "an accelerometer's";
+}
+}  // namespace
+
+SampleUnit channel_unit(const UnitSpec& spec, const std::string& channel, const std::string& path,
+                        std::vector<std::string>& notes) {
+  const std::optional<Sensor> named = io::sensor_by_name(channel);
+  for (const auto& [name, unit] : spec.channels) {
+    if (name != channel) continue;
+    if (named && *named != sensor_of(unit)) {
+      throw UsageError(fmt::format(
+          "mixed units: '{}' channel {} is named as {}, but --units gives it {}, a unit of {}",
+          path, channel, sensor_owner(*named), to_string(unit),
+          sensor_of(unit) == Sensor::gyroscope ? "angular rate" : "acceleration"));
+    }
+    return unit;
+  }
+  if (named == Sensor::gyroscope && spec.gyroscope) return *spec.gyroscope;
+  if (named == Sensor::accelerometer && spec.accelerometer) return *spec.accelerometer;
+  if (spec.all && (!named || *named == sensor_of(*spec.all))) return *spec.all;
+  if (spec.all) {
+    throw UsageError(fmt::format(
+        "mixed units: '{}' channel {} is named as {}, but --units {} is a unit of {}; give "
+        "each sensor its unit (--units gyro=deg/s,accel=g)",
+        path, channel, sensor_owner(*named), to_string(*spec.all),
+        sensor_of(*spec.all) == Sensor::gyroscope ? "angular rate" : "acceleration"));
+  }
+  if (named == Sensor::accelerometer) {
+    notes.push_back(fmt::format(
+        "'{}' channel {} is an accelerometer's (by its name) and --units gives it no unit: "
+        "read in m/s^2 (give accel=g or accel=mg otherwise)",
+        path, channel));
+    return SampleUnit::m_per_s2;
+  }
+  return SampleUnit::deg_per_hour;
 }
 
 io::Series load_input(const InputOptions& options) {
@@ -263,11 +349,23 @@ sim::Lab2Options lab2_options(std::uint64_t seed, const std::optional<double>& h
   return options;
 }
 
-void note(const std::string& text) { std::cerr << "foglab: note: " << in_cli_terms(text) << "\n"; }
+namespace {
+// One line at a time on stderr: the channels of an IMU are analysed in
+// parallel, and each says what it found.
+std::mutex stderr_lines;
+}  // namespace
+
+void note(const std::string& text) {
+  const std::string line = "foglab: note: " + in_cli_terms(text) + "\n";
+  const std::lock_guard<std::mutex> lock(stderr_lines);
+  std::cerr << line;
+}
 
 void progress(const std::string& step) {
   static const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (terminal) std::cerr << "foglab: " << step << " ...\n";
+  if (!terminal) return;
+  const std::lock_guard<std::mutex> lock(stderr_lines);
+  std::cerr << "foglab: " << step << " ...\n";
 }
 
 }  // namespace foglab::cli

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "foglab/core/error.h"
@@ -27,6 +28,7 @@ struct InputOptions {
   std::optional<double> sample_rate_hz;
   std::string format = "auto";
   std::string units = "deg/h";
+  bool units_given = false;  ///< --units was on the command line (not its default)
   std::string time_channel;
   bool decimal_comma = false;
   std::optional<std::size_t> max_samples;  ///< empty: default_max_samples()
@@ -56,6 +58,24 @@ stats::TauGrid parse_taus_option(const std::string& text, const std::string& pat
 /// --format and --units parsed; a UsageError names the option and `path`.
 io::InputFormat parse_format_option(const std::string& text, const std::string& path);
 RateUnit parse_units_option(const std::string& text, const std::string& path);
+
+/// --units as analyze reads it: one unit for every channel ("deg/s"), or
+/// items by sensor ("gyro=deg/s,accel=g") and by channel ("ax=mg"), with
+/// at most one bare unit among them (for the channels no item names).
+struct UnitSpec {
+  std::optional<SampleUnit> all;
+  std::optional<SampleUnit> gyroscope, accelerometer;
+  std::vector<std::pair<std::string, SampleUnit>> channels;
+};
+UnitSpec parse_unit_spec(const std::string& text, const std::string& path);
+
+/// The unit of `channel` under `spec`: its own item, else its sensor's (by
+/// its name, io::sensor_by_name()), else the bare unit, else deg/h (m/s^2,
+/// with a note, for a channel named as an accelerometer's). A unit of the
+/// other sensor than the channel's name says is a UsageError ("mixed
+/// units").
+SampleUnit channel_unit(const UnitSpec& spec, const std::string& channel, const std::string& path,
+                        std::vector<std::string>& notes);
 
 /// Runs `work` on a loaded series: a usage or data error from the library is
 /// rethrown with the file and channel in front, so that the message names them.

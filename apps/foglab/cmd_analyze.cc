@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "analysis_output.h"
+#include "analyze_command.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
@@ -27,20 +28,7 @@
 #include "foglab/stats/tau_grid.h"
 
 namespace foglab::cli {
-namespace {
 
-struct AnalyzeCommand {
-  InputOptions input;
-  std::string temp_channel;
-  std::string temp_degree = "auto";
-  std::string taus = "octave";
-  std::string json_path;
-  std::string csv_path;
-  std::string report_path;
-  std::string kalibr_path;
-};
-
-/// -1 for "auto", else 0..3.
 int parse_temp_degree(const std::string& text) {
   if (text == "auto") return -1;
   if (text.size() == 1 && text[0] >= '0' && text[0] <= '3') return text[0] - '0';
@@ -66,12 +54,6 @@ void check_temperature_option(const AnalyzeCommand& c) {
   }
 }
 
-struct Temperature {
-  std::string channel;  ///< empty: none
-  std::vector<double> values_c;
-};
-
-/// Reads the temperature that goes with `series` (or none, with a note).
 Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
                              std::vector<std::string>& notes) {
   const std::string& path = c.input.path;
@@ -144,7 +126,9 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   }
 
   progress(fmt::format("reading temperature '{}' from '{}'", name, path));
-  io::ReadOptions read = read_options(c.input);
+  InputOptions input = c.input;
+  input.units = "deg/h";  // the rate's unit (an IMU's list of them) is not the temperature's
+  io::ReadOptions read = read_options(input);
   read.channel = name;
   read.sample_rate_hz = series.sample_rate_hz;  // the rate's, already checked
   read.unit = RateUnit::deg_per_hour;           // identity: degC stay degC
@@ -159,9 +143,15 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   return {t.channel, std::move(t.values)};
 }
 
+namespace {
+
 // ---- the command ---------------------------------------------------------
 
 void run(const AnalyzeCommand& c) {
+  if (wants_imu_analysis(c)) {
+    run_imu_analysis(c);
+    return;
+  }
   const RunPath inputs[] = {{"FILE", c.input.path}};
   const RunPath outputs[] = {{"--json", c.json_path},
                              {"--csv", c.csv_path},
@@ -246,6 +236,12 @@ std::function<void()> register_analyze(CLI::App& app) {
       "identify a static recording: temperature polynomial, OADEV and PSD of the residual, "
       "noise model (N, B, K, R, Q, Gauss-Markov) with 95 % intervals, random bias, class");
   add_input_options(*cmd, c->input, /*file_optional=*/true);
+  cmd->add_option("--channels", c->channels,
+                  "several channels in one run, in parallel: names or 1-based indexes "
+                  "(gx,gy,gz,ax,ay,az), or 'all'; default with no --channel: every channel whose "
+                  "name says gyro or accel (gyro_x, ax, ...) when there are two or more");
+  cmd->add_option("--topic", c->topic,
+                  "ROS bag: the sensor_msgs/Imu topic (default: the only one)");
   cmd->add_option("--temp", c->temp_channel,
                   "temperature channel [degC]; default: the one paired with the rate channel "
                   "(Y1 -> T1, Y2 -> T2; 'rate' -> T or temperature)");

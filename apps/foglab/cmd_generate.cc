@@ -9,12 +9,14 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <random>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
+#include "foglab/io/rosbag.h"
 #include "foglab/io/writer.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
@@ -42,6 +44,11 @@ struct GenerateCommand {
   std::string spikes;
   std::optional<double> lsb;
   std::vector<std::string> drops;
+  // A 6-axis IMU (--imu): the mems-imu model, the gyroscope options above
+  // for its three gyroscopes, these for its accelerometers [m/s^2 units].
+  bool imu = false;
+  std::optional<double> accel_N, accel_B, accel_K;
+  std::optional<double> stamp_jitter_s;
 };
 
 // `text` split at `separator` into numbers, naming the option and what was
@@ -185,7 +192,198 @@ nlohmann::json units_json() {
   return units;
 }
 
+/// `generate --imu`: six axes, one file (CSV, MAT or a ROS bag), the truth
+/// of each axis.
+void run_imu(const GenerateCommand& c) {
+  const RunPath inputs[] = {
+      {"--temperature", c.temperature.starts_with("file:") ? c.temperature.substr(5) : ""}};
+  const RunPath outputs[] = {{"--out", c.out}, {"--truth", c.truth}};
+  check_outputs(inputs, outputs);
+  if (!c.preset.empty()) {
+    throw UsageError(fmt::format(
+        "--preset {} with --imu: the presets are single gyroscopes; --imu starts from the "
+        "mems-imu model (set its gyroscopes with --N/--B/--K, its accelerometers with "
+        "--accel-N/--accel-B/--accel-K)",
+        c.preset));
+  }
+  if (c.filter_tc || c.butterworth_hz || c.moving_average != 1 || !c.sines.empty() ||
+      !c.steps.empty() || !c.spikes.empty() || c.lsb) {
+    throw UsageError(
+        "--imu takes --drop of the sensor-output options; the filter, sine, step, spike and "
+        "LSB options are a single gyroscope's (deg/h) and are not applied to an IMU");
+  }
+  sim::ImuModel imu = sim::mems_imu_model();
+  auto apply = [](const std::optional<double>& v, double& field) {
+    if (v) field = *v;
+  };
+  const sim::SensorOutput output = sensor_output_of(c);
+  for (std::size_t a = 0; a < 6; ++a) {
+    NoiseModel& n = imu.axes[a].noise;
+    if (a < 3) {
+      apply(c.N, n.N);
+      apply(c.B, n.B);
+      apply(c.K, n.K);
+      apply(c.R, n.R);
+      apply(c.Q, n.Q);
+      apply(c.gm_sigma, n.gm_sigma);
+      apply(c.gm_tc, n.gm_tc);
+      apply(c.bias, imu.axes[a].bias);
+      apply(c.input_rate, imu.axes[a].input_rate);
+      if (!c.temp_coefs.empty()) imu.axes[a].temp_coefs = parse_coefs(c.temp_coefs);
+    } else {
+      apply(c.accel_N, n.N);
+      apply(c.accel_B, n.B);
+      apply(c.accel_K, n.K);
+    }
+    imu.axes[a].output.dropouts = output.dropouts;
+  }
+  sim::GeneratorOptions options;
+  options.sample_rate_hz = c.sample_rate_hz.value_or(imu.sample_rate_hz);
+  if (!(options.sample_rate_hz >= kMinSampleRateHz && options.sample_rate_hz <= kMaxSampleRateHz)) {
+    throw UsageError(fmt::format("--fs must be from {:g} to {:g} Hz, got {}", kMinSampleRateHz,
+                                 kMaxSampleRateHz, options.sample_rate_hz));
+  }
+  if (!c.hours || !(*c.hours > 0.0 && *c.hours <= 1e6)) {
+    throw UsageError("--hours must be in (0, 1e6]");
+  }
+  options.duration_s = *c.hours * 3600.0;
+  options.seed = c.seed;
+  const std::string ext = std::filesystem::path(c.out).extension().string();
+  if (ext != ".csv" && ext != ".mat" && ext != ".bag") {
+    throw UsageError(fmt::format(
+        "--out '{}' with --imu: write a .csv, .mat or .bag (ROS 1) file, not '{}'", c.out, ext));
+  }
+  if (c.stamp_jitter_s && ext != ".bag") {
+    throw UsageError("--stamp-jitter: only a ROS bag (.bag) has message stamps to jitter");
+  }
+  const double jitter_s = c.stamp_jitter_s.value_or(0.0);
+  if (!(jitter_s >= 0.0 && jitter_s < 0.4 / options.sample_rate_hz)) {
+    throw UsageError(
+        fmt::format("--stamp-jitter {} s: expected 0 to 0.4 sample intervals ({:.6g} s)", jitter_s,
+                    0.4 / options.sample_rate_hz));
+  }
+  const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
+  const auto samples =
+      static_cast<std::int64_t>(std::llround(options.duration_s * options.sample_rate_hz));
+  progress(fmt::format("generating 6 x {} samples ({} h at {} Hz)", samples, *c.hours,
+                       options.sample_rate_hz));
+
+  // Each axis its own stream: independent noise, the same seed.
+  std::array<std::vector<double>, 6> axes;
+  sim::Recording first;
+  for (std::size_t a = 0; a < 6; ++a) {
+    sim::GeneratorOptions o = options;
+    o.stream = c.stream * 8 + a;
+    sim::Recording rec = sim::generate(imu.axes[a], temperature, o);
+    sim::remove_dropouts(rec, imu.axes[a].output);
+    axes[a] = std::move(rec.rate_deg_h);
+    if (a == 0) first = std::move(rec);
+  }
+
+  std::vector<std::string> variables;
+  if (ext == ".bag") {
+    io::ImuBagContent bag;
+    bag.topic = "/imu";
+    bag.frame_id = "imu_link";
+    // ROS time: the recording starts at 1.7e9 s (November 2023); the stamps
+    // carry the sensor's clock plus a uniform jitter when asked.
+    constexpr double kStartS = 1.7e9;
+    std::mt19937_64 random(c.seed * 0x9e3779b97f4a7c15ULL + c.stream);
+    std::uniform_real_distribution<double> jitter(-jitter_s, jitter_s);
+    bag.stamps_s.reserve(first.time_s.size());
+    for (const double t : first.time_s) {
+      bag.stamps_s.push_back(kStartS + t + (jitter_s > 0.0 ? jitter(random) : 0.0));
+    }
+    for (std::size_t a = 0; a < 3; ++a) {
+      bag.angular_velocity_rad_s[a] = std::move(axes[a]);
+      for (double& v : bag.angular_velocity_rad_s[a])
+        v /= to_deg_per_hour(RateUnit::rad_per_second);
+      bag.linear_acceleration_m_s2[a] = std::move(axes[3 + a]);
+    }
+    io::write_imu_bag(c.out, bag);
+    variables = {"/imu: sensor_msgs/Imu"};
+  } else {
+    std::vector<io::NamedVector> vars;
+    const double f = first.sample_rate_hz;
+    if (ext == ".mat") vars.push_back({"f", {&f, 1}});
+    vars.push_back({"t", first.time_s});
+    for (std::size_t a = 0; a < 6; ++a) vars.push_back({std::string(sim::kImuAxes[a]), axes[a]});
+    vars.push_back({ext == ".mat" ? "T" : "temperature", first.temperature_c});
+    if (ext == ".mat") {
+      io::write_mat(c.out, vars);
+    } else {
+      const std::vector<std::string> comments = {
+          fmt::format("foglab {} generate --imu: t [s], gyro_x..z [deg/h], accel_x..z [m/s^2], "
+                      "temperature [degC]; {} Hz, seed {}, stream {}",
+                      version(), f, options.seed, c.stream)};
+      io::write_csv(c.out, vars, comments);
+    }
+    for (const io::NamedVector& v : vars) variables.push_back(v.name);
+  }
+
+  if (!c.truth.empty()) {
+    nlohmann::json axes_json = nlohmann::json::object();
+    std::array<double, 4> kalibr{};  // mean squares: gyro N, K; accel N, K
+    for (std::size_t a = 0; a < 6; ++a) {
+      const bool gyro = a < 3;
+      const NoiseModel& n = imu.axes[a].noise;
+      const double factor = gyro ? 1.0 / kDegPerRad / kSecondsPerHour : 1.0;
+      kalibr[gyro ? 0 : 2] += n.N * factor * n.N * factor / 3.0;
+      kalibr[gyro ? 1 : 3] += n.K * factor * n.K * factor / 3.0;
+      nlohmann::json j = model_json(imu.axes[a]);
+      j["sensor"] = gyro ? "gyroscope" : "accelerometer";
+      j["unit"] = gyro ? "deg/h" : "m/s^2";
+      const AdevMinimum bi =
+          adev_minimum(n, 1.0 / options.sample_rate_hz,
+                       std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
+      j["bias_instability"] = bi.adev_deg_h;
+      j["bias_instability_tau_s"] = bi.tau_s;
+      axes_json[std::string(sim::kImuAxes[a])] = j;
+    }
+    const nlohmann::json truth = {
+        {"generator", "foglab generate --imu"},
+        {"foglab_version", std::string(version())},
+        {"imu", imu.name},
+        {"description", imu.description},
+        {"axes", axes_json},
+        {"kalibr",
+         {{"gyroscope_noise_density", std::sqrt(kalibr[0])},
+          {"gyroscope_random_walk", std::sqrt(kalibr[1])},
+          {"accelerometer_noise_density", std::sqrt(kalibr[2])},
+          {"accelerometer_random_walk", std::sqrt(kalibr[3])},
+          {"update_rate", options.sample_rate_hz},
+          {"of", "root mean square over each sensor's axes, continuous-time, Kalibr's units"}}},
+        {"units",
+         {{"gyroscope", "N deg/h/sqrt(Hz), B deg/h, K deg/h/sqrt(s), bias deg/h"},
+          {"accelerometer", "N m/s^2/sqrt(Hz), B m/s^2, K m/s^2/sqrt(s), bias m/s^2"},
+          {"kalibr", "rad/s/sqrt(Hz), rad/s^2/sqrt(Hz), m/s^2/sqrt(Hz), m/s^3/sqrt(Hz), Hz"}}},
+        {"sample_rate_hz", options.sample_rate_hz},
+        {"duration_s", options.duration_s},
+        {"samples", samples},
+        {"seed", options.seed},
+        {"stream", c.stream},
+        {"axis_streams", "stream x 8 + axis (0..5, in the order of the axes)"},
+        {"stamp_jitter_s", jitter_s},
+        {"dropouts", dropouts_json(output, options, samples)},
+        {"output", {{"path", c.out}, {"variables", variables}}}};
+    write_text_file(c.truth, json_text(truth));
+  }
+  if (c.truth != "-") {
+    std::cout << fmt::format(
+        "wrote '{}': a 6-axis IMU ({}), {} samples per axis at {} Hz ({} h), seed {}, stream {}\n",
+        c.out, imu.name, first.time_s.size(), options.sample_rate_hz, *c.hours, options.seed,
+        c.stream);
+  }
+}
+
 void run(const GenerateCommand& c) {
+  if (c.imu) {
+    run_imu(c);
+    return;
+  }
+  if (c.accel_N || c.accel_B || c.accel_K || c.stamp_jitter_s) {
+    throw UsageError("--accel-N, --accel-B, --accel-K and --stamp-jitter need --imu");
+  }
   const RunPath inputs[] = {
       {"--temperature", c.temperature.starts_with("file:") ? c.temperature.substr(5) : ""}};
   const RunPath outputs[] = {{"--out", c.out}, {"--truth", c.truth}};
@@ -376,6 +574,18 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--drop", c->drops,
                   "dropped samples T:D (from time s on, for D s; the time column shows the gap); "
                   "repeatable");
+  cmd->add_flag("--imu", c->imu,
+                "a 6-axis IMU (mems-imu model, 400 Hz): gyro_x..z [deg/h] and accel_x..z "
+                "[m/s^2] to .csv, .mat or a ROS 1 .bag (sensor_msgs/Imu on /imu, rad/s and "
+                "m/s^2); the gyroscope options set its three gyroscopes");
+  cmd->add_option("--accel-N", c->accel_N,
+                  "--imu: accelerometer white noise N [m/s^2/sqrt(Hz)] (VRW = 60 N m/s/sqrt(h))");
+  cmd->add_option("--accel-B", c->accel_B,
+                  "--imu: accelerometer flicker coefficient B [m/s^2] (ADEV floor 0.664 B)");
+  cmd->add_option("--accel-K", c->accel_K,
+                  "--imu: accelerometer bias random walk K [m/s^2/sqrt(s)] (= m/s^3/sqrt(Hz))");
+  cmd->add_option("--stamp-jitter", c->stamp_jitter_s,
+                  "--imu to a .bag: uniform jitter of the message stamps, +- this many s");
   return [c] { run(*c); };
 }
 

@@ -60,6 +60,39 @@ std::optional<std::string> find_channel(const std::vector<std::string>& channels
   return std::nullopt;
 }
 
+std::optional<Sensor> sensor_by_name(std::string_view name) {
+  const std::string n = lower_case(name);
+  // The name's first word: "gyro_x_dps" -> "gyro", "ax" -> "ax".
+  const std::string head = n.substr(0, std::min(n.find_first_of("_.- "), n.size()));
+  auto axis_named = [&](char sensor) {
+    // g, gx, g_x, gyr..: a sensor letter, then an axis letter or nothing.
+    if (head.empty() || head[0] != sensor) return false;
+    if (head.size() == 1) {
+      const std::size_t rest = head.size() + 1;
+      return n.size() > rest && std::string_view("xyz").find(n[rest]) != std::string::npos &&
+             (n.size() == rest + 1 || !std::isalpha(static_cast<unsigned char>(n[rest + 1])));
+    }
+    return head.size() == 2 && std::string_view("xyz").find(head[1]) != std::string::npos;
+  };
+  if (n.find("gyr") != std::string::npos || n.find("omega") != std::string::npos ||
+      n.find("angular") != std::string::npos || axis_named('g') || axis_named('w')) {
+    return Sensor::gyroscope;
+  }
+  if (n.find("acc") != std::string::npos || n.find("linear") != std::string::npos ||
+      axis_named('a')) {
+    return Sensor::accelerometer;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> inertial_channels(const std::vector<std::string>& channels) {
+  std::vector<std::string> out;
+  for (const std::string& c : channels) {
+    if (sensor_by_name(c)) out.push_back(c);
+  }
+  return out;
+}
+
 std::string list_names(const std::vector<std::string>& names) {
   auto cut = [](const std::string& name) {
     return name.size() <= 40 ? name : name.substr(0, 37) + "...";

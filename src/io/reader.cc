@@ -250,12 +250,14 @@ std::string describe_non_finite(double value) {
   return value > 0 ? "+Inf" : "-Inf";
 }
 
-// Checks every sample and converts it to deg/h in the same pass.
+// Checks every sample and converts it to deg/h (m/s^2 for an acceleration
+// unit) in the same pass.
 void finish_values(Series& series, RateUnit unit, double max_magnitude) {
   if (series.values.empty()) {
     throw_data_error(series.path, fmt::format("channel '{}' has no samples", series.channel));
   }
-  const double factor = to_deg_per_hour(unit);
+  const double factor = to_internal_unit(unit);
+  const SampleUnit target = internal_unit(sensor_of(unit));
   for (std::size_t i = 0; i < series.values.size(); ++i) {
     const double value = series.values[i];
     if (!std::isfinite(value)) {
@@ -264,20 +266,19 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
     }
     const double converted = value * factor;
     if (!std::isfinite(converted)) {
-      throw_data_error(
-          series.path,
-          fmt::format("sample {} of '{}' ({} {}) overflows when converted to deg/h", i + 1,
-                      series.channel, internal::format_value(value), to_string(unit)));
+      throw_data_error(series.path,
+                       fmt::format("sample {} of '{}' ({} {}) overflows when converted to {}",
+                                   i + 1, series.channel, internal::format_value(value),
+                                   to_string(unit), to_string(target)));
     }
     if (std::fabs(converted) > max_magnitude) {
       throw_data_error(
           series.path,
           fmt::format("sample {} of '{}' is {}{}: too large (more than {:g} in magnitude, far "
-                      "beyond any gyro's rate or temperature, and the statistics would "
+                      "beyond any sensor's output or temperature, and the statistics would "
                       "overflow); check the channel, its unit and the file",
                       i + 1, series.channel, internal::format_value(value),
-                      unit == RateUnit::deg_per_hour ? "" : " " + std::string(to_string(unit)),
-                      max_magnitude));
+                      unit == target ? "" : " " + std::string(to_string(unit)), max_magnitude));
     }
     series.values[i] = converted;
   }

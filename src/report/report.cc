@@ -13,6 +13,7 @@
 #include "foglab/core/error.h"
 #include "foglab/core/units.h"
 #include "foglab/core/version.h"
+#include "foglab/report/imu.h"
 #include "report_internal.h"
 
 namespace foglab::report {
@@ -286,7 +287,12 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
          td(t.value) + td(t.interval) + td(model::to_string(e.status)) + td(p.unit) + "</tr>\n";
   }
   h += "</table>\n<table class=\"meta\">\n";
-  row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
+  if (in.sensor == Sensor::gyroscope) {
+    row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
+  } else {
+    row("velocity random walk (60 N)",
+        fmt::format("{} m/s/sqrt(h)", g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N))));
+  }
   row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
   row("spectral lines", lines_sentence(r.noise));
   row("bias steps",
@@ -354,8 +360,12 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
       g(ev.adev_end_slope), g(ev.psd_low_frequency_slope));
 
   // Class.
-  h += "<h3>Accuracy class (lab manual, Table 1)</h3>\n<p class=\"verdict\">" +
-       html_escape(class_sentence(r)) + "</p>\n";
+  if (in.sensor == Sensor::gyroscope) {
+    h += "<h3>Accuracy class (lab manual, Table 1)</h3>\n<p class=\"verdict\">" +
+         html_escape(class_sentence(r)) + "</p>\n";
+  } else {
+    h += "<h3>Accuracy class</h3>\n<p>" + html_escape(kNoAccelerometerClass) + "</p>\n";
+  }
 
   const std::vector<std::string> notes = all_notes(r, in);
   if (!notes.empty()) {
@@ -363,7 +373,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
     for (const std::string& n : notes) h += "<li>" + html_escape(n) + "</li>\n";
     h += "</ul>\n";
   }
-  return h;
+  return in_sensor_units(h, in.sensor);
 }
 
 }  // namespace
@@ -442,10 +452,19 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
     md += fmt::format("| {} | {} | {} | {} | {} |\n", p.name, t.value, t.interval,
                       model::to_string(e.status), p.unit);
   }
-  md += fmt::format(
-      "\n- ARW {} deg/sqrt(h); bias instability (ADEV minimum) **{} deg/h** at {} s{}\n",
-      g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h), g(r.bias_instability_tau_s),
-      r.bias_instability_at_edge ? " (at the end of the tau range)" : "");
+  const char* at_edge = r.bias_instability_at_edge ? " (at the end of the tau range)" : "";
+  if (in.sensor == Sensor::gyroscope) {
+    md += fmt::format(
+        "\n- ARW {} deg/sqrt(h); bias instability (ADEV minimum) **{} deg/h** at {} s{}\n",
+        g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h), g(r.bias_instability_tau_s), at_edge);
+  } else {
+    md += fmt::format(
+        "\n- VRW {} m/s/sqrt(h); bias instability (ADEV minimum) **{} m/s^2** ({} mg) at {} "
+        "s{}\n",
+        g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)), g(r.bias_instability_deg_h),
+        g(r.bias_instability_deg_h / kStandardGravity * 1000.0), g(r.bias_instability_tau_s),
+        at_edge);
+  }
   md += fmt::format("- graphical readings: ADEV N {}, K {}, minimum {} deg/h; PSD N {}, K {}\n",
                     g(r.adev_readings.N), g(r.adev_readings.K),
                     g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N),
@@ -454,88 +473,39 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
   md += "- spectral lines: " + lines_sentence(r.noise) + "\n";
   md += "- random bias: " + random_bias_answer(r) + "\n";
   if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary + ")\n";
-  md += "- accuracy class: **" + class_sentence(r) + "**\n";
+  md += in.sensor == Sensor::gyroscope
+            ? "- accuracy class: **" + class_sentence(r) + "**\n"
+            : "- accuracy class: " + std::string(kNoAccelerometerClass) + "\n";
   const std::vector<std::string> notes = all_notes(r, in);
   if (!notes.empty()) {
     md += "\nNotes:\n\n";
     for (const std::string& n : notes) md += "- " + n + "\n";
   }
-  return md;
+  return in_sensor_units(md, in.sensor);
 }
 
 std::string kalibr_imu_yaml(const model::AnalysisResult& r, const ReportInput& in,
                             std::string_view rostopic) {
+  if (in.sensor != Sensor::gyroscope) {
+    ImuAxis axis{in.channel, in.sensor, &r};
+    return kalibr_imu_yaml(std::span<const ImuAxis>(&axis, 1), in.file_name, r.sample_rate_hz,
+                           rostopic);
+  }
   std::string y = fmt::format(
       "# Kalibr IMU noise model (imu.yaml) of the gyroscope in '{}'{}, written by foglab {}.\n"
       "# Continuous-time densities, from the noise model fitted to the Allan variance\n"
       "# (N [deg/h/sqrt(Hz)] and K [deg/h/sqrt(s)] times (pi/180)/3600).\n"
       "# Kalibr advises inflating these for real-world use (vibration, temperature).\n\n",
       in.file_name, in.channel.empty() ? "" : " channel " + in.channel, version());
-
-  // Noise density.
-  double n = kNaN;
-  std::string n_comment;
-  const model::ParameterEstimate& pn = r.noise.N;
-  if (pn.status == model::TermStatus::resolved) {
-    n = pn.value;
-    n_comment = fmt::format("N = {:.6g} deg/h/sqrt(Hz), 95 % interval [{}, {}]", n, g(pn.ci95_low),
-                            g(pn.ci95_high));
-  } else if (r.psd_readings.N) {
-    n = *r.psd_readings.N;
-    n_comment =
-        fmt::format("N = {:.6g} deg/h/sqrt(Hz) read off the PSD (the fit did not resolve N)", n);
-  } else if (r.adev_readings.N) {
-    n = *r.adev_readings.N;
-    n_comment =
-        fmt::format("N = {:.6g} deg/h/sqrt(Hz) read off the ADEV (the fit did not resolve N)", n);
-  } else if (std::isfinite(pn.upper_95)) {
-    n = pn.upper_95;
-    n_comment = fmt::format("N < {:.6g} deg/h/sqrt(Hz): 95 % upper bound, N not resolved", n);
-  } else {
-    n = 0.0;
-    n_comment = "N could not be estimated from this record";
-  }
-
-  // Random walk.
-  double k = 0.0;
-  std::string k_comment;
-  const model::ParameterEstimate& pk = r.noise.K;
-  if (pk.status == model::TermStatus::resolved) {
-    k = pk.value;
-    k_comment = fmt::format("K = {:.6g} deg/h/sqrt(s), 95 % interval [{}, {}]", k, g(pk.ci95_low),
-                            g(pk.ci95_high));
-  } else if (std::isfinite(pk.upper_95) && pk.upper_95 > 0.0) {
-    k = pk.upper_95;
-    k_comment = fmt::format(
-        "K < {:.6g} deg/h/sqrt(s): the 95 % upper bound, K is not resolved by this record", k);
-  } else if (std::isfinite(pk.ci95_high) && pk.ci95_high > 0.0) {
-    k = pk.ci95_high;
-    k_comment = fmt::format(
-        "K < {:.6g} deg/h/sqrt(s): the 95 % upper bound, K is not resolved by this record", k);
-  } else if (r.noise.model.gm_sigma > 0.0 && r.noise.model.gm_tc > 0.0) {
-    k = r.noise.model.gm_sigma * std::sqrt(2.0 / r.noise.model.gm_tc);
-    k_comment = fmt::format(
-        "no Wiener term and no bound on it: the driving noise sigma*sqrt(2/Tc) = {:.6g} "
-        "deg/h/sqrt(s) of the Gauss-Markov bias (sigma {} deg/h, Tc {} s)",
-        k, g(r.noise.model.gm_sigma), g(r.noise.model.gm_tc));
-  } else {
-    k_comment = "K could not be bounded by this record: 0 written, set it by hand";
-  }
-  if (r.noise.random_bias_process == RandomBiasProcess::gauss_markov) {
-    k_comment += fmt::format(
-        "; the random bias is Gauss-Markov (sigma {} deg/h, Tc {} s), "
-        "which Kalibr cannot represent",
-        g(r.noise.model.gm_sigma), g(r.noise.model.gm_tc));
-  }
-
+  const FilterNoise f = filter_noise(r, Sensor::gyroscope);
   y += "# No accelerometer in this recording: Kalibr's accelerometer fields are not measured.\n";
   y += "#accelerometer_noise_density: 0.0  # [m/s^2/sqrt(Hz)]\n";
   y += "#accelerometer_random_walk: 0.0    # [m/s^3/sqrt(Hz)]\n\n";
   y += "# Gyroscope\n";
   y += fmt::format("gyroscope_noise_density: {:.9g}  # [rad/s/sqrt(Hz)] {}\n",
-                   noise_density_rad_s_sqrt_hz(n), n_comment);
+                   noise_density_rad_s_sqrt_hz(f.white), f.white_source);
   y += fmt::format("gyroscope_random_walk: {:.9g}  # [rad/s^2/sqrt(Hz)] {}\n\n",
-                   random_walk_rad_s2_sqrt_hz(k), k_comment);
+                   random_walk_rad_s2_sqrt_hz(f.random_walk), f.random_walk_source);
   y += fmt::format("rostopic: {}  # the IMU's ROS topic: set it to yours\n", rostopic);
   y += fmt::format("update_rate: {:.9g}  # [Hz] the sample rate of the recording\n",
                    r.sample_rate_hz);
@@ -623,7 +593,7 @@ std::string html_document(std::span<const Report> reports, std::string_view titl
   h += fmt::format(
       "<footer>Written by foglab {}. Units: rate deg/h, time s, temperature degC; noise "
       "parameters as in IEEE Std 952 (N deg/h/sqrt(Hz), B deg/h, K deg/h/sqrt(s), R deg/h/s, "
-      "Q deg/h*s).</footer>\n",
+      "Q deg/h*s); an accelerometer's in m/s^2 in place of deg/h.</footer>\n",
       html_escape(version()));
   h += "</body>\n</html>\n";
   return h;

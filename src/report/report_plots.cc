@@ -508,6 +508,15 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
   }
   plots.push_back(psd_plot(result, title));
   plots.push_back(adev_plot(result, title));
+  if (input.sensor != Sensor::gyroscope) {
+    // An accelerometer's plots say m/s^2 (and "acceleration" for "rate").
+    for (Plot& p : plots) {
+      for (std::string* text : {&p.title, &p.x_label, &p.y_label, &p.y2_label}) {
+        *text = in_sensor_units(*text, input.sensor);
+      }
+      for (Series& s : p.series) s.title = in_sensor_units(s.title, input.sensor);
+    }
+  }
   return plots;
 }
 

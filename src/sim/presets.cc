@@ -132,4 +132,30 @@ const Preset& find_preset(std::string_view name) {
   throw UsageError(fmt::format("unknown preset '{}'; the presets are: {}", name, names));
 }
 
+ImuModel mems_imu_model() {
+  ImuModel imu;
+  imu.name = "mems-imu";
+  imu.description =
+      "MEMS IMU at 400 Hz after the Bosch BMI088 datasheet (gyroscope 0.0066 deg/s/sqrt(Hz), "
+      "bias instability 14.5 deg/h; accelerometer 230 ug/sqrt(Hz), 27 ug); bias random walks "
+      "assumed; axes differ by up to 15 %; gravity on accel_z";
+  imu.sample_rate_hz = 400.0;
+  // Each axis's scale against the datasheet figures: a real triad's axes
+  // are alike, not equal.
+  constexpr double kAxisScale[3] = {1.0, 0.9, 1.15};
+  for (std::size_t a = 0; a < 3; ++a) {
+    ErrorModel& gyro = imu.axes[a];
+    gyro.noise.N = 0.0066 * 3600.0 * kAxisScale[a];     // deg/h/sqrt(Hz)
+    gyro.noise.B = 14.5 / 0.664 * kAxisScale[2 - a];    // deg/h: ADEV floor 14.5 deg/h
+    gyro.noise.K = 2.0 * kAxisScale[a];                 // deg/h/sqrt(s)
+    gyro.bias = 36.0 * (static_cast<double>(a) - 1.0);  // deg/h: -36, 0, +36
+    ErrorModel& accel = imu.axes[3 + a];
+    accel.noise.N = 230e-6 * 9.80665 * kAxisScale[2 - a];                   // m/s^2/sqrt(Hz)
+    accel.noise.B = 2.7e-4 / 0.664 * kAxisScale[a];                         // m/s^2
+    accel.noise.K = 4e-5 * kAxisScale[2 - a];                               // m/s^2/sqrt(s)
+    accel.bias = a == 2 ? 9.80665 : 0.02 * (static_cast<double>(a) - 0.5);  // m/s^2
+  }
+  return imu;
+}
+
 }  // namespace foglab::sim

@@ -1,10 +1,14 @@
-// foglab — units of angular rate and the kind of an input record.
+// foglab — units of angular rate and acceleration, the sensor a unit
+// belongs to, and the kind of an input record.
 //
-// Inside foglab every rate is in deg/h, every time in s, every temperature in
-// degC (docs/conventions.md section 1). Inputs in other units are converted once, on
-// reading. An angle (phase) record is expressed in [rate unit x s]: deg for
-// deg/s, rad for rad/s, and (deg/h)*s for the default deg/h, so that the
-// rate is the angle's increment divided by the sample interval.
+// Inside foglab every rate is in deg/h, every acceleration in m/s^2, every
+// time in s, every temperature in degC (docs/conventions.md section 1).
+// Inputs in other units are converted once, on reading. The statistics and
+// the noise model do not depend on the unit (they scale with it), so an
+// accelerometer channel is analysed like a gyroscope's, in m/s^2, and only
+// its report speaks in accelerometer terms. An angle (phase) record is expressed in [rate unit x
+// s]: deg for deg/s, rad for rad/s, and (deg/h)*s for the default deg/h, so that the rate is the
+// angle's increment divided by the sample interval.
 #pragma once
 
 #include <numbers>
@@ -13,20 +17,55 @@
 
 namespace foglab {
 
-/// Unit of an angular-rate record.
-enum class RateUnit {
-  deg_per_hour,    ///< "deg/h" (foglab's internal unit)
-  deg_per_second,  ///< "deg/s"
-  rad_per_second,  ///< "rad/s"
+/// What a channel measures.
+enum class Sensor {
+  gyroscope,      ///< angular rate, analysed in deg/h
+  accelerometer,  ///< specific force, analysed in m/s^2
 };
+/// "gyroscope" or "accelerometer".
+std::string_view to_string(Sensor sensor);
 
-/// "deg/h", "deg/s" or "rad/s".
-std::string_view to_string(RateUnit unit);
-/// Parses "deg/h", "deg/s", "rad/s" (also "dph", "dps", "rps");
-/// throws UsageError listing the accepted names otherwise.
-RateUnit rate_unit_from_string(std::string_view text);
-/// Factor that converts a value in `unit` to deg/h.
-double to_deg_per_hour(RateUnit unit);
+/// Unit of a record's samples: an angular rate or an acceleration.
+enum class SampleUnit {
+  deg_per_hour,      ///< "deg/h" (foglab's internal rate unit)
+  deg_per_second,    ///< "deg/s"
+  rad_per_second,    ///< "rad/s"
+  m_per_s2,          ///< "m/s^2" (foglab's internal acceleration unit)
+  standard_gravity,  ///< "g" (9.80665 m/s^2)
+  milli_g,           ///< "mg"
+};
+/// The name the rate-only API had; every unit above is accepted.
+using RateUnit = SampleUnit;
+
+/// "deg/h", "deg/s", "rad/s", "m/s^2", "g" or "mg".
+std::string_view to_string(SampleUnit unit);
+/// Parses the names above (also "dph", "dps", "rps", "m/s2", "mps2",
+/// "milli-g"); throws UsageError listing the accepted names otherwise.
+SampleUnit rate_unit_from_string(std::string_view text);
+/// The sensor whose samples `unit` measures.
+Sensor sensor_of(SampleUnit unit);
+/// The unit foglab analyses a sensor's samples in: deg/h or m/s^2.
+SampleUnit internal_unit(Sensor sensor);
+/// Factor that converts a value in `unit` to its sensor's internal unit
+/// (deg/h or m/s^2).
+double to_internal_unit(SampleUnit unit);
+/// Factor that converts a rate in `unit` to deg/h; throws UsageError for an
+/// acceleration unit.
+double to_deg_per_hour(SampleUnit unit);
+
+/// `text` (a unit, a label, a sentence foglab wrote) with the rate unit deg/h
+/// in the internal unit of `sensor`: unchanged for a gyroscope; for an
+/// accelerometer every deg/h becomes m/s^2, so that the noise units built
+/// on it follow (deg/h/sqrt(Hz) -> m/s^2/sqrt(Hz), (deg/h)^2/Hz ->
+/// (m/s^2)^2/Hz, deg/h/s -> m/s^2/s), and the gyroscope's names of the
+/// noise terms become the accelerometer's (white rate noise -> white
+/// acceleration noise, angle random walk N/60 -> velocity random walk 60 N,
+/// rate random walk -> acceleration random walk, ...).
+std::string in_sensor_units(std::string_view text, Sensor sensor);
+
+/// [m/s^2] The standard acceleration of gravity, 1 g (3rd CGPM, 1901; ISO
+/// 80000-3), by which g and mg are converted.
+inline constexpr double kStandardGravity = 9.80665;
 
 /// What the samples of a record are.
 enum class InputKind {

@@ -12,6 +12,12 @@
 //     A rate channel pairs with a temperature by name: a name ending in
 //     digits d with `T` + d (`Y1` with `T1`, `Y2` with `T2`), a name without
 //     digits (`rate`) with `T` or `temperature`.
+//   * Inertial sensors: a name says gyroscope when, ignoring case, it
+//     holds `gyr`, `omega` or `angular`, or is `g`, `w` or `wx`-like (`gx`,
+//     `w_y`, `gyro_z_dps`); it says accelerometer when it holds `acc` or
+//     `linear`, or is `a` + an axis (`ax`, `a_z`, `accel_x_mg`). A ROS bag's
+//     channels are `gyro_x`, `gyro_y`, `gyro_z`, `accel_x`, `accel_y`,
+//     `accel_z`.
 #pragma once
 
 #include <array>
@@ -19,6 +25,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "foglab/core/units.h"
 
 namespace foglab::io {
 
@@ -51,6 +59,14 @@ std::vector<std::string> paired_temperature_names(std::string_view rate_channel)
 /// lab's temperature `T`.
 std::optional<std::string> find_channel(const std::vector<std::string>& channels,
                                         std::string_view name, NameMatch match);
+
+/// The sensor a channel's name says it belongs to (the rules above), or
+/// none (`Y1`, `rate`, `2`, `temperature`).
+std::optional<Sensor> sensor_by_name(std::string_view name);
+
+/// The channels of `channels` whose names say gyroscope or accelerometer,
+/// in their order.
+std::vector<std::string> inertial_channels(const std::vector<std::string>& channels);
 
 /// Channel names for a message: "a, b, c"; with more than kListedNames,
 /// the first ones, "...", the last one and the count ("(1200 in all)"),

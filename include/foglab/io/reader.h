@@ -98,8 +98,9 @@ struct ReadOptions {
   /// [Hz] Sample rate; overrides the file's `f` or time column. Must be > 0.
   std::optional<double> sample_rate_hz;
   InputFormat format = InputFormat::automatic;
-  /// Unit of the samples; they are converted to deg/h (phase: (deg/h)*s).
-  RateUnit unit = RateUnit::deg_per_hour;
+  /// Unit of the samples; they are converted to deg/h (phase: (deg/h)*s),
+  /// or for an acceleration unit (m/s^2, g, mg) to m/s^2.
+  SampleUnit unit = SampleUnit::deg_per_hour;
   /// Time variable/column; empty: `t`, `time` or `time_s` when present.
   std::string time_channel;
   /// The largest magnitude a sample may have once converted (deg/h, or degC
@@ -126,7 +127,9 @@ inline constexpr double kMaxSampleMagnitude = foglab::kMaxSampleMagnitude;
 struct Series {
   std::string path;             ///< as given; "-" for standard input
   std::string channel;          ///< name of the chosen variable or column
-  std::vector<double> values;   ///< samples [deg/h] (phase records: [(deg/h)*s])
+  /// Samples [deg/h] (phase records: [(deg/h)*s]); [m/s^2] when read in an
+  /// acceleration unit (ReadOptions::unit).
+  std::vector<double> values;
   double sample_rate_hz = 0.0;  ///< [Hz]
   /// Where the sample rate came from.
   SampleRateSource sample_rate_source = SampleRateSource::option;

@@ -14,6 +14,7 @@
 //   5. Table 1 class from that minimum and the ARW (N/60).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -99,5 +100,31 @@ struct AnalysisResult {
 AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> temperature_c,
                        double sample_rate_hz, const AnalysisOptions& options = {},
                        std::span<const Gap> gaps = {});
+
+/// One record of several analysed together (analyze_records()).
+struct RecordToAnalyse {
+  std::vector<double> rate_deg_h;     ///< consumed, as by analyze() (an accelerometer's in m/s^2)
+  std::vector<double> temperature_c;  ///< empty: none
+  double sample_rate_hz = 0.0;
+  std::vector<Gap> gaps;
+};
+
+/// Analyses `count` records, several at a time: a record is loaded by
+/// `load(k)` (k = 0 .. count-1) in the worker that analyses it, so reading
+/// too runs in parallel and at most `workers` records are in memory at
+/// once. `workers` 0 means one per core, at most `count`; the cores are
+/// shared out between the workers for the parallel parts of each analysis
+/// (OpenMP teams), so that the machine is neither idle nor oversubscribed.
+/// `done(k)` (optional) is called in the worker once record k is analysed,
+/// for progress. The results come in record order. When a load or an
+/// analysis throws, no new record is started, the running ones finish,
+/// and the first error in record order is rethrown; a UsageError or
+/// DataError with `label(k) + ": "` in front of its message when `label`
+/// is given.
+std::vector<AnalysisResult> analyze_records(
+    std::size_t count, const std::function<RecordToAnalyse(std::size_t)>& load,
+    const AnalysisOptions& options = {}, unsigned workers = 0,
+    const std::function<void(std::size_t)>& done = {},
+    const std::function<std::string(std::size_t)>& label = {});
 
 }  // namespace foglab::model

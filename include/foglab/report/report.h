@@ -78,6 +78,10 @@ struct ReportInput {
   std::string channel;               ///< rate channel, e.g. "Y1"
   std::string temperature_channel;   ///< e.g. "T1"; empty: no temperature
   std::string input_unit = "deg/h";  ///< the unit the rate was read in (converted to deg/h)
+  /// An accelerometer's report speaks in m/s^2 (core/units.h
+  /// in_sensor_units()), gives the velocity random walk in place of the
+  /// angle random walk, and no Table 1 class (a table of gyroscopes).
+  Sensor sensor = Sensor::gyroscope;
   RecordPreview preview;             ///< from preview_record() of the raw record
   /// [deg/h] the constant bias removed when there is no temperature (the
   /// analysis does not keep it).
@@ -144,6 +148,16 @@ constexpr double noise_density_rad_s_sqrt_hz(double n_deg_h_sqrt_hz) {
 constexpr double random_walk_rad_s2_sqrt_hz(double k_deg_h_sqrt_s) {
   return k_deg_h_sqrt_s / kDegPerRad / kSecondsPerHour;
 }
+
+/// N [m/s^2/sqrt(Hz)] -> velocity random walk [m/s/sqrt(h)]: sqrt(3600 s/h) = 60.
+constexpr double velocity_random_walk_m_s_sqrt_h(double n_m_s2_sqrt_hz) {
+  return n_m_s2_sqrt_hz * 60.0;
+}
+
+/// What the reports say in place of an accelerometer's class.
+inline constexpr std::string_view kNoAccelerometerClass =
+    "none: the lab manual's Table 1 classes gyroscopes only (by bias instability and angle "
+    "random walk); it does not apply to an accelerometer";
 
 /// `text` with &, <, >, " and ' escaped for HTML.
 std::string html_escape(std::string_view text);

@@ -12,6 +12,7 @@
 // on the datasheets; the presets choose plausible values and say so.
 #pragma once
 
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,5 +36,33 @@ const std::vector<Preset>& presets();
 
 /// The preset of that name; throws UsageError listing the names otherwise.
 const Preset& find_preset(std::string_view name);
+
+/// The six axes of an IMU, in the order of ImuModel::axes (a ROS bag's
+/// channel names, io/channels.h).
+inline constexpr std::array<std::string_view, 6> kImuAxes = {"gyro_x",  "gyro_y",  "gyro_z",
+                                                             "accel_x", "accel_y", "accel_z"};
+
+/// A 6-axis IMU: each axis its own error model. The gyroscopes' models are
+/// in deg/h (as every ErrorModel); the accelerometers' in m/s^2 in place of
+/// deg/h (N m/s^2/sqrt(Hz), B m/s^2, K m/s^2/sqrt(s), bias m/s^2): the
+/// processes are the same, only the unit differs.
+struct ImuModel {
+  std::string name;
+  std::string description;
+  std::array<ErrorModel, 6> axes;  ///< kImuAxes' order
+  double sample_rate_hz = 400.0;
+};
+
+/// A MEMS IMU of the kind robotics and navigation engineers record in ROS
+/// bags, at 400 Hz: gyroscopes with a noise density of 0.0066 deg/s/sqrt(Hz)
+/// (N = 23.8 deg/h/sqrt(Hz)) and a bias instability of 14.5 deg/h,
+/// accelerometers with 230 ug/sqrt(Hz) (2.26e-3 m/s^2/sqrt(Hz)) and 27 ug
+/// (2.7e-4 m/s^2), after a consumer IMU datasheet (Bosch BMI088); bias
+/// random walks (gyroscope 2 deg/h/sqrt(s), about 1e-5 rad/s^2/sqrt(Hz);
+/// accelerometer 4e-5 m/s^2/sqrt(s)) are not on the datasheet and chosen so
+/// that an hours-long record resolves them. The axes differ by up to 15 %
+/// (as a real triad's do), and accel_z carries gravity (+9.80665 m/s^2, the
+/// IMU lying flat, z up).
+ImuModel mems_imu_model();
 
 }  // namespace foglab::sim

@@ -1,0 +1,51 @@
+// foglab CLI — `foglab analyze`'s options and the parts its one-channel
+// form (cmd_analyze.cc) shares with its IMU form (cmd_analyze_imu.cc).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "foglab/io/reader.h"
+
+namespace foglab::cli {
+
+struct AnalyzeCommand {
+  InputOptions input;
+  std::string channels;  ///< --channels: "gx,gy,..." or "all"; empty: --channel's one
+  std::string topic;     ///< --topic of a ROS bag
+  std::string temp_channel;
+  std::string temp_degree = "auto";
+  std::string taus = "octave";
+  std::string json_path;
+  std::string csv_path;
+  std::string report_path;
+  std::string kalibr_path;
+};
+
+struct Temperature {
+  std::string channel;  ///< empty: none
+  std::vector<double> values_c;
+};
+
+/// Reads the temperature that goes with `series` (or none, with a note
+/// printed and added to `notes`).
+Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
+                             std::vector<std::string>& notes);
+
+/// UsageError for a --temp that cannot be read (no FILE, or a stream).
+void check_temperature_option(const AnalyzeCommand& c);
+
+/// -1 for "auto", else 0..3 (UsageError otherwise).
+int parse_temp_degree(const std::string& text);
+
+/// Whether `c` asks for the IMU form: several channels (--channels, a ROS
+/// bag, or a file whose channel names say gyroscope and accelerometer with
+/// no --channel), or an accelerometer's channel (--units).
+bool wants_imu_analysis(const AnalyzeCommand& c);
+
+/// The IMU form: every channel analysed in parallel, one JSON, one
+/// Markdown summary, one HTML report, Kalibr's imu.yaml for both sensors.
+void run_imu_analysis(const AnalyzeCommand& c);
+
+}  // namespace foglab::cli
