@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages foglab needs to build and run, skipping
 # those already present; with --tests also what the test suite needs
-# (GNU Octave; headless Chromium for the reports' browser test; clang-14
+# (GNU Octave; headless Chromium for the reports' browser test; the ROS
+# Python library that writes test bags; clang-14
 # with its sanitizer and libFuzzer runtimes for the sanitizer build); with
 # --fuzz only the latter. Run as root (or with sudo).
 set -euo pipefail
@@ -12,13 +13,20 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  # ROS 1 bags (src/io/rosbag.cc): rosbag_storage and the sensor_msgs/Imu
+  # headers; rosbag/bag.h includes pluginlib's headers (pluginlib-dev, a
+  # dependency of librosbag-storage-dev named here since the build needs it).
+  librosbag-storage-dev libsensor-msgs-dev pluginlib-dev
 )
 if [ "${1:-}" = "--tests" ]; then
   # octave-cli runs the lab's MATLAB steps on lab2-data files in the tests
   # (octave 7 from Debian 12); its plots need a font, a Recommends of
   # octave-common that --no-install-recommends would skip.
   # chromium opens the lab reports in the browser test (headless).
-  packages+=(octave fonts-freefont-otf chromium)
+  # python3-rosbag with the sensor_msgs and std_msgs Python messages writes
+  # the bags that tests/io/rosbag_test.cc reads (tests/io/make_imu_bag.py).
+  packages+=(octave fonts-freefont-otf chromium
+             python3-rosbag python3-sensor-msgs python3-std-msgs)
 fi
 if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--fuzz" ]; then
   # clang-14 with its runtime (ASan, UBSan, libFuzzer) and OpenMP builds the
