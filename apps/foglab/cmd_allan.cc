@@ -32,15 +32,21 @@ struct AllanCommand {
   std::string json_path;
 };
 
-std::string dev_unit(stats::AllanKind kind) {
-  return kind == stats::AllanKind::tdev ? "deg/h*s" : "deg/h";
+/// The deviation's unit: the rate's (TDEV: times s); m/s^2 for an
+/// accelerometer read in an acceleration unit.
+std::string dev_unit(stats::AllanKind kind, Sensor sensor) {
+  return in_sensor_units(kind == stats::AllanKind::tdev ? "deg/h*s" : "deg/h", sensor);
+}
+
+Sensor sensor_of_input(const AllanCommand& c) {
+  return sensor_of(parse_units_option(c.input.units, c.input.path));
 }
 
 nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
                        const AllanCommand& c) {
   return {{"kind", std::string(stats::to_string(r.kind))},
           {"input", std::string(to_string(r.input))},
-          {"unit", dev_unit(r.kind)},
+          {"unit", dev_unit(r.kind, sensor_of_input(c))},
           {"tau_s", r.tau_s},
           {"dev", numbers(r.dev)},
           {"n", r.n},
@@ -60,8 +66,9 @@ nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
 
 std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
 
-std::string to_csv(const stats::AllanResult& r) {
-  const std::string u = dev_unit(r.kind) == "deg/h" ? "deg_h" : "deg_h_s";
+std::string to_csv(const stats::AllanResult& r, Sensor sensor) {
+  const std::string base = sensor == Sensor::gyroscope ? "deg_h" : "m_s2";
+  const std::string u = r.kind == stats::AllanKind::tdev ? base + "_s" : base;
   std::string out = fmt::format(
       "tau_s,m,n,dev_{0},alpha,edf,ci68_low_{0},ci68_high_{0},ci95_low_{0},ci95_high_{0}\n", u);
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
@@ -72,8 +79,8 @@ std::string to_csv(const stats::AllanResult& r) {
   return out;
 }
 
-std::string to_table(const stats::AllanResult& r, const io::Series& series) {
-  const std::string unit = dev_unit(r.kind);
+std::string to_table(const stats::AllanResult& r, const io::Series& series, Sensor sensor) {
+  const std::string unit = dev_unit(r.kind, sensor);
   std::string out = fmt::format("{} of '{}' channel {} ({} samples at {} Hz, {})\n",
                                 stats::to_string(r.kind), series.path, series.channel,
                                 series.values.size(), series.sample_rate_hz, to_string(r.input));
@@ -112,10 +119,11 @@ void run(const AllanCommand& c) {
   series.values.resize(samples);  // only the count is used below
   // Render everything first, then write: a failure never leaves half the outputs.
   const std::string json = c.json_path.empty() ? "" : json_text(to_json(result, series, c));
-  const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
+  const std::string csv = c.csv_path.empty() ? "" : to_csv(result, sensor_of_input(c));
   if (!c.json_path.empty()) write_text_file(c.json_path, json);
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
-  if (c.json_path != "-" && c.csv_path != "-") std::cout << to_table(result, series);
+  if (c.json_path != "-" && c.csv_path != "-")
+    std::cout << to_table(result, series, sensor_of_input(c));
 }
 
 }  // namespace

@@ -57,18 +57,21 @@ void run(const PsdCommand& c) {
   const stats::PsdResult smooth =
       naming_the_input(series, [&] { return stats::log_smooth(psd, c.smooth_per_decade); });
 
+  // An accelerometer read in an acceleration unit is in m/s^2.
+  const Sensor sensor = sensor_of(parse_units_option(c.input.units, c.input.path));
   std::string json;
   if (!c.json_path.empty()) {
     nlohmann::json j = spectrum_json(psd);
     j["sided"] = "two";
-    j["unit"] = "(deg/h)^2/Hz";
-    j["sqrt_unit"] = "deg/h/sqrt(Hz)";
+    j["unit"] = in_sensor_units("(deg/h)^2/Hz", sensor);
+    j["sqrt_unit"] = in_sensor_units("deg/h/sqrt(Hz)", sensor);
     j["window"] = "hann";
     j["segment_length"] = psd.segment_length;
     j["segments"] = psd.segments;
     j["overlap"] = c.overlap;
     j["resolution_hz"] = psd.resolution_hz;
-    j["mean_removed_deg_h"] = compensated_mean(series.values);
+    j[sensor == Sensor::gyroscope ? "mean_removed_deg_h" : "mean_removed_m_s2"] =
+        compensated_mean(series.values);
     j["smoothed"] = spectrum_json(smooth);
     j["smoothed"]["bins_per_decade"] = c.smooth_per_decade;
     j["source"] = input_json(series);
@@ -77,7 +80,9 @@ void run(const PsdCommand& c) {
   }
   std::string csv;
   if (!c.csv_path.empty()) {
-    csv = "frequency_hz,psd_deg2_h2_per_hz,sqrt_psd_deg_h_per_sqrt_hz\n";
+    csv = sensor == Sensor::gyroscope
+              ? "frequency_hz,psd_deg2_h2_per_hz,sqrt_psd_deg_h_per_sqrt_hz\n"
+              : "frequency_hz,psd_m2_s4_per_hz,sqrt_psd_m_s2_per_sqrt_hz\n";
     for (std::size_t k = 0; k < psd.frequency_hz.size(); ++k) {
       csv += fmt::format("{:.10g},{:.10g},{:.10g}\n", psd.frequency_hz[k], psd.psd[k],
                          psd.sqrt_psd[k]);
@@ -91,8 +96,9 @@ void run(const PsdCommand& c) {
         "resolution {:.4g} Hz); log-smoothed, {} bins per decade:\n",
         series.path, series.channel, psd.segments, psd.segment_length, psd.resolution_hz,
         c.smooth_per_decade);
-    std::cout << fmt::format("{:>14} {:>18} {:>22}\n", "f [Hz]", "PSD [(deg/h)^2/Hz]",
-                             "sqrt [deg/h/sqrt(Hz)]");
+    std::cout << fmt::format("{:>14} {:>18} {:>22}\n", "f [Hz]",
+                             in_sensor_units("PSD [(deg/h)^2/Hz]", sensor),
+                             in_sensor_units("sqrt [deg/h/sqrt(Hz)]", sensor));
     for (std::size_t k = 0; k < smooth.frequency_hz.size(); ++k) {
       std::cout << fmt::format("{:>14.6g} {:>18.6g} {:>22.6g}\n", smooth.frequency_hz[k],
                                smooth.psd[k], smooth.sqrt_psd[k]);

@@ -343,6 +343,12 @@ Series read_series(const std::string& path, const ReadOptions& options) {
         kMaxSampleRateHz));
   }
   const InputFormat format = resolve_format(path, options.format);
+  if (options.format == InputFormat::automatic && has_extension(path, ".bag")) {
+    throw UsageError(
+        fmt::format("{} is a ROS bag (.bag): `foglab analyze` reads its sensor_msgs/Imu channels; "
+                    "this reads MAT, text and raw files",
+                    quoted_path(path)));
+  }
   check_format_source(path, format);
 
   Series series;

@@ -14,9 +14,10 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/io/channels.h"
 #include "foglab/io/reader.h"
-#include "support/expect.h"
 #include "reader_fixture.h"
+#include "support/expect.h"
 #include "support/files.h"
 
 namespace foglab::io {
@@ -431,7 +432,8 @@ TEST_F(TextReaderTest, UnitsAreConvertedToDegPerHour) {
 
 TEST_F(TextReaderTest, UnknownUnitAndFormatNamesAreUsageErrors) {
   EXPECT_THAT(message_of<UsageError>([] { rate_unit_from_string("mrad/s"); }),
-              HasSubstr("unknown rate unit 'mrad/s'"));
+              HasSubstr("unknown unit 'mrad/s': expected deg/h, deg/s or rad/s (gyroscopes), "
+                        "m/s^2, g or mg (accelerometers)"));
   EXPECT_THAT(message_of<UsageError>([] { input_format_from_string("xlsx"); }),
               HasSubstr("unknown input format 'xlsx': expected auto, mat, text"));
   EXPECT_EQ(input_format_from_string("csv"), InputFormat::text);
@@ -493,6 +495,22 @@ TEST_F(TextReaderTest, DashReadsTextFromStandardInput) {
   options.channel = "Y9";
   EXPECT_EQ(message_of<DataError>([&] { read_series("-", options); }),
             "standard input: no channel column 'Y9'; columns: t, rate");
+}
+
+TEST(ChannelNames, SayWhichSensorAChannelIs) {
+  for (const char* gyro :
+       {"gyro_x", "GyroZ", "gx", "g_y", "wz", "omega_x", "angular_velocity.y", "gyro_x_dps"}) {
+    EXPECT_EQ(sensor_by_name(gyro), Sensor::gyroscope) << gyro;
+  }
+  for (const char* accel :
+       {"accel_x", "AccY", "ax", "a_z", "linear_acceleration.z", "accel_z_mg"}) {
+    EXPECT_EQ(sensor_by_name(accel), Sensor::accelerometer) << accel;
+  }
+  for (const char* other : {"Y1", "rate", "2", "t", "temperature", "T1", "g", "axis", "gps_x"}) {
+    EXPECT_FALSE(sensor_by_name(other)) << other;
+  }
+  EXPECT_EQ(inertial_channels({"t", "gx", "gy", "ax", "temperature"}),
+            (std::vector<std::string>{"gx", "gy", "ax"}));
 }
 
 }  // namespace
