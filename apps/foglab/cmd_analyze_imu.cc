@@ -244,6 +244,7 @@ void run_imu_analysis(const AnalyzeCommand& c) {
     record = io::read_imu_bag(c.input.path, read);
     for (const std::string& text : record->notes) note(text);
     note(bag_timing_note(*record));
+    note("sensor_msgs/Imu carries no temperature: each axis's systematic part is its mean");
   } else if (!c.topic.empty()) {
     throw UsageError(fmt::format("--topic {}: '{}' is not a ROS bag (.bag)", c.topic,
                                  c.input.path.empty() ? "the built-in sample" : c.input.path));

@@ -114,7 +114,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "u.txt",
                 "--fs 1 --units furlong/s",
                 2,
-                {"unknown rate unit 'furlong/s'", "deg/h, deg/s or rad/s"}},
+                {"unknown unit 'furlong/s'", "deg/h, deg/s or rad/s", "m/s^2, g or mg"}},
         BadCase{"ZeroSampleRate", "1\n2\n3\n", "z.txt", "--fs 0", 2, {"--fs 0", "positive"}},
         BadCase{"NegativeSampleRate", "1\n2\n3\n", "n.txt", "--fs -5", 2, {"--fs -5"}},
         BadCase{"NegativeTau",

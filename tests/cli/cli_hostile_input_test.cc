@@ -661,7 +661,7 @@ std::vector<Case> catalogue() {
        "--units furlong/s",
        kWithOptions,
        2,
-       {"--units", "unknown rate unit 'furlong/s'", "deg/h, deg/s or rad/s"}},
+       {"--units", "unknown unit 'furlong/s'", "deg/h, deg/s or rad/s", "m/s^2, g or mg"}},
       {"UnknownFormat",
        "lab.csv",
        csv([](auto&) {}),
