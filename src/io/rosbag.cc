@@ -367,8 +367,10 @@ void read_messages_guarded(const std::string& path, const std::string& topic, st
   stamps_ns.assign(arrays[0]->as<std::int64_t>(), arrays[0]->as<std::int64_t>() + n);
   arrays[0].reset();
   for (std::size_t j = 0; j < 6; ++j) {
-    channel(j).reserve(n);
-    advise_huge_pages(channel(j).data(), n);
+    // One sample's room more: the analysis integrates a record into its angle record (one
+    // point more) in place, and would otherwise reallocate it.
+    channel(j).reserve(n + 1);
+    advise_huge_pages(channel(j).data(), n + 1);
     channel(j).assign(arrays[j + 1]->as<double>(), arrays[j + 1]->as<double>() + n);
     arrays[j + 1].reset();
   }

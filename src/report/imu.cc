@@ -19,6 +19,14 @@ using namespace detail;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// The fit's 95 % upper bound on a term it left out (0: none).
+double fit_bound(const model::ParameterEstimate& p) {
+  if (std::isfinite(p.upper_95) && p.upper_95 > 0.0) return p.upper_95;
+  if (std::isfinite(p.ci95_high) && p.ci95_high > 0.0) return p.ci95_high;
+  return 0.0;
+}
 
 /// "deg/h" or "m/s^2": the unit the axis was analysed in.
 std::string unit_of(Sensor sensor) { return std::string(to_string(internal_unit(sensor))); }
@@ -87,15 +95,31 @@ FilterNoise filter_noise(const model::AnalysisResult& r, Sensor sensor) {
     f.random_walk_resolved = true;
     f.random_walk_source = fmt::format("K = {:.6g} {}/sqrt(s), 95 % interval [{}, {}]",
                                        f.random_walk, u, g(pk.ci95_low), g(pk.ci95_high));
-  } else if (const double bound = std::isfinite(pk.upper_95) && pk.upper_95 > 0.0     ? pk.upper_95
-                                  : std::isfinite(pk.ci95_high) && pk.ci95_high > 0.0 ? pk.ci95_high
-                                                                                      : 0.0;
-             bound > 0.0) {
-    f.random_walk = bound;
-    f.random_walk_source = fmt::format(
-        "K < {:.6g} {}/sqrt(s): the 95 % upper bound, K is not resolved by this record "
-        "(bias instability {} {} at {} s is the bias's drift over that time)",
-        bound, u, g(r.bias_instability_deg_h), u, g(r.bias_instability_tau_s));
+  } else if (const double bound = fit_bound(pk); bound > 0.0) {
+    // The random walk's Allan deviation alone, K sqrt(tau/3), cannot stand above the
+    // record's 95 % upper limit at any tau: a bound the data set directly, tighter than the
+    // fit's when another term (a ramp) took the long taus.
+    double adev_bound = kInfinity, adev_tau = kNaN;
+    const stats::AllanResult& a = r.allan;
+    for (std::size_t k = 0; k < a.tau_s.size() && k < a.ci95_high.size(); ++k) {
+      const double b = a.ci95_high[k] / std::sqrt(a.tau_s[k] / 3.0);
+      if (std::isfinite(b) && b < adev_bound) adev_bound = b, adev_tau = a.tau_s[k];
+    }
+    if (adev_bound < bound) {
+      f.random_walk = adev_bound;
+      f.random_walk_source = fmt::format(
+          "K < {:.6g} {}/sqrt(s): not resolved by this record; bounded by the Allan "
+          "deviation's 95 % upper limit at tau = {} s, which a random walk alone would exceed "
+          "(the fit's own bound, {:.6g}, is looser; bias instability {} {} at {} s)",
+          adev_bound, u, g(adev_tau), bound, g(r.bias_instability_deg_h), u,
+          g(r.bias_instability_tau_s));
+    } else {
+      f.random_walk = bound;
+      f.random_walk_source = fmt::format(
+          "K < {:.6g} {}/sqrt(s): the 95 % upper bound, K is not resolved by this record "
+          "(bias instability {} {} at {} s is the bias's drift over that time)",
+          bound, u, g(r.bias_instability_deg_h), u, g(r.bias_instability_tau_s));
+    }
   } else if (m.gm_sigma > 0.0 && m.gm_tc > 0.0) {
     f.random_walk = m.gm_sigma * std::sqrt(2.0 / m.gm_tc);
     f.random_walk_source = fmt::format(

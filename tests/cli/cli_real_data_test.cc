@@ -136,5 +136,51 @@ INSTANTIATE_TEST_SUITE_P(Adis16405, RealGyro,
                            return "imu" + std::to_string(info.param.imu) + "_" + info.param.axis;
                          });
 
+// The three axes of one IMU in one run (issue 17): found by their names,
+// analysed in parallel, each with exactly the numbers of its own run.
+TEST(RealImu, ThreeAxesInOneRunGiveEachAxisItsOwnAnalysis) {
+  const fs::path file = kRealData / "adis_16405_imu1_gyro.csv";
+  if (!fs::exists(file)) {
+    GTEST_SKIP() << "the real recordings are not here (" << file.string()
+                 << "): they live in ../shared/data/real beside the checkout";
+  }
+  const test::CliRun all =
+      test::run_foglab("analyze " + test::quote(file) + " --fs 100 --units deg/s --json -");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const json j = json::parse(all.out);
+  ASSERT_EQ(j["channels"].size(), 3u);
+  const test::CliRun one = test::run_foglab(
+      "analyze " + test::quote(file) + " --channel gyro_z_dps --fs 100 --units deg/s --json -");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const json z = json::parse(one.out);
+  const json& z_in_all = j["channels"][2];
+  EXPECT_EQ(z_in_all["input"]["channel"], "gyro_z_dps");
+  EXPECT_EQ(z_in_all["sensor"], "gyroscope");
+  // The same analysis; only the order of the parallel sums differs (a core
+  // per axis here, both cores there).
+  for (const char* p : {"N", "B", "K", "gm_sigma"}) {
+    SCOPED_TRACE(p);
+    EXPECT_EQ(z_in_all["noise_model"][p]["status"], z["noise_model"][p]["status"]);
+    const json &a = z_in_all["noise_model"][p]["value"], &b = z["noise_model"][p]["value"];
+    ASSERT_EQ(a.is_null(), b.is_null());
+    if (!a.is_null())
+      EXPECT_NEAR(a.get<double>(), b.get<double>(), 1e-6 * std::fabs(b.get<double>()));
+  }
+  const auto adev_all = z_in_all["allan"]["adev_deg_h"].get<std::vector<double>>();
+  const auto adev_one = z["allan"]["adev_deg_h"].get<std::vector<double>>();
+  ASSERT_EQ(adev_all.size(), adev_one.size());
+  for (std::size_t k = 0; k < adev_one.size(); ++k) {
+    EXPECT_NEAR(adev_all[k], adev_one[k], 1e-9 * adev_one[k]);
+  }
+  EXPECT_EQ(z_in_all["accuracy_class"], z["accuracy_class"]);
+  // Kalibr's gyroscope density: the root mean square of the three axes' N.
+  double sum = 0.0;
+  for (const json& c : j["channels"])
+    sum += std::pow(c["noise_model"]["N"]["value"].get<double>(), 2);
+  EXPECT_NEAR(j["kalibr"]["gyroscope_noise_density"].get<double>(),
+              std::sqrt(sum / 3.0) * M_PI / 180.0 / 3600.0, 1e-12);
+  EXPECT_TRUE(j["kalibr"]["accelerometer_noise_density"].is_null());
+}
+
 }  // namespace
 }  // namespace foglab

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <regex>
@@ -15,6 +16,7 @@
 #include "foglab/core/output.h"
 #include "foglab/core/units.h"
 #include "foglab/model/analysis.h"
+#include "foglab/report/imu.h"
 #include "foglab/report/plot.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/sensor_output.h"
@@ -83,6 +85,36 @@ TEST(Kalibr, ConversionsMatchHandComputedNumbers) {
   EXPECT_NEAR(noise_density_rad_s_sqrt_hz(1.0), 4.84813681109536e-06, 1e-18);
 }
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+TEST(Kalibr, AnUnresolvedRandomWalkIsBoundedByTheAllanDeviation) {
+  // A fit that took the long taus with another term and left K with a loose
+  // bound: the Allan deviation's upper limits bound it, K sqrt(tau/3) <=
+  // ci95_high(tau) at every tau, so the value for a filter is the smallest
+  // ci95_high / sqrt(tau/3), here 2e-4 / sqrt(300/3) = 2e-5.
+  model::AnalysisResult r;
+  r.sample_rate_hz = 100.0;
+  r.noise.N = {0.002, 0.0019, 0.0021, kNaN, model::TermStatus::resolved};
+  r.noise.K = {0.9, 0.0, 0.9, 0.9, model::TermStatus::upper_bound};
+  r.allan.tau_s = {3.0, 30.0, 300.0};
+  r.allan.ci95_high = {2e-3, 6e-4, 2e-4};
+  const FilterNoise f = filter_noise(r, Sensor::accelerometer);
+  EXPECT_FALSE(f.random_walk_resolved);
+  EXPECT_NEAR(f.random_walk, 2e-5, 1e-12);
+  EXPECT_NE(f.random_walk_source.find("tau = 300 s"), std::string::npos) << f.random_walk_source;
+  EXPECT_NE(f.random_walk_source.find("m/s^2/sqrt(s)"), std::string::npos);
+  // A fit's bound tighter than the Allan deviation's stays.
+  r.noise.K = {1e-5, 0.0, 1e-5, 1e-5, model::TermStatus::upper_bound};
+  EXPECT_NEAR(filter_noise(r, Sensor::accelerometer).random_walk, 1e-5, 1e-15);
+  // Resolved: the fit's value and interval, in Kalibr's units for a gyroscope.
+  r.noise.K = {2.0, 1.0, 3.0, kNaN, model::TermStatus::resolved};
+  const FilterNoise g = filter_noise(r, Sensor::gyroscope);
+  EXPECT_TRUE(g.random_walk_resolved);
+  EXPECT_DOUBLE_EQ(g.random_walk, 2.0);
+  EXPECT_NEAR(g.random_walk * kalibr_factor(Sensor::gyroscope), random_walk_rad_s2_sqrt_hz(2.0),
+              1e-20);
+}
+
 TEST(Kalibr, ImuYamlCarriesTheConvertedFit) {
   const Analysed& a = analysed();
   const model::NoiseFitResult& n = a.result.noise;
@@ -91,7 +123,15 @@ TEST(Kalibr, ImuYamlCarriesTheConvertedFit) {
   EXPECT_NEAR(yaml_number(yaml, "gyroscope_noise_density"),
               n.N.value * std::numbers::pi / 180.0 / 3600.0,
               1e-8 * n.N.value * std::numbers::pi / 180.0 / 3600.0);
-  const double k = n.K.status == model::TermStatus::resolved ? n.K.value : n.K.upper_95;
+  // An unresolved K: the fit's bound, or the Allan deviation's when tighter
+  // (report/imu.h filter_noise()).
+  double adev_bound = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < a.result.allan.tau_s.size(); ++k) {
+    adev_bound = std::min(adev_bound,
+                          a.result.allan.ci95_high[k] / std::sqrt(a.result.allan.tau_s[k] / 3.0));
+  }
+  const double k =
+      n.K.status == model::TermStatus::resolved ? n.K.value : std::min(n.K.upper_95, adev_bound);
   ASSERT_TRUE(std::isfinite(k) && k > 0.0) << yaml;
   EXPECT_NEAR(yaml_number(yaml, "gyroscope_random_walk"), k * std::numbers::pi / 180.0 / 3600.0,
               1e-8 * k * std::numbers::pi / 180.0 / 3600.0);

@@ -50,7 +50,10 @@ struct ImuAxis {
 /// m/s^2/sqrt(Hz)) and the bias random walk K (deg/h/sqrt(s) or
 /// m/s^2/sqrt(s)), continuous-time, each with a sentence saying where it
 /// came from: the fit's resolved value with its 95 % interval, else a
-/// graphical reading or the 95 % upper bound.
+/// graphical reading or a 95 % upper bound. An unresolved K's bound is the
+/// fit's, or, when tighter, the one the Allan deviation sets directly: the
+/// smallest ci95_high(tau) / sqrt(tau / 3) over the taus (a random walk
+/// alone, K sqrt(tau/3), cannot stand above the record's upper limit).
 struct FilterNoise {
   double white = 0.0;
   double white_low = 0.0, white_high = 0.0;  ///< 95 % interval (NaN when not resolved)
