@@ -311,9 +311,9 @@ void run_imu_analysis(const AnalyzeCommand& c) {
         run.name = series.channel;
         run.unit = channel_unit(spec, run.name, c.input.path, run.notes);
         if (run.unit != read.unit) {
-          read.channel = run.name;
-          read.unit = run.unit;
-          series = io::read_series(c.input.path, read);
+          // Converted again, not read again: the source may be a stream.
+          const double factor = to_internal_unit(run.unit) / to_internal_unit(read.unit);
+          for (double& v : series.values) v *= factor;
         }
         run.sensor = sensor_of(run.unit);
       }
