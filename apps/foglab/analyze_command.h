@@ -7,6 +7,7 @@
 
 #include "cli_common.h"
 #include "foglab/io/reader.h"
+#include "foglab/model/analysis.h"
 
 namespace foglab::cli {
 
@@ -35,6 +36,10 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
 
 /// UsageError for a --temp that cannot be read (no FILE, or a stream).
 void check_temperature_option(const AnalyzeCommand& c);
+
+/// The outputs checked against the input (never overwritten), the options
+/// parsed, --temp checked: what both forms do before reading.
+model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c);
 
 /// -1 for "auto", else 0..3 (UsageError otherwise).
 int parse_temp_degree(const std::string& text);

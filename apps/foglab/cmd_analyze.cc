@@ -147,11 +147,9 @@ namespace {
 
 // ---- the command ---------------------------------------------------------
 
-void run(const AnalyzeCommand& c) {
-  if (wants_imu_analysis(c)) {
-    run_imu_analysis(c);
-    return;
-  }
+}  // namespace
+
+model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
   const RunPath inputs[] = {{"FILE", c.input.path}};
   const RunPath outputs[] = {{"--json", c.json_path},
                              {"--csv", c.csv_path},
@@ -162,6 +160,17 @@ void run(const AnalyzeCommand& c) {
   options.systematic.degree = parse_temp_degree(c.temp_degree);
   options.grid = parse_taus_option(c.taus, c.input.path);
   check_temperature_option(c);
+  return options;
+}
+
+namespace {
+
+void run(const AnalyzeCommand& c) {
+  if (wants_imu_analysis(c)) {
+    run_imu_analysis(c);
+    return;
+  }
+  const model::AnalysisOptions options = checked_analysis_options(c);
 
   io::Series series = load_input(c.input);
   std::vector<std::string> notes;

@@ -209,16 +209,7 @@ bool wants_imu_analysis(const AnalyzeCommand& c) {
 }
 
 void run_imu_analysis(const AnalyzeCommand& c) {
-  const RunPath inputs[] = {{"FILE", c.input.path}};
-  const RunPath outputs[] = {{"--json", c.json_path},
-                             {"--csv", c.csv_path},
-                             {"--report", c.report_path},
-                             {"--kalibr", c.kalibr_path}};
-  check_outputs(inputs, outputs);
-  model::AnalysisOptions options;
-  options.systematic.degree = parse_temp_degree(c.temp_degree);
-  options.grid = parse_taus_option(c.taus, c.input.path);
-  check_temperature_option(c);
+  const model::AnalysisOptions options = checked_analysis_options(c);
   const bool bag = is_bag(c);
   const std::vector<std::string> names = channels_to_analyse(c, bag);
 
