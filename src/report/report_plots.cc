@@ -509,7 +509,7 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
   plots.push_back(psd_plot(result, title));
   plots.push_back(adev_plot(result, title));
   if (input.sensor != Sensor::gyroscope) {
-    // An accelerometer's plots say m/s^2 (and "acceleration" for "rate").
+    // An accelerometer's plots say m/s^2, and its noise terms by their names.
     for (Plot& p : plots) {
       for (std::string* text : {&p.title, &p.x_label, &p.y_label, &p.y2_label}) {
         *text = in_sensor_units(*text, input.sensor);
