@@ -2,6 +2,7 @@
 // form (cmd_analyze.cc) shares with its IMU form (cmd_analyze_imu.cc).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,13 +45,16 @@ model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c);
 /// -1 for "auto", else 0..3 (UsageError otherwise).
 int parse_temp_degree(const std::string& text);
 
-/// Whether `c` asks for the IMU form: several channels (--channels, a ROS
-/// bag, or a file whose channel names say gyroscope and accelerometer with
-/// no --channel), or an accelerometer's channel (--units).
-bool wants_imu_analysis(const AnalyzeCommand& c);
+/// The channels of the IMU form when `c` asks for it: several channels
+/// (--channels, a ROS bag, or a file whose channel names say gyroscope and
+/// accelerometer with no --channel), or an accelerometer's channel
+/// (--units); none for the one-gyroscope form. A single channel the reader
+/// is to choose is "".
+std::optional<std::vector<std::string>> imu_channels(const AnalyzeCommand& c);
 
-/// The IMU form: every channel analysed in parallel, one JSON, one
-/// Markdown summary, one HTML report, Kalibr's imu.yaml for both sensors.
-void run_imu_analysis(const AnalyzeCommand& c);
+/// The IMU form on `channels` (imu_channels()): every channel analysed in
+/// parallel, one JSON, one Markdown summary, one HTML report, Kalibr's
+/// imu.yaml for both sensors.
+void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& channels);
 
 }  // namespace foglab::cli

@@ -166,8 +166,8 @@ model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
 namespace {
 
 void run(const AnalyzeCommand& c) {
-  if (wants_imu_analysis(c)) {
-    run_imu_analysis(c);
+  if (const auto channels = imu_channels(c)) {
+    run_imu_analysis(c, *channels);
     return;
   }
   const model::AnalysisOptions options = checked_analysis_options(c);

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
-#include <filesystem>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -37,16 +36,8 @@ namespace {
 /// A ROS bag: by its extension, or --format rosbag.
 bool is_bag(const AnalyzeCommand& c) {
   if (c.input.format == "rosbag" || c.input.format == "bag") return true;
-  if (c.input.format != "auto" || c.input.path.empty()) return false;
-  std::string ext = std::filesystem::path(c.input.path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return ext == ".bag";
+  return c.input.format == "auto" && io::has_bag_extension(c.input.path);
 }
-
-/// A bag's six channels, in the order of ImuRecord's arrays.
-constexpr const char* kBagChannels[] = {"gyro_x",  "gyro_y",  "gyro_z",
-                                        "accel_x", "accel_y", "accel_z"};
 
 /// --channels split at commas ("all": every channel of `available`).
 std::vector<std::string> requested_channels(const AnalyzeCommand& c,
@@ -73,7 +64,7 @@ std::vector<std::string> requested_channels(const AnalyzeCommand& c,
 /// bag: its six), else --channel's one (empty: the reader's default).
 std::vector<std::string> channels_to_analyse(const AnalyzeCommand& c, bool bag) {
   if (bag) {
-    const std::vector<std::string> six(std::begin(kBagChannels), std::end(kBagChannels));
+    const std::vector<std::string> six(io::kImuChannels.begin(), io::kImuChannels.end());
     if (!c.input.channel.empty() && !c.channels.empty()) {
       throw UsageError("--channel and --channels: give one of them");
     }
@@ -197,21 +188,20 @@ std::string bag_timing_note(const io::ImuRecord& bag) {
 
 }  // namespace
 
-bool wants_imu_analysis(const AnalyzeCommand& c) {
-  if (!c.channels.empty() || is_bag(c)) return true;
-  if (c.input.units.find('=') != std::string::npos) return true;
+std::optional<std::vector<std::string>> imu_channels(const AnalyzeCommand& c) {
+  const bool bag = is_bag(c);
   const UnitSpec spec = parse_unit_spec(c.input.units, c.input.path);
-  if (spec.all && sensor_of(*spec.all) == Sensor::accelerometer) return true;
-  if (!c.input.channel.empty() && io::sensor_by_name(c.input.channel) == Sensor::accelerometer) {
-    return true;
-  }
-  return channels_to_analyse(c, false).size() > 1;
+  const bool wanted = !c.channels.empty() || bag || c.input.units.find('=') != std::string::npos ||
+                      (spec.all && sensor_of(*spec.all) == Sensor::accelerometer) ||
+                      io::sensor_by_name(c.input.channel) == Sensor::accelerometer;
+  std::vector<std::string> names = channels_to_analyse(c, bag);
+  if (!wanted && names.size() < 2) return std::nullopt;
+  return names;
 }
 
-void run_imu_analysis(const AnalyzeCommand& c) {
+void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& names) {
   const model::AnalysisOptions options = checked_analysis_options(c);
   const bool bag = is_bag(c);
-  const std::vector<std::string> names = channels_to_analyse(c, bag);
 
   // A bag is read whole, once; its units are ROS's.
   std::optional<io::ImuRecord> record;
@@ -248,7 +238,8 @@ void run_imu_analysis(const AnalyzeCommand& c) {
     ChannelRun& run = runs[k];
     run.name = names[k];
     if (bag) {
-      run.unit = run.name.rfind("gyro", 0) == 0 ? SampleUnit::rad_per_second : SampleUnit::m_per_s2;
+      run.unit = io::sensor_by_name(run.name) == Sensor::gyroscope ? SampleUnit::rad_per_second
+                                                                   : SampleUnit::m_per_s2;
     } else {
       run.unit = channel_unit(spec, run.name, c.input.path, run.notes);
     }
@@ -272,9 +263,9 @@ void run_imu_analysis(const AnalyzeCommand& c) {
     model::RecordToAnalyse out;
     io::Series series;
     if (bag) {
-      const std::size_t axis = static_cast<std::size_t>(
-          std::find(std::begin(kBagChannels), std::end(kBagChannels), run.name) -
-          std::begin(kBagChannels));
+      const auto axis = static_cast<std::size_t>(
+          std::find(io::kImuChannels.begin(), io::kImuChannels.end(), run.name) -
+          io::kImuChannels.begin());
       std::vector<double>& source = axis < 3 ? record->angular_velocity_rad_s[axis]
                                              : record->linear_acceleration_m_s2[axis - 3];
       series.path = c.input.path;

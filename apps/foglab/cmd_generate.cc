@@ -16,8 +16,10 @@
 #include "foglab/core/error.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
+#include "foglab/io/channels.h"
 #include "foglab/io/rosbag.h"
 #include "foglab/io/writer.h"
+#include "foglab/report/imu.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/sim/presets.h"
@@ -192,13 +194,70 @@ nlohmann::json units_json() {
   return units;
 }
 
-/// `generate --imu`: six axes, one file (CSV, MAT or a ROS bag), the truth
-/// of each axis.
-void run_imu(const GenerateCommand& c) {
+/// Refuses an --out or --truth that would overwrite the --temperature file
+/// (or another output).
+void check_generate_paths(const GenerateCommand& c) {
   const RunPath inputs[] = {
       {"--temperature", c.temperature.starts_with("file:") ? c.temperature.substr(5) : ""}};
   const RunPath outputs[] = {{"--out", c.out}, {"--truth", c.truth}};
   check_outputs(inputs, outputs);
+}
+
+/// The gyroscope's model options (--N .. --gm-tc, --bias, --input-rate,
+/// --temp-coef) over `model`'s values.
+void apply_gyroscope_options(const GenerateCommand& c, sim::ErrorModel& model) {
+  auto apply = [](const std::optional<double>& v, double& field) {
+    if (v) field = *v;
+  };
+  apply(c.N, model.noise.N);
+  apply(c.B, model.noise.B);
+  apply(c.K, model.noise.K);
+  apply(c.R, model.noise.R);
+  apply(c.Q, model.noise.Q);
+  apply(c.gm_sigma, model.noise.gm_sigma);
+  apply(c.gm_tc, model.noise.gm_tc);
+  apply(c.bias, model.bias);
+  apply(c.input_rate, model.input_rate);
+  if (!c.temp_coefs.empty()) model.temp_coefs = parse_coefs(c.temp_coefs);
+}
+
+/// --fs (else `default_rate_hz`: a preset's or the IMU model's), --hours,
+/// --seed and --stream, checked; `samples` is the record's length.
+sim::GeneratorOptions generator_options(const GenerateCommand& c,
+                                        const std::optional<double>& default_rate_hz,
+                                        std::int64_t& samples) {
+  sim::GeneratorOptions options;
+  if (c.sample_rate_hz) {
+    options.sample_rate_hz = *c.sample_rate_hz;
+  } else if (default_rate_hz) {
+    options.sample_rate_hz = *default_rate_hz;
+  } else {
+    throw UsageError("--fs is required (the sample rate in Hz) unless a --preset gives one");
+  }
+  if (!(options.sample_rate_hz >= kMinSampleRateHz && options.sample_rate_hz <= kMaxSampleRateHz)) {
+    throw UsageError(fmt::format("--fs must be from {:g} to {:g} Hz, got {}", kMinSampleRateHz,
+                                 kMaxSampleRateHz, options.sample_rate_hz));
+  }
+  if (!c.hours) throw UsageError("--hours is required (the duration in hours)");
+  if (!(*c.hours > 0.0 && *c.hours <= 1e6)) {
+    throw UsageError(
+        fmt::format("--hours must be in (0, 1e6] (a century is 876600 h), got {}", *c.hours));
+  }
+  options.duration_s = *c.hours * 3600.0;
+  options.seed = c.seed;
+  options.stream = c.stream;
+  samples = static_cast<std::int64_t>(std::llround(options.duration_s * options.sample_rate_hz));
+  if (samples < 1) {
+    throw UsageError(fmt::format("--fs {} Hz for --hours {} gives no samples",
+                                 options.sample_rate_hz, *c.hours));
+  }
+  return options;
+}
+
+/// `generate --imu`: six axes, one file (CSV, MAT or a ROS bag), the truth
+/// of each axis.
+void run_imu(const GenerateCommand& c) {
+  check_generate_paths(c);
   if (!c.preset.empty()) {
     throw UsageError(fmt::format(
         "--preset {} with --imu: the presets are single gyroscopes; --imu starts from the "
@@ -213,41 +272,20 @@ void run_imu(const GenerateCommand& c) {
         "LSB options are a single gyroscope's (deg/h) and are not applied to an IMU");
   }
   sim::ImuModel imu = sim::mems_imu_model();
-  auto apply = [](const std::optional<double>& v, double& field) {
-    if (v) field = *v;
-  };
   const sim::SensorOutput output = sensor_output_of(c);
   for (std::size_t a = 0; a < 6; ++a) {
-    NoiseModel& n = imu.axes[a].noise;
+    sim::ErrorModel& axis = imu.axes[a];
     if (a < 3) {
-      apply(c.N, n.N);
-      apply(c.B, n.B);
-      apply(c.K, n.K);
-      apply(c.R, n.R);
-      apply(c.Q, n.Q);
-      apply(c.gm_sigma, n.gm_sigma);
-      apply(c.gm_tc, n.gm_tc);
-      apply(c.bias, imu.axes[a].bias);
-      apply(c.input_rate, imu.axes[a].input_rate);
-      if (!c.temp_coefs.empty()) imu.axes[a].temp_coefs = parse_coefs(c.temp_coefs);
+      apply_gyroscope_options(c, axis);
     } else {
-      apply(c.accel_N, n.N);
-      apply(c.accel_B, n.B);
-      apply(c.accel_K, n.K);
+      if (c.accel_N) axis.noise.N = *c.accel_N;
+      if (c.accel_B) axis.noise.B = *c.accel_B;
+      if (c.accel_K) axis.noise.K = *c.accel_K;
     }
-    imu.axes[a].output.dropouts = output.dropouts;
+    axis.output.dropouts = output.dropouts;
   }
-  sim::GeneratorOptions options;
-  options.sample_rate_hz = c.sample_rate_hz.value_or(imu.sample_rate_hz);
-  if (!(options.sample_rate_hz >= kMinSampleRateHz && options.sample_rate_hz <= kMaxSampleRateHz)) {
-    throw UsageError(fmt::format("--fs must be from {:g} to {:g} Hz, got {}", kMinSampleRateHz,
-                                 kMaxSampleRateHz, options.sample_rate_hz));
-  }
-  if (!c.hours || !(*c.hours > 0.0 && *c.hours <= 1e6)) {
-    throw UsageError("--hours must be in (0, 1e6]");
-  }
-  options.duration_s = *c.hours * 3600.0;
-  options.seed = c.seed;
+  std::int64_t samples = 0;
+  const sim::GeneratorOptions options = generator_options(c, imu.sample_rate_hz, samples);
   const std::string ext = std::filesystem::path(c.out).extension().string();
   if (ext != ".csv" && ext != ".mat" && ext != ".bag") {
     throw UsageError(fmt::format(
@@ -263,8 +301,6 @@ void run_imu(const GenerateCommand& c) {
                     0.4 / options.sample_rate_hz));
   }
   const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
-  const auto samples =
-      static_cast<std::int64_t>(std::llround(options.duration_s * options.sample_rate_hz));
   progress(fmt::format("generating 6 x {} samples ({} h at {} Hz)", samples, *c.hours,
                        options.sample_rate_hz));
 
@@ -307,7 +343,7 @@ void run_imu(const GenerateCommand& c) {
     const double f = first.sample_rate_hz;
     if (ext == ".mat") vars.push_back({"f", {&f, 1}});
     vars.push_back({"t", first.time_s});
-    for (std::size_t a = 0; a < 6; ++a) vars.push_back({std::string(sim::kImuAxes[a]), axes[a]});
+    for (std::size_t a = 0; a < 6; ++a) vars.push_back({std::string(io::kImuChannels[a]), axes[a]});
     vars.push_back({ext == ".mat" ? "T" : "temperature", first.temperature_c});
     if (ext == ".mat") {
       io::write_mat(c.out, vars);
@@ -327,7 +363,7 @@ void run_imu(const GenerateCommand& c) {
     for (std::size_t a = 0; a < 6; ++a) {
       const bool gyro = a < 3;
       const NoiseModel& n = imu.axes[a].noise;
-      const double factor = gyro ? 1.0 / kDegPerRad / kSecondsPerHour : 1.0;
+      const double factor = report::kalibr_factor(gyro ? Sensor::gyroscope : Sensor::accelerometer);
       kalibr[gyro ? 0 : 2] += n.N * factor * n.N * factor / 3.0;
       kalibr[gyro ? 1 : 3] += n.K * factor * n.K * factor / 3.0;
       nlohmann::json j = model_json(imu.axes[a]);
@@ -338,7 +374,7 @@ void run_imu(const GenerateCommand& c) {
                        std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
       j["bias_instability"] = bi.adev_deg_h;
       j["bias_instability_tau_s"] = bi.tau_s;
-      axes_json[std::string(sim::kImuAxes[a])] = j;
+      axes_json[std::string(io::kImuChannels[a])] = j;
     }
     const nlohmann::json truth = {
         {"generator", "foglab generate --imu"},
@@ -384,10 +420,7 @@ void run(const GenerateCommand& c) {
   if (c.accel_N || c.accel_B || c.accel_K || c.stamp_jitter_s) {
     throw UsageError("--accel-N, --accel-B, --accel-K and --stamp-jitter need --imu");
   }
-  const RunPath inputs[] = {
-      {"--temperature", c.temperature.starts_with("file:") ? c.temperature.substr(5) : ""}};
-  const RunPath outputs[] = {{"--out", c.out}, {"--truth", c.truth}};
-  check_outputs(inputs, outputs);
+  check_generate_paths(c);
   sim::ErrorModel model;
   std::optional<double> preset_rate;
   if (!c.preset.empty()) {
@@ -395,50 +428,14 @@ void run(const GenerateCommand& c) {
     model = p.model;
     preset_rate = p.sample_rate_hz;
   }
-  auto apply = [](const std::optional<double>& v, double& field) {
-    if (v) field = *v;
-  };
-  apply(c.N, model.noise.N);
-  apply(c.B, model.noise.B);
-  apply(c.K, model.noise.K);
-  apply(c.R, model.noise.R);
-  apply(c.Q, model.noise.Q);
-  apply(c.gm_sigma, model.noise.gm_sigma);
-  apply(c.gm_tc, model.noise.gm_tc);
-  apply(c.bias, model.bias);
-  apply(c.input_rate, model.input_rate);
-  if (!c.temp_coefs.empty()) model.temp_coefs = parse_coefs(c.temp_coefs);
+  apply_gyroscope_options(c, model);
   model.output = sensor_output_of(c);
 
-  sim::GeneratorOptions options;
-  if (c.sample_rate_hz) {
-    options.sample_rate_hz = *c.sample_rate_hz;
-  } else if (preset_rate) {
-    options.sample_rate_hz = *preset_rate;
-  } else {
-    throw UsageError("--fs is required (the sample rate in Hz) unless a --preset gives one");
-  }
-  if (!(options.sample_rate_hz >= kMinSampleRateHz && options.sample_rate_hz <= kMaxSampleRateHz)) {
-    throw UsageError(fmt::format("--fs must be from {:g} to {:g} Hz, got {}", kMinSampleRateHz,
-                                 kMaxSampleRateHz, options.sample_rate_hz));
-  }
-  if (!c.hours) throw UsageError("--hours is required (the duration in hours)");
-  if (!(*c.hours > 0.0 && *c.hours <= 1e6)) {
-    throw UsageError(
-        fmt::format("--hours must be in (0, 1e6] (a century is 876600 h), got {}", *c.hours));
-  }
-  options.duration_s = *c.hours * 3600.0;
-  options.seed = c.seed;
-  options.stream = c.stream;
+  std::int64_t samples = 0;
+  const sim::GeneratorOptions options = generator_options(c, preset_rate, samples);
   const OutFormat format = format_of(c.out);
   const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
   const double t_ref = temperature.reference_c(options.duration_s);
-  const auto samples =
-      static_cast<std::int64_t>(std::llround(options.duration_s * options.sample_rate_hz));
-  if (samples < 1) {
-    throw UsageError(fmt::format("--fs {} Hz for --hours {} gives no samples",
-                                 options.sample_rate_hz, *c.hours));
-  }
   progress(fmt::format("generating {} samples ({} h at {} Hz)", samples, *c.hours,
                        options.sample_rate_hz));
 

@@ -19,6 +19,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/io/channels.h"
+#include "foglab/io/rosbag.h"
 #include "readers_internal.h"
 
 namespace foglab::io {
@@ -343,7 +344,7 @@ Series read_series(const std::string& path, const ReadOptions& options) {
         kMaxSampleRateHz));
   }
   const InputFormat format = resolve_format(path, options.format);
-  if (options.format == InputFormat::automatic && has_extension(path, ".bag")) {
+  if (options.format == InputFormat::automatic && has_bag_extension(path)) {
     throw UsageError(
         fmt::format("{} is a ROS bag (.bag): `foglab analyze` reads its sensor_msgs/Imu channels; "
                     "this reads MAT, text and raw files",

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -505,6 +506,14 @@ std::vector<std::int64_t> grid_slots(const std::vector<std::int64_t>& stamps_ns,
 }
 
 }  // namespace
+
+bool has_bag_extension(const std::string& path) {
+  constexpr std::string_view kExtension = ".bag";
+  return path.size() > kExtension.size() &&
+         std::equal(kExtension.rbegin(), kExtension.rend(), path.rbegin(), [](char e, char p) {
+           return std::tolower(static_cast<unsigned char>(p)) == e;
+         });
+}
 
 std::vector<BagTopic> list_bag_topics(const std::string& path) {
   rosbag::Bag bag;

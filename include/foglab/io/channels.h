@@ -60,6 +60,11 @@ std::vector<std::string> paired_temperature_names(std::string_view rate_channel)
 std::optional<std::string> find_channel(const std::vector<std::string>& channels,
                                         std::string_view name, NameMatch match);
 
+/// An IMU's six channels, gyroscopes then accelerometers: a ROS bag's
+/// (io/rosbag.h), and the columns `generate --imu` writes.
+inline constexpr std::array<std::string_view, 6> kImuChannels = {"gyro_x",  "gyro_y",  "gyro_z",
+                                                                 "accel_x", "accel_y", "accel_z"};
+
 /// The sensor a channel's name says it belongs to (the rules above), or
 /// none (`Y1`, `rate`, `2`, `temperature`).
 std::optional<Sensor> sensor_by_name(std::string_view name);

@@ -69,6 +69,9 @@ struct BagTopic {
   std::uint64_t messages = 0;  ///< messages on the topic
 };
 
+/// Whether `path` ends in `.bag` (any case): what the readers take for a ROS 1 bag.
+bool has_bag_extension(const std::string& path);
+
 /// Every topic of a bag with its message type and count, sorted by name (for listings and
 /// messages). Throws DataError when `path` is not a readable ROS 1 bag, UsageError when it
 /// cannot be opened.

@@ -37,11 +37,6 @@ const std::vector<Preset>& presets();
 /// The preset of that name; throws UsageError listing the names otherwise.
 const Preset& find_preset(std::string_view name);
 
-/// The six axes of an IMU, in the order of ImuModel::axes (a ROS bag's
-/// channel names, io/channels.h).
-inline constexpr std::array<std::string_view, 6> kImuAxes = {"gyro_x",  "gyro_y",  "gyro_z",
-                                                             "accel_x", "accel_y", "accel_z"};
-
 /// A 6-axis IMU: each axis its own error model. The gyroscopes' models are
 /// in deg/h (as every ErrorModel); the accelerometers' in m/s^2 in place of
 /// deg/h (N m/s^2/sqrt(Hz), B m/s^2, K m/s^2/sqrt(s), bias m/s^2): the
@@ -49,7 +44,9 @@ inline constexpr std::array<std::string_view, 6> kImuAxes = {"gyro_x",  "gyro_y"
 struct ImuModel {
   std::string name;
   std::string description;
-  std::array<ErrorModel, 6> axes;  ///< kImuAxes' order
+  /// gyroscope x, y, z, then accelerometer x, y, z (the order of
+  /// io::kImuChannels, whose names the CLI writes them under)
+  std::array<ErrorModel, 6> axes;
   double sample_rate_hz = 400.0;
 };
 
