@@ -8,13 +8,16 @@
 #include "foglab/io/rosbag.h"
 
 #include <console_bridge/console.h>
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <malloc.h>
 #include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <rosbag/exceptions.h>
 #include <rosbag/query.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Imu.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,8 +26,10 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -33,6 +38,7 @@
 #include <new>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -189,23 +195,67 @@ std::int64_t nanoseconds(const ros::Time& t) {
   return static_cast<std::int64_t>(t.sec) * 1'000'000'000 + static_cast<std::int64_t>(t.nsec);
 }
 
-// What reading a topic's messages gives besides the channels.
-struct MessagesRead {
+// A block of messages as read_messages() hands them on, in the layout they are stored in:
+// the stamps, then each of the six channels (angular velocity x, y, z, then linear
+// acceleration), the first `count` of each in use.
+struct MessageBlock {
+  static constexpr std::size_t kMessages = 4096;
+  std::uint64_t count = 0;
+  std::array<std::int64_t, kMessages> stamps_ns{};
+  std::array<std::array<double, kMessages>, 6> values{};
+};
+
+// Where read_topic() hands on what it reads.
+class MessageSink {
+ public:
+  virtual ~MessageSink() = default;
+  // The topic has `capacity` messages by its index; called once, before any block.
+  virtual void start(std::size_t capacity) = 0;
+  // The next block of messages, stamped with their header stamps.
+  virtual void messages(const MessageBlock& block) = 0;
+  // Only when every header stamp was zero: the next `count` receive times, from the first
+  // message on, to stamp the messages with instead.
+  virtual void receive_times(const std::int64_t* stamps_ns, std::size_t count) = 0;
+};
+
+// What reading a topic gives besides the messages.
+struct TopicRead {
+  std::string topic;
+  std::size_t count = 0;  // messages read
   std::string frame_id;
   bool header_stamps = false;  // any header stamp non-zero
 };
 
-// Reads the `capacity` messages of `topic` (the index's count) into `stamps_ns` and the six
-// arrays `values[0..5]` (angular velocity x, y, z, then linear acceleration), each of room for
-// `capacity`; returns how many were read. Throws DataError naming the message.
-std::size_t read_messages(const std::string& path, const std::string& topic, std::size_t capacity,
-                          std::int64_t* stamps_ns, const std::array<double*, 6>& values,
-                          MessagesRead& read) {
-  rosbag::Bag bag;
-  open_bag(bag, path);
+// A message's serialised bytes, as MessageInstance::write() hands them over (its Stream).
+struct SerializedMessage {
+  std::vector<std::uint8_t> bytes;
+  std::uint8_t* advance(std::uint32_t size) {
+    bytes.resize(size);
+    return bytes.data();
+  }
+};
+
+// Reads the messages of `topic`, whose index counts `capacity`, into `sink`; returns how many
+// were read. Each is deserialised into one message object, reused (instantiate<> would
+// allocate one a message). Throws DataError naming the message.
+std::size_t read_messages(rosbag::Bag& bag, const std::string& path, const std::string& topic,
+                          std::size_t capacity, MessageSink& sink, TopicRead& read) {
   std::size_t index = 0;  // 1-based in messages, once incremented
   try {
     rosbag::View view(bag, rosbag::TopicQuery(topic));
+    // The check instantiate<> makes on each message, made once a connection: the connection's
+    // MD5 sum is not sensor_msgs/Imu's for a message definition of another version.
+    const std::string md5sum = ros::message_traits::md5sum<ImuMessage>();
+    for (const rosbag::ConnectionInfo* c : view.getConnections()) {
+      if (c->md5sum != md5sum) {
+        throw_data_error(path, fmt::format("topic '{}': type {} with MD5 sum {} is not the {} "
+                                           "foglab reads (MD5 sum {})",
+                                           topic, c->datatype, c->md5sum, kImuMessageType, md5sum));
+      }
+    }
+    SerializedMessage serialized;
+    ImuMessage imu;
+    const auto block = std::make_unique<MessageBlock>();
     for (const rosbag::MessageInstance& m : view) {
       if (index == capacity) {
         throw_data_error(path, fmt::format("topic '{}' has more messages than its index counts "
@@ -213,20 +263,15 @@ std::size_t read_messages(const std::string& path, const std::string& topic, std
                                            topic, capacity));
       }
       ++index;
-      // instantiate<> deserialises into a new message; it returns null when the connection's
-      // type or MD5 sum is not sensor_msgs/Imu's (a message definition of another version).
-      const boost::shared_ptr<const ImuMessage> imu = m.instantiate<ImuMessage>();
-      if (!imu) {
-        throw_data_error(path,
-                         fmt::format("topic '{}', message {}: type {} with MD5 sum {} is "
-                                     "not the {} foglab reads (MD5 sum {})",
-                                     topic, index, m.getDataType(), m.getMD5Sum(), kImuMessageType,
-                                     ros::message_traits::md5sum<ImuMessage>()));
-      }
-      if (index == 1) read.frame_id = imu->header.frame_id;
-      const std::array<double, 6> v = {imu->angular_velocity.x,    imu->angular_velocity.y,
-                                       imu->angular_velocity.z,    imu->linear_acceleration.x,
-                                       imu->linear_acceleration.y, imu->linear_acceleration.z};
+      m.write(serialized);
+      ros::serialization::IStream stream(serialized.bytes.data(),
+                                         static_cast<std::uint32_t>(serialized.bytes.size()));
+      ros::serialization::deserialize(stream, imu);
+      if (index == 1) read.frame_id = imu.header.frame_id;
+      const std::array<double, 6> v = {imu.angular_velocity.x,    imu.angular_velocity.y,
+                                       imu.angular_velocity.z,    imu.linear_acceleration.x,
+                                       imu.linear_acceleration.y, imu.linear_acceleration.z};
+      const std::size_t slot = block->count++;
       for (std::size_t j = 0; j < v.size(); ++j) {
         if (!std::isfinite(v[j])) {
           static constexpr std::array<const char*, 6> kFields = {
@@ -235,17 +280,29 @@ std::size_t read_messages(const std::string& path, const std::string& topic, std
           throw_data_error(path, fmt::format("topic '{}', message {}: {} is {}", topic, index,
                                              kFields[j], v[j]));
         }
-        values[j][index - 1] = v[j];
+        block->values[j][slot] = v[j];
       }
-      stamps_ns[index - 1] = nanoseconds(imu->header.stamp);
-      read.header_stamps = read.header_stamps || stamps_ns[index - 1] != 0;
+      block->stamps_ns[slot] = nanoseconds(imu.header.stamp);
+      read.header_stamps = read.header_stamps || block->stamps_ns[slot] != 0;
+      if (block->count == MessageBlock::kMessages) {
+        sink.messages(*block);
+        block->count = 0;
+      }
     }
+    if (block->count > 0) sink.messages(*block);
     if (!read.header_stamps) {
       // The receive times are in the index: no message is read again.
       std::size_t k = 0;
+      block->count = 0;
       for (const rosbag::MessageInstance& m : view) {
-        if (k < index) stamps_ns[k++] = nanoseconds(m.getTime());
+        if (k++ == index) break;
+        block->stamps_ns[block->count++] = nanoseconds(m.getTime());
+        if (block->count == MessageBlock::kMessages) {
+          sink.receive_times(block->stamps_ns.data(), block->count);
+          block->count = 0;
+        }
       }
+      if (block->count > 0) sink.receive_times(block->stamps_ns.data(), block->count);
     }
   } catch (const DataError&) {
     throw;
@@ -257,36 +314,203 @@ std::size_t read_messages(const std::string& path, const std::string& topic, std
   return index;
 }
 
-// Anonymous memory shared with a child process; unmapped when destroyed.
-class SharedMemory {
- public:
-  explicit SharedMemory(std::size_t bytes) : bytes_(std::max<std::size_t>(bytes, 1)) {
-    // MAP_POPULATE: the pages are faulted in at once, much faster than one by one as the
-    // child writes them (on virtual machines a first touch can limit writes to 200 MB/s).
-    data_ = ::mmap(nullptr, bytes_, PROT_READ | PROT_WRITE,
-                   MAP_SHARED | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
-    if (data_ == MAP_FAILED) throw std::bad_alloc();
+// Everything read_imu_bag() asks of the ROS library: the bag opened, the topic chosen and
+// checked against `options`, then its messages read into `sink`.
+TopicRead read_topic(rosbag::Bag& bag, const std::string& path, const BagReadOptions& options,
+                     MessageSink& sink) {
+  open_bag(bag, path);
+  const std::vector<BagTopic> topics = topics_of(bag, path);
+  const BagTopic& topic = choose_topic(topics, path, options.topic);
+  if (options.max_samples && topic.messages > *options.max_samples) {
+    throw_data_error(path, fmt::format("topic '{}' has {} messages, more than {}: the limit for "
+                                       "one record (BagReadOptions::max_samples)",
+                                       topic.name, topic.messages, *options.max_samples));
   }
-  ~SharedMemory() { ::munmap(data_, bytes_); }
-  SharedMemory(const SharedMemory&) = delete;
-  SharedMemory& operator=(const SharedMemory&) = delete;
-  template <typename T>
-  T* as() const {
-    return static_cast<T*>(data_);
+  if (topic.messages < 2) {
+    throw_data_error(path, fmt::format("topic '{}' has {} message{}; at least 2 are needed",
+                                       topic.name, topic.messages, topic.messages == 1 ? "" : "s"));
+  }
+  TopicRead read;
+  read.topic = topic.name;
+  const auto capacity = static_cast<std::size_t>(topic.messages);
+  sink.start(capacity);
+  read.count = read_messages(bag, path, topic.name, capacity, sink, read);
+  return read;
+}
+
+// The record's six channels.
+std::vector<double>& channel(ImuRecord& record, std::size_t j) {
+  return j < 3 ? record.angular_velocity_rad_s[j] : record.linear_acceleration_m_s2[j - 3];
+}
+
+// The sink that fills the record: the stamps and the six channels, each channel with one
+// sample's room more (the analysis integrates a record into its angle record, one point more,
+// in place, and would otherwise reallocate it) and on transparent huge pages (core/numeric.h).
+class RecordSink : public MessageSink {
+ public:
+  RecordSink(std::vector<std::int64_t>& stamps_ns, ImuRecord& record)
+      : stamps_ns_(stamps_ns), record_(record) {}
+  void start(std::size_t capacity) override {
+    stamps_ns_.clear();
+    stamps_ns_.reserve(capacity);
+    for (std::size_t j = 0; j < 6; ++j) {
+      std::vector<double>& values = channel(record_, j);
+      values.clear();
+      values.reserve(capacity + 1);
+      advise_huge_pages(values.data(), capacity + 1);
+    }
+  }
+  void messages(const MessageBlock& block) override {
+    const auto n = static_cast<std::ptrdiff_t>(block.count);
+    stamps_ns_.insert(stamps_ns_.end(), block.stamps_ns.begin(), block.stamps_ns.begin() + n);
+    for (std::size_t j = 0; j < 6; ++j) {
+      channel(record_, j)
+          .insert(channel(record_, j).end(), block.values[j].begin(), block.values[j].begin() + n);
+    }
+  }
+  void receive_times(const std::int64_t* stamps_ns, std::size_t count) override {
+    count = std::min(count, stamps_ns_.size() - next_receive_time_);
+    std::copy_n(stamps_ns, count,
+                stamps_ns_.begin() + static_cast<std::ptrdiff_t>(next_receive_time_));
+    next_receive_time_ += count;
   }
 
  private:
-  std::size_t bytes_;
-  void* data_;
+  std::vector<std::int64_t>& stamps_ns_;
+  ImuRecord& record_;
+  std::size_t next_receive_time_ = 0;
 };
 
-// What the child reports.
+// --- Reading in a child process --------------------------------------------------------------
+//
+// rosbag trusts the offsets and lengths of its index and of the records in a chunk: a damaged
+// one makes it read outside its buffers (a crash, not an exception; the index's offsets are
+// never checked against the chunk). So the bag is read in a child process, and a crash there
+// is a DataError here, as for HDF5 in mat_checks.cc. Without a process to spare, it is read
+// here.
+//
+// The child does all of it, from opening the bag on: opening reads the whole index (a tree
+// node a message, 0.7 GB for 10^7 messages), which is done once and never freed (the child
+// ends without destructors: freeing the nodes one by one takes seconds). It sends the
+// messages through a pipe, block by block, as it reads them, and this process puts them into
+// the record meanwhile, on the other core: no memory holds the record twice, and the first
+// touch of the record's memory, slow on virtual machines, overlaps the reading. What the child
+// has to say at the end (an error, the frame) goes through a small shared page.
+//
+// On the pipe, each block is a BlockHeader and its payload: for kStart, the capacity (one
+// uint64); for kMessages, `count` stamps then `count` values of each channel; for
+// kReceiveTimes, `count` stamps.
+enum class BlockKind : std::uint32_t { kStart = 1, kMessages = 2, kReceiveTimes = 3 };
+struct BlockHeader {
+  BlockKind kind;
+  std::uint32_t count;
+};
+
+// Writes all of `bytes` to `fd`; throws when the reader has gone.
+void write_all(int fd, const void* data, std::size_t bytes) {
+  const auto* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t put = ::write(fd, p, bytes);
+    if (put < 0 && errno == EINTR) continue;
+    if (put <= 0) throw std::runtime_error("the pipe to the parent process closed");
+    p += put;
+    bytes -= static_cast<std::size_t>(put);
+  }
+}
+
+// Reads all of `bytes` from `fd`; false at the end of the pipe (the child ended, or crashed).
+bool read_all(int fd, void* data, std::size_t bytes) {
+  auto* p = static_cast<char*>(data);
+  while (bytes > 0) {
+    const ssize_t got = ::read(fd, p, bytes);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    p += got;
+    bytes -= static_cast<std::size_t>(got);
+  }
+  return true;
+}
+
+// The child's sink: each block into the pipe.
+class PipeSink : public MessageSink {
+ public:
+  explicit PipeSink(int fd) : fd_(fd) {}
+  void start(std::size_t capacity) override {
+    const BlockHeader header{BlockKind::kStart, 0};
+    const auto value = static_cast<std::uint64_t>(capacity);
+    write_all(fd_, &header, sizeof(header));
+    write_all(fd_, &value, sizeof(value));
+  }
+  void messages(const MessageBlock& block) override {
+    const auto n = static_cast<std::size_t>(block.count);
+    const BlockHeader header{BlockKind::kMessages, static_cast<std::uint32_t>(n)};
+    write_all(fd_, &header, sizeof(header));
+    write_all(fd_, block.stamps_ns.data(), n * sizeof(std::int64_t));
+    for (const auto& values : block.values) write_all(fd_, values.data(), n * sizeof(double));
+  }
+  void receive_times(const std::int64_t* stamps_ns, std::size_t count) override {
+    const BlockHeader header{BlockKind::kReceiveTimes, static_cast<std::uint32_t>(count)};
+    write_all(fd_, &header, sizeof(header));
+    write_all(fd_, stamps_ns, count * sizeof(std::int64_t));
+  }
+
+ private:
+  int fd_;
+};
+
+// Takes the child's blocks from `fd` into `sink` until the pipe ends.
+void receive_blocks(int fd, MessageSink& sink) {
+  const auto block = std::make_unique<MessageBlock>();
+  BlockHeader header{};
+  while (read_all(fd, &header, sizeof(header))) {
+    const std::size_t n = header.count;
+    if (n > MessageBlock::kMessages) return;  // not from our child: its report decides
+    if (header.kind == BlockKind::kStart) {
+      std::uint64_t capacity = 0;
+      if (!read_all(fd, &capacity, sizeof(capacity))) return;
+      sink.start(static_cast<std::size_t>(capacity));
+    } else if (header.kind == BlockKind::kMessages) {
+      block->count = n;
+      if (!read_all(fd, block->stamps_ns.data(), n * sizeof(std::int64_t))) return;
+      for (auto& values : block->values) {
+        if (!read_all(fd, values.data(), n * sizeof(double))) return;
+      }
+      sink.messages(*block);
+    } else if (header.kind == BlockKind::kReceiveTimes) {
+      if (!read_all(fd, block->stamps_ns.data(), n * sizeof(std::int64_t))) return;
+      sink.receive_times(block->stamps_ns.data(), n);
+    } else {
+      return;
+    }
+  }
+}
+
+// What the child reports at the end, in anonymous memory shared with it.
 struct ChildReport {
-  int failed = 0;  // 1: `message` holds the DataError's
+  int failed = 0;  // 1: `message` holds a DataError's, 2: a UsageError's
+  int done = 0;    // 1: the child got to its end
   std::uint64_t count = 0;
   int header_stamps = 0;
+  char topic[1024] = {};
   char frame_id[256] = {};
   char message[4096] = {};
+};
+
+class ReportMemory {
+ public:
+  ReportMemory() {
+    data_ = ::mmap(nullptr, sizeof(ChildReport), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS,
+                   -1, 0);
+    if (data_ == MAP_FAILED) throw std::bad_alloc();
+    new (data_) ChildReport();
+  }
+  ~ReportMemory() { ::munmap(data_, sizeof(ChildReport)); }
+  ReportMemory(const ReportMemory&) = delete;
+  ReportMemory& operator=(const ReportMemory&) = delete;
+  ChildReport& report() const { return *static_cast<ChildReport*>(data_); }
+
+ private:
+  void* data_;
 };
 
 void copy_text(char* to, std::size_t size, const std::string& text) {
@@ -295,88 +519,145 @@ void copy_text(char* to, std::size_t size, const std::string& text) {
   to[n] = '\0';
 }
 
-// rosbag trusts the offsets and lengths of its index and of the records in a chunk: a
-// damaged one makes it read outside its buffers (a crash, not an exception; the index's
-// offsets are never checked against the chunk). So the messages are read in a child process
-// into memory shared with this one, and a crash there is a DataError here, as for HDF5 in
-// mat_checks.cc. Without a process to spare, they are read here. The child opens the bag
-// itself: a bag opened here before the fork would be freed here after it, touching every page
-// of its index (about 100 bytes a message) that the fork had marked copy-on-write.
-void read_messages_guarded(const std::string& path, const std::string& topic, std::size_t capacity,
-                           std::vector<std::int64_t>& stamps_ns, ImuRecord& record) {
-  auto channel = [&record](std::size_t j) -> std::vector<double>& {
-    return j < 3 ? record.angular_velocity_rad_s[j] : record.linear_acceleration_m_s2[j - 3];
-  };
-  SharedMemory report_memory(sizeof(ChildReport));
-  std::vector<std::unique_ptr<SharedMemory>> arrays;
-  for (std::size_t j = 0; j < 7; ++j) {
-    arrays.push_back(std::make_unique<SharedMemory>(capacity * sizeof(double)));
+// The index's tree of a node a message is allocated node by node from the heap; on ordinary
+// pages a third of opening a bag goes to page faults. So the reading process grows its heap in
+// one step large enough for the index of an uncompressed bag of `file_bytes` (whose messages
+// take at least 300 bytes each, their nodes 64) and advises transparent huge pages for it.
+// Advice only: without it, ordinary pages.
+void prepare_heap_for_index(std::uint64_t file_bytes) {
+#if defined(M_TOP_PAD) && defined(M_MMAP_THRESHOLD) && defined(MADV_HUGEPAGE)
+  constexpr std::uint64_t kHugePage = std::uint64_t{2} << 20;
+  const std::uint64_t pad = std::min<std::uint64_t>(file_bytes / 4, INT_MAX);
+  if (pad < 16 * kHugePage) return;
+  ::mallopt(M_TOP_PAD, static_cast<int>(pad));
+  // One allocation from the heap (not mapped apart), larger than what is left of it, makes
+  // the heap grow by the pad.
+  ::mallopt(M_MMAP_THRESHOLD, 4 << 20);
+  const auto before = reinterpret_cast<std::uintptr_t>(::sbrk(0));
+  void* volatile grow = std::malloc(std::size_t{1} << 20);
+  std::free(grow);
+  const auto after = reinterpret_cast<std::uintptr_t>(::sbrk(0));
+  const std::uintptr_t first = (before + kHugePage - 1) & ~(kHugePage - 1);
+  if (after > first + kHugePage) {
+    (void)::madvise(reinterpret_cast<void*>(first), after - first, MADV_HUGEPAGE);
   }
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    arrays.clear();
-    stamps_ns.resize(capacity);
-    std::array<double*, 6> values{};
-    for (std::size_t j = 0; j < 6; ++j) {
-      channel(j).resize(capacity);
-      values[j] = channel(j).data();
+#else
+  (void)file_bytes;
+#endif
+}
+
+// The child process: reads the bag into the pipe `fd`, and reports.
+[[noreturn]] void child_reads(int fd, const std::string& path, const BagReadOptions& options,
+                              ChildReport& report) {
+  try {
+    prepare_heap_for_index(internal::regular_file_size(path).value_or(0));
+    auto* bag = new rosbag::Bag();  // never freed: see above
+    PipeSink sink(fd);
+    const TopicRead read = read_topic(*bag, path, options, sink);
+    report.count = read.count;
+    report.header_stamps = read.header_stamps ? 1 : 0;
+    copy_text(report.topic, sizeof(report.topic), read.topic);
+    copy_text(report.frame_id, sizeof(report.frame_id), read.frame_id);
+  } catch (const UsageError& e) {
+    report.failed = 2;
+    copy_text(report.message, sizeof(report.message), e.what());
+  } catch (const std::exception& e) {
+    report.failed = 1;
+    copy_text(report.message, sizeof(report.message), e.what());
+  }
+  report.done = 1;
+  ::_exit(0);
+}
+
+// A pipe's two ends, closed when destroyed.
+class Pipe {
+ public:
+  Pipe() {
+    if (::pipe2(fds_.data(), O_CLOEXEC) != 0) {
+      fds_ = {-1, -1};
+      return;
     }
-    MessagesRead read;
-    const std::size_t n = read_messages(path, topic, capacity, stamps_ns.data(), values, read);
-    stamps_ns.resize(n);
-    for (std::size_t j = 0; j < 6; ++j) channel(j).resize(n);
-    record.frame_id = read.frame_id;
-    record.timing.stamp_source = read.header_stamps ? "header.stamp" : "bag receive time";
-    return;
+#ifdef F_SETPIPE_SZ
+    // Room for a few blocks (64 KiB by default: a block would take four turns of the two
+    // processes); the system's limit for users is 1 MiB by default. Failure only costs speed.
+    (void)::fcntl(fds_[1], F_SETPIPE_SZ, 1 << 20);
+#endif
+  }
+  ~Pipe() {
+    close_read();
+    close_write();
+  }
+  Pipe(const Pipe&) = delete;
+  Pipe& operator=(const Pipe&) = delete;
+  bool usable() const { return fds_[0] >= 0; }
+  int read_end() const { return fds_[0]; }
+  int write_end() const { return fds_[1]; }
+  void close_read() { close_end(0); }
+  void close_write() { close_end(1); }
+
+ private:
+  void close_end(std::size_t k) {
+    if (fds_[k] >= 0) ::close(fds_[k]);
+    fds_[k] = -1;
+  }
+  std::array<int, 2> fds_{};
+};
+
+// Reads the bag into `stamps_ns` and the record's channels: in a child process (above), or
+// here without one.
+TopicRead read_guarded(const std::string& path, const BagReadOptions& options,
+                       std::vector<std::int64_t>& stamps_ns, ImuRecord& record) {
+  RecordSink sink(stamps_ns, record);
+  ReportMemory report_memory;
+  Pipe pipe;
+  std::fflush(nullptr);
+  const pid_t pid = pipe.usable() ? ::fork() : -1;
+  if (pid < 0) {
+    rosbag::Bag bag;
+    return read_topic(bag, path, options, sink);
   }
   if (pid == 0) {
-    auto* report = new (report_memory.as<void>()) ChildReport();
-    try {
-      std::array<double*, 6> values{};
-      for (std::size_t j = 0; j < 6; ++j) values[j] = arrays[j + 1]->as<double>();
-      MessagesRead read;
-      report->count =
-          read_messages(path, topic, capacity, arrays[0]->as<std::int64_t>(), values, read);
-      report->header_stamps = read.header_stamps ? 1 : 0;
-      copy_text(report->frame_id, sizeof(report->frame_id), read.frame_id);
-    } catch (const std::exception& e) {
-      report->failed = 1;
-      copy_text(report->message, sizeof(report->message), e.what());
-    }
-    ::_exit(0);
+    pipe.close_read();
+    child_reads(pipe.write_end(), path, options, report_memory.report());
   }
+  pipe.close_write();
+  try {
+    receive_blocks(pipe.read_end(), sink);
+  } catch (...) {
+    // This side failed (out of memory): the child is stopped, not left blocked on the pipe.
+    ::kill(pid, SIGKILL);
+    while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    throw;
+  }
+  pipe.close_read();  // a child still writing (a damaged pipe protocol) gets EPIPE and ends
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  const ChildReport& report = *report_memory.as<ChildReport>();
+  const ChildReport& report = report_memory.report();
   if (WIFSIGNALED(status)) {
-    throw_data_error(path, fmt::format("damaged ROS 1 bag: the ROS library crashed reading topic "
-                                       "'{}' ({}): an offset or length in its index or chunks "
-                                       "is wrong",
-                                       topic, ::strsignal(WTERMSIG(status))));
+    throw_data_error(path, fmt::format("damaged ROS 1 bag: the ROS library crashed reading it "
+                                       "({}): an offset or length in its index or chunks is "
+                                       "wrong",
+                                       ::strsignal(WTERMSIG(status))));
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw_data_error(path, fmt::format("reading topic '{}' failed (the reading process ended "
-                                       "with status {})",
-                                       topic, status));
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || report.done != 1) {
+    throw_data_error(path, fmt::format("reading the bag failed (the reading process ended with "
+                                       "status {})",
+                                       status));
   }
+  if (report.failed == 2) throw UsageError(report.message);
   if (report.failed != 0) throw DataError(report.message);
-  // Copied out array by array, each released once copied, so that the peak is about one set.
-  // Each channel on transparent huge pages (core/numeric.h), for the same reason.
-  const auto n = static_cast<std::size_t>(report.count);
-  stamps_ns.assign(arrays[0]->as<std::int64_t>(), arrays[0]->as<std::int64_t>() + n);
-  arrays[0].reset();
-  for (std::size_t j = 0; j < 6; ++j) {
-    // One sample's room more: the analysis integrates a record into its angle record (one
-    // point more) in place, and would otherwise reallocate it.
-    channel(j).reserve(n + 1);
-    advise_huge_pages(channel(j).data(), n + 1);
-    channel(j).assign(arrays[j + 1]->as<double>(), arrays[j + 1]->as<double>() + n);
-    arrays[j + 1].reset();
+  if (stamps_ns.size() != report.count) {
+    throw_data_error(path, fmt::format("reading the bag failed: {} messages read, {} received",
+                                       report.count, stamps_ns.size()));
   }
-  record.frame_id = report.frame_id;
-  record.timing.stamp_source = report.header_stamps != 0 ? "header.stamp" : "bag receive time";
+  TopicRead read;
+  read.topic = report.topic;
+  read.count = static_cast<std::size_t>(report.count);
+  read.frame_id = report.frame_id;
+  read.header_stamps = report.header_stamps != 0;
+  return read;
 }
 
 // --- The time grid (rosbag.h explains what it is for) ---------------------------------------
@@ -408,16 +689,58 @@ double cycles(double sum_cos, double sum_sin) { return std::atan2(sum_sin, sum_c
 // `x` minus the nearest integer: in [-0.5, 0.5].
 double wrap(double x) { return x - std::round(x); }
 
+// The median of the positive steps between consecutive stamps [s], exact, without a copy of
+// all of them (10^7 steps: a second of page faults on a virtual machine): a strided sample
+// brackets the median, one pass counts the steps below the bracket and keeps those inside it,
+// and the median is the right one of those. Should the bracket miss it (a sample that does not
+// represent the record), every step is copied.
 double median_step_s(const std::vector<std::int64_t>& stamps_ns) {
-  std::vector<std::int64_t> steps;
-  steps.reserve(stamps_ns.size() - 1);
-  for (std::size_t k = 1; k < stamps_ns.size(); ++k) {
-    if (stamps_ns[k] > stamps_ns[k - 1]) steps.push_back(stamps_ns[k] - stamps_ns[k - 1]);
+  const std::size_t n = stamps_ns.size();
+  auto step = [&](std::size_t k) { return stamps_ns[k] - stamps_ns[k - 1]; };
+  auto select = [](std::vector<std::int64_t>& v, std::size_t rank) {
+    const auto at = v.begin() + static_cast<std::ptrdiff_t>(rank);
+    std::nth_element(v.begin(), at, v.end());
+    return static_cast<double>(*at) * 1e-9;
+  };
+  std::size_t positive = 0;
+  for (std::size_t k = 1; k < n; ++k) positive += step(k) > 0 ? 1 : 0;
+  if (positive == 0) return 0.0;
+  const std::size_t rank = (positive - 1) / 2;  // of the median, among the positive steps
+
+  constexpr std::size_t kSample = std::size_t{1} << 16;
+  if (positive > 16 * kSample) {
+    std::vector<std::int64_t> sample;
+    sample.reserve(kSample + 1);
+    const std::size_t stride = (n - 1) / kSample;
+    for (std::size_t k = 1; k < n; k += stride) {
+      if (step(k) > 0) sample.push_back(step(k));
+    }
+    std::sort(sample.begin(), sample.end());
+    // A bracket of +-2 % of the sample about its median: wide against the sample's error in
+    // rank (about 0.2 % of the steps for 65,536 samples).
+    const std::size_t margin = sample.size() / 50;
+    const std::int64_t low = sample[sample.size() / 2 - margin];
+    const std::int64_t high = sample[sample.size() / 2 + margin];
+    std::size_t below = 0;
+    std::vector<std::int64_t> inside;
+    inside.reserve(positive / 10);
+    for (std::size_t k = 1; k < n; ++k) {
+      const std::int64_t d = step(k);
+      if (d <= 0) continue;
+      if (d < low) {
+        ++below;
+      } else if (d <= high) {
+        inside.push_back(d);
+      }
+    }
+    if (rank >= below && rank - below < inside.size()) return select(inside, rank - below);
   }
-  if (steps.empty()) return 0.0;
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>((steps.size() - 1) / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  return static_cast<double>(*middle) * 1e-9;
+  std::vector<std::int64_t> steps;
+  steps.reserve(positive);
+  for (std::size_t k = 1; k < n; ++k) {
+    if (step(k) > 0) steps.push_back(step(k));
+  }
+  return select(steps, rank);
 }
 
 // Step 1 above: the step [s] refined from `step_s` by phase differences at growing lags.
@@ -447,63 +770,74 @@ double refine_step_s(const std::vector<std::int64_t>& stamps_ns, double step_s) 
   return step_s;
 }
 
-// Step 2 above: each message's slot (the first message's is 0).
-std::vector<std::int64_t> grid_slots(const std::vector<std::int64_t>& stamps_ns, double step_s) {
-  constexpr std::size_t kBlock = 256;
-  constexpr std::size_t kHalfWindowBlocks = 8;
-  const std::size_t n = stamps_ns.size();
-  const std::int64_t t0 = stamps_ns.front();
-  auto position = [&](std::size_t k) {  // in steps from the first stamp
-    return static_cast<double>(stamps_ns[k] - t0) * 1e-9 / step_s;
-  };
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<double> block_cos(blocks, 0.0);
-  std::vector<double> block_sin(blocks, 0.0);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double angle = kTwoPi * position(k);
-    block_cos[k / kBlock] += std::cos(angle);
-    block_sin[k / kBlock] += std::sin(angle);
-  }
-  // The windowed phase at each block, unwrapped from block to block.
-  std::vector<double> phase(blocks);
-  double c = 0.0;
-  double s = 0.0;
-  for (std::size_t b = 0; b < std::min(blocks, kHalfWindowBlocks + 1); ++b) {
-    c += block_cos[b];
-    s += block_sin[b];
-  }
-  for (std::size_t b = 0; b < blocks; ++b) {
-    if (b > 0) {
-      if (b + kHalfWindowBlocks < blocks) {
-        c += block_cos[b + kHalfWindowBlocks];
-        s += block_sin[b + kHalfWindowBlocks];
-      }
-      if (b > kHalfWindowBlocks) {
-        c -= block_cos[b - kHalfWindowBlocks - 1];
-        s -= block_sin[b - kHalfWindowBlocks - 1];
-      }
+// Step 2 above: the grid's phase along the record, and from it each message's slot (the first
+// message's is 0), computed when asked for rather than stored (10^7 slots).
+class GridSlots {
+ public:
+  GridSlots(const std::vector<std::int64_t>& stamps_ns, double step_s)
+      : stamps_ns_(stamps_ns), step_s_(step_s) {
+    const std::size_t n = stamps_ns.size();
+    const std::size_t blocks = (n + kBlock - 1) / kBlock;
+    std::vector<double> block_cos(blocks, 0.0);
+    std::vector<double> block_sin(blocks, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double angle = kTwoPi * position(k);
+      block_cos[k / kBlock] += std::cos(angle);
+      block_sin[k / kBlock] += std::sin(angle);
     }
-    const double angle = cycles(c, s);
-    phase[b] = b == 0 ? angle : phase[b - 1] + wrap(angle - phase[b - 1]);
+    // The windowed phase at each block, unwrapped from block to block.
+    phase_.resize(blocks);
+    double c = 0.0;
+    double s = 0.0;
+    for (std::size_t b = 0; b < std::min(blocks, kHalfWindowBlocks + 1); ++b) {
+      c += block_cos[b];
+      s += block_sin[b];
+    }
+    for (std::size_t b = 0; b < blocks; ++b) {
+      if (b > 0) {
+        if (b + kHalfWindowBlocks < blocks) {
+          c += block_cos[b + kHalfWindowBlocks];
+          s += block_sin[b + kHalfWindowBlocks];
+        }
+        if (b > kHalfWindowBlocks) {
+          c -= block_cos[b - kHalfWindowBlocks - 1];
+          s -= block_sin[b - kHalfWindowBlocks - 1];
+        }
+      }
+      const double angle = cycles(c, s);
+      phase_[b] = b == 0 ? angle : phase_[b - 1] + wrap(angle - phase_[b - 1]);
+    }
+    first_ = 0;
+    first_ = slot(0);
   }
-  // The phase between block centres by linear interpolation.
-  std::vector<std::int64_t> slots(n);
-  for (std::size_t k = 0; k < n; ++k) {
+
+  // The slot of message k, from the first stamp's.
+  std::int64_t slot(std::size_t k) const {
+    // The phase between block centres by linear interpolation.
     const double at = (static_cast<double>(k) + 0.5) / kBlock - 0.5;
-    double p = phase.front();
-    if (at >= static_cast<double>(blocks - 1)) {
-      p = phase.back();
+    double p = phase_.front();
+    if (at >= static_cast<double>(phase_.size() - 1)) {
+      p = phase_.back();
     } else if (at > 0.0) {
       const auto b = static_cast<std::size_t>(at);
       const double f = at - static_cast<double>(b);
-      p = phase[b] + f * (phase[b + 1] - phase[b]);
+      p = phase_[b] + f * (phase_[b + 1] - phase_[b]);
     }
-    slots[k] = std::llround(position(k) - p);
+    return std::llround(position(k) - p) - first_;
   }
-  const std::int64_t first = slots.front();
-  for (std::int64_t& slot : slots) slot -= first;
-  return slots;
-}
+
+ private:
+  static constexpr std::size_t kBlock = 256;
+  static constexpr std::size_t kHalfWindowBlocks = 8;
+  // Message k's stamp in steps from the first.
+  double position(std::size_t k) const {
+    return static_cast<double>(stamps_ns_[k] - stamps_ns_.front()) * 1e-9 / step_s_;
+  }
+  const std::vector<std::int64_t>& stamps_ns_;
+  double step_s_;
+  std::vector<double> phase_;
+  std::int64_t first_ = 0;
+};
 
 }  // namespace
 
@@ -529,43 +863,26 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
                     "(got {})",
                     internal::format_value(*options.sample_rate_hz)));
   }
-  std::vector<BagTopic> topics;
-  {
-    rosbag::Bag bag;
-    open_bag(bag, path);
-    topics = topics_of(bag, path);
-  }
-  const BagTopic& topic = choose_topic(topics, path, options.topic);
-
-  ImuRecord record;
-  record.path = path;
-  record.topic = topic.name;
-  if (options.max_samples && topic.messages > *options.max_samples) {
-    throw_data_error(path, fmt::format("topic '{}' has {} messages, more than {}: the limit for "
-                                       "one record (BagReadOptions::max_samples)",
-                                       topic.name, topic.messages, *options.max_samples));
-  }
-  if (topic.messages < 2) {
-    throw_data_error(path, fmt::format("topic '{}' has {} message{}; at least 2 are needed",
-                                       topic.name, topic.messages, topic.messages == 1 ? "" : "s"));
-  }
-
   // Read every message: its header stamp and the six values. Duplicates are dropped later,
   // in place, once the grid is known.
-  const auto count = static_cast<std::size_t>(topic.messages);
+  ImuRecord record;
+  record.path = path;
   std::vector<std::int64_t> stamps_ns;
-  read_messages_guarded(path, topic.name, count, stamps_ns, record);
-  if (record.timing.stamp_source != "header.stamp") {
+  const TopicRead read = read_guarded(path, options, stamps_ns, record);
+  record.topic = read.topic;
+  record.frame_id = read.frame_id;
+  record.timing.stamp_source = read.header_stamps ? "header.stamp" : "bag receive time";
+  if (!read.header_stamps) {
     record.notes.push_back(fmt::format(
         "every header.stamp of topic '{}' is zero: the times are the bag's receive times, "
         "which carry the recording host's delays",
-        topic.name));
+        read.topic));
   }
   const std::size_t n = stamps_ns.size();
   if (n < 2) {
     throw_data_error(path, fmt::format("topic '{}' has {} message{} that can be read; at least 2 "
                                        "are needed",
-                                       topic.name, n, n == 1 ? "" : "s"));
+                                       read.topic, n, n == 1 ? "" : "s"));
   }
   record.timing.messages = n;
   record.timing.median_step_s = median_step_s(stamps_ns);
@@ -576,23 +893,24 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
   }
   if (record.timing.median_step_s <= 0.0) {
     throw_data_error(path, fmt::format("the {} {}s of topic '{}' do not increase: all are {} s", n,
-                                       record.timing.stamp_source, topic.name,
+                                       record.timing.stamp_source, read.topic,
                                        internal::format_value(record.start_time_s)));
   }
 
   // The grid, then the samples kept on it (in place) and their gaps.
   const double step_s = refine_step_s(stamps_ns, record.timing.median_step_s);
-  const std::vector<std::int64_t> slots = grid_slots(stamps_ns, step_s);
+  const GridSlots grid(stamps_ns, step_s);
   std::size_t kept = 1;
-  std::int64_t last_slot = slots.front();
+  std::int64_t last_slot = 0;
   for (std::size_t k = 1; k < n; ++k) {
-    const std::int64_t skipped = slots[k] - last_slot - 1;
+    const std::int64_t slot = grid.slot(k);
+    const std::int64_t skipped = slot - last_slot - 1;
     if (skipped < 0 || stamps_ns[k] <= stamps_ns[kept - 1]) {
       ++record.timing.duplicates_dropped;
       continue;
     }
     if (skipped > 0) record.gaps.push_back(Gap{static_cast<std::int64_t>(kept), skipped});
-    last_slot = slots[k];
+    last_slot = slot;
     stamps_ns[kept] = stamps_ns[k];
     for (std::size_t j = 0; j < 3; ++j) {
       record.angular_velocity_rad_s[j][kept] = record.angular_velocity_rad_s[j][k];
@@ -609,11 +927,11 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
     record.notes.push_back(fmt::format(
         "{} of the {} messages of topic '{}' dropped: each fell on the time slot of the message "
         "before it, or earlier (a repeated or out-of-order {})",
-        record.timing.duplicates_dropped, n, topic.name, record.timing.stamp_source));
+        record.timing.duplicates_dropped, n, read.topic, record.timing.stamp_source));
   }
   if (kept < 2) {
     throw_data_error(
-        path, fmt::format("topic '{}': fewer than 2 messages on distinct time slots", topic.name));
+        path, fmt::format("topic '{}': fewer than 2 messages on distinct time slots", read.topic));
   }
 
   // Least squares of stamp (from the first, [s]) against slot, in two passes for accuracy;
@@ -656,7 +974,7 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
   record.timing.jitter_max_s = largest;
   if (!(fitted_step_s > 0.0)) {
     throw_data_error(
-        path, fmt::format("topic '{}': the stamps give no positive sample step", topic.name));
+        path, fmt::format("topic '{}': the stamps give no positive sample step", read.topic));
   }
   record.sample_rate_hz = 1.0 / fitted_step_s;
   return record;

@@ -43,10 +43,11 @@
 // Size and speed: a sensor_msgs/Imu message takes 373 bytes of bag (315 of message with a
 // 3-character frame_id, its record header and index entry), so an 8 h record at 400 Hz
 // (1.15e7 messages) is a bag of 4.3 GB. The library loads the bag's whole index when it opens
-// it and parses each message's record header into a map, which limits reading to about
-// 0.7 million messages a second (bench on 2 cores: 1e6 messages in 1.3 to 1.6 s). The messages
-// are read in a child process (rosbag crashes on some damaged bags; the crash is then a
-// DataError), into shared memory of 56 bytes a message; the result takes 48 bytes a sample.
+// it (a tree node of 64 bytes a message) and parses each message's record header into a map.
+// The bag is opened and read in a child process (rosbag crashes on some damaged bags; the
+// crash is then a DataError), which sends the messages through a pipe, block by block, while
+// this process stores them: the 8 h bag is read in about 6 s on 2 cores (bench/RESULTS.md),
+// and the result takes 48 bytes a sample in this process.
 #pragma once
 
 #include <array>
