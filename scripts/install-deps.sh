@@ -17,6 +17,9 @@ packages=(
   # headers; rosbag/bag.h includes pluginlib's headers (pluginlib-dev, a
   # dependency of librosbag-storage-dev named here since the build needs it).
   librosbag-storage-dev libsensor-msgs-dev pluginlib-dev
+  # The Python module (python/, pybind11) and `pip install .` (setup.py: setuptools without
+  # build isolation, so nothing is fetched from PyPI).
+  pybind11-dev python3-dev python3-numpy python3-setuptools python3-pip
 )
 if [ "${1:-}" = "--tests" ]; then
   # octave-cli runs the lab's MATLAB steps on lab2-data files in the tests
@@ -25,8 +28,9 @@ if [ "${1:-}" = "--tests" ]; then
   # chromium opens the lab reports in the browser test (headless).
   # python3-rosbag with the sensor_msgs and std_msgs Python messages writes
   # the bags that tests/io/rosbag_test.cc reads (tests/io/make_imu_bag.py).
+  # python3-pytest runs the Python module's tests (python/tests).
   packages+=(octave fonts-freefont-otf chromium
-             python3-rosbag python3-sensor-msgs python3-std-msgs)
+             python3-rosbag python3-sensor-msgs python3-std-msgs python3-pytest)
 fi
 if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--fuzz" ]; then
   # clang-14 with its runtime (ASan, UBSan, libFuzzer) and OpenMP builds the

@@ -1,0 +1,122 @@
+"""AllanTools's calling conventions on foglab's statistics.
+
+``foglab.compat.oadev(data, rate=1.0, data_type="phase", taus=None)`` and the other functions
+here take AllanTools's arguments and return its tuple ``(taus, devs, errors, ns)``, so that a
+script switches by its import line::
+
+    import foglab.compat as allantools
+
+Conventions kept (AllanTools 2024.06, allantools.py):
+
+- ``data_type`` is ``"phase"`` by default, as in AllanTools; ``"freq"`` is fractional
+  frequency (for a gyro: rate), integrated to phase by the sample interval;
+- ``taus``: None or ``"octave"`` (m = 1, 2, 4, ... up to the phase record's length),
+  ``"decade"`` (1, 2, 4, 10, 20, 40, ...), ``"all"``, ``"log10"``, or seconds; each becomes
+  m = round(tau * rate), kept when 0 < m < the number of phase points, sorted, without
+  duplicates;
+- taus at which the statistic has no term are left out, and so are those with one term
+  (AllanTools's ``remove_small_ns``);
+- ``errors`` are AllanTools's simple ones, ``devs / sqrt(ns)``; foglab's own 68/95 %
+  intervals from the edf are in ``foglab.allan``.
+
+Differences that remain: ``ns`` is the number of terms foglab averages, which is AllanTools's
+for adev, oadev, mdev, tdev, hdev and ohdev; for totdev it is N - 2 (the reflected record's
+terms), as in SP 1065 eq. 25.
+"""
+
+import numpy as np
+
+from . import _foglab
+
+__all__ = ["adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev", "tau_generator"]
+
+
+def tau_generator(phase_points, rate, taus=None):
+    """AllanTools's averaging factors for a phase record of ``phase_points`` points.
+
+    Returns the sorted, unique integer factors m (as a numpy array of int64).
+    """
+    if rate <= 0:
+        raise ValueError(f"rate={rate}: the sample rate must be > 0 Hz")
+    if taus is None or (isinstance(taus, (list, tuple)) and len(taus) == 0):
+        taus = "octave"
+    if isinstance(taus, str):
+        n = phase_points
+        if taus == "all":
+            m = np.arange(1, n + 1, dtype=float)
+        elif taus == "octave":
+            maxn = int(np.floor(np.log2(n)))
+            m = np.logspace(0, maxn, maxn + 1, base=2.0)
+        elif taus == "log10":
+            maxn = np.log10(n)
+            m = np.logspace(0, maxn, int(10 * maxn), base=10.0)
+        elif taus == "decade":
+            maxn = int(np.floor(np.log10(n)))
+            m = np.array([f * 10.0 ** k for k in range(maxn + 1) for f in (1.0, 2.0, 4.0)])
+        else:
+            raise ValueError(f"taus='{taus}': expected 'all', 'octave', 'decade', 'log10' or "
+                             "taus in seconds")
+    else:
+        m = np.asarray(taus, dtype=float) * rate
+    m = np.round(m)
+    m = m[(m > 0) & (m < phase_points)]
+    return np.unique(m).astype(np.int64)
+
+
+def _deviation(kind, data, rate, data_type, taus):
+    data = np.ascontiguousarray(data, dtype=np.float64)
+    if data.ndim != 1:
+        raise ValueError(f"data must be one-dimensional (got {data.ndim} dimensions)")
+    if data_type == "phase":
+        input_kind, phase_points = "phase", data.size
+    elif data_type == "freq":
+        input_kind, phase_points = "rate", data.size + 1
+    else:
+        raise ValueError(f"data_type='{data_type}': expected 'phase' or 'freq'")
+    m = tau_generator(phase_points, rate, taus)
+    m = m[m <= _foglab.max_factor(kind, phase_points)]
+    if m.size == 0:
+        empty = np.array([], dtype=float)
+        return empty, empty, empty, np.array([], dtype=np.int64)
+    r = _foglab.allan(data, rate, kind=kind, taus=list(m / float(rate)), input=input_kind,
+                      confidence=False)
+    keep = r.n > 1
+    taus_used = r.tau_s[keep]
+    devs = r.dev[keep]
+    ns = r.n[keep]
+    return taus_used, devs, devs / np.sqrt(ns), ns
+
+
+def adev(data, rate=1.0, data_type="phase", taus=None):
+    """Allan deviation (non-overlapping), SP 1065 eq. 7."""
+    return _deviation("adev", data, rate, data_type, taus)
+
+
+def oadev(data, rate=1.0, data_type="phase", taus=None):
+    """Overlapping Allan deviation, SP 1065 eq. 11."""
+    return _deviation("oadev", data, rate, data_type, taus)
+
+
+def mdev(data, rate=1.0, data_type="phase", taus=None):
+    """Modified Allan deviation, SP 1065 eq. 15."""
+    return _deviation("mdev", data, rate, data_type, taus)
+
+
+def tdev(data, rate=1.0, data_type="phase", taus=None):
+    """Time deviation, tau / sqrt(3) times MDEV (SP 1065 eq. 17), in the phase's unit."""
+    return _deviation("tdev", data, rate, data_type, taus)
+
+
+def hdev(data, rate=1.0, data_type="phase", taus=None):
+    """Hadamard deviation (non-overlapping), SP 1065 eq. 18."""
+    return _deviation("hdev", data, rate, data_type, taus)
+
+
+def ohdev(data, rate=1.0, data_type="phase", taus=None):
+    """Overlapping Hadamard deviation, SP 1065 eq. 20."""
+    return _deviation("ohdev", data, rate, data_type, taus)
+
+
+def totdev(data, rate=1.0, data_type="phase", taus=None):
+    """Total deviation, SP 1065 eq. 25."""
+    return _deviation("totdev", data, rate, data_type, taus)
