@@ -53,6 +53,9 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built[-1], target)
 
 
+# setuptools's own folders (below) must exist before it runs.
+(ROOT / "build" / "setuptools").mkdir(parents=True, exist_ok=True)
+
 setup(
     name="foglab",
     version=project_version(),
@@ -66,6 +69,7 @@ setup(
     ext_modules=[Extension("foglab._foglab", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
     # setuptools's own folders under build/, apart from CMake's.
-    options={"build": {"build_base": "build/setuptools"}},
+    options={"build": {"build_base": "build/setuptools"},
+             "egg_info": {"egg_base": "build/setuptools"}},
     zip_safe=False,
 )

@@ -1,0 +1,94 @@
+// foglab — a fleet's statistics (fleet.h explains the choices).
+#include "foglab/model/fleet.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "foglab/core/error.h"
+
+namespace foglab::model {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMadToSigma = 1.4826;  // 1 / Phi^-1(3/4): MAD of a normal is 0.6745 sigma
+constexpr double kModifiedZFactor = 0.6745;
+
+// The q-quantile of sorted values, by linear interpolation between order statistics.
+double quantile(const std::vector<double>& sorted, double q) {
+  const double at = q * static_cast<double>(sorted.size() - 1);
+  const auto below = static_cast<std::size_t>(std::floor(at));
+  const std::size_t above = std::min(below + 1, sorted.size() - 1);
+  return sorted[below] + (at - static_cast<double>(below)) * (sorted[above] - sorted[below]);
+}
+
+bool counts(double v) { return std::isfinite(v) && v > 0.0; }
+
+}  // namespace
+
+FleetSummary summarize_fleet(const std::vector<FleetUnit>& units,
+                             const std::vector<std::string>& parameters,
+                             const FleetOptions& options) {
+  if (!(options.outlier_z > 0.0) || !std::isfinite(options.outlier_z)) {
+    throw UsageError(fmt::format("FleetOptions::outlier_z must be a finite number > 0 (got {})",
+                                 options.outlier_z));
+  }
+  FleetSummary summary;
+  summary.units = units.size();
+  for (const FleetUnit& u : units) {
+    if (!u.accuracy_class.empty()) ++summary.classes[u.accuracy_class];
+  }
+  // The outliers per unit, each unit's in parameter order.
+  std::vector<std::vector<FleetOutlier>> by_unit(units.size());
+  for (const std::string& name : parameters) {
+    ParameterSpread p;
+    p.name = name;
+    std::vector<double> logs;
+    std::vector<double> values;
+    for (const FleetUnit& u : units) {
+      const auto it = u.values.find(name);
+      if (it != u.values.end() && counts(it->second)) {
+        values.push_back(it->second);
+        logs.push_back(std::log10(it->second));
+      }
+    }
+    p.units = values.size();
+    if (values.size() < 2) {
+      p.median = p.spread_log10 = p.spread_factor = p.minimum = p.maximum = p.p05 = p.p95 = kNaN;
+      if (values.size() == 1) p.median = p.minimum = p.maximum = values.front();
+      summary.parameters.push_back(p);
+      continue;
+    }
+    std::sort(values.begin(), values.end());
+    std::sort(logs.begin(), logs.end());
+    const double centre = quantile(logs, 0.5);
+    for (double& v : logs) v = std::abs(v - centre);
+    std::sort(logs.begin(), logs.end());
+    const double mad = quantile(logs, 0.5);
+    p.median = std::pow(10.0, centre);
+    p.spread_log10 = kMadToSigma * mad;
+    p.spread_factor = std::pow(10.0, p.spread_log10);
+    p.minimum = values.front();
+    p.maximum = values.back();
+    p.p05 = quantile(values, 0.05);
+    p.p95 = quantile(values, 0.95);
+    summary.parameters.push_back(p);
+    if (!(mad > 0.0)) continue;
+    for (std::size_t k = 0; k < units.size(); ++k) {
+      const auto it = units[k].values.find(name);
+      if (it == units[k].values.end() || !counts(it->second)) continue;
+      const double z = kModifiedZFactor * (std::log10(it->second) - centre) / mad;
+      if (std::abs(z) > options.outlier_z) {
+        by_unit[k].push_back({units[k].name, name, it->second, z, it->second / p.median});
+      }
+    }
+  }
+  for (auto& list : by_unit) {
+    summary.outliers.insert(summary.outliers.end(), list.begin(), list.end());
+  }
+  return summary;
+}
+
+}  // namespace foglab::model
