@@ -12,6 +12,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -48,7 +50,19 @@ std::span<const double> samples_of(const InputArray& a, const char* name) {
     throw UsageError(std::string(name) + " must be a one-dimensional array (got " +
                      std::to_string(a.ndim()) + " dimensions)");
   }
-  return {a.data(), static_cast<std::size_t>(a.shape(0))};
+  const std::span<const double> samples(a.data(), static_cast<std::size_t>(a.shape(0)));
+  // As the file readers do: a value that is not finite is refused by its index, before it
+  // turns every statistic into NaN.
+  const auto bad =
+      std::find_if(samples.begin(), samples.end(), [](double v) { return !std::isfinite(v); });
+  if (bad != samples.end()) {
+    throw DataError(std::string(name) + "[" + std::to_string(bad - samples.begin()) + "] is " +
+                    (std::isnan(*bad) ? "nan"
+                     : *bad > 0       ? "inf"
+                                      : "-inf") +
+                    ": every sample must be a finite number");
+  }
+  return samples;
 }
 
 // A numpy array that takes over `v` (no copy).
@@ -194,8 +208,8 @@ py::object analyze(const InputArray& rate, double rate_hz,
   std::string text;
   {
     py::gil_scoped_release release;
-    series.values.resize(values.size());  // input_json() counts them
     json_input.input = cli::input_json(series);
+    json_input.input["samples"] = values.size();
     if (!temperature) json_input.record_mean_deg_h = compensated_mean(values);
     model::AnalysisResult result = model::analyze(values, temperature_c, rate_hz, options);
     nlohmann::json document = cli::analysis_json(result, json_input, options);

@@ -106,6 +106,12 @@ def test_errors_carry_foglabs_message():
         foglab.allan(np.ones((10, 10)), 1.0)
     with pytest.raises(ValueError, match="data_type"):
         allantools.oadev(np.ones(100), data_type="angle")
+    with_nan = np.ones(100)
+    with_nan[42] = np.nan
+    for call in (lambda: foglab.allan(with_nan, 1.0), lambda: foglab.psd(with_nan, 1.0),
+                 lambda: foglab.analyze(with_nan, 1.0)):
+        with pytest.raises(foglab.DataError, match=r"\[42\] is nan"):
+            call()
     with pytest.raises(foglab.DataError) as error:
         foglab.allan(np.arange(3.0), 1.0, taus=[10.0])
     assert str(error.value)
