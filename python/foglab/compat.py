@@ -87,36 +87,23 @@ def _deviation(kind, data, rate, data_type, taus):
     return taus_used, devs, devs / np.sqrt(ns), ns
 
 
-def adev(data, rate=1.0, data_type="phase", taus=None):
-    """Allan deviation (non-overlapping), SP 1065 eq. 7."""
-    return _deviation("adev", data, rate, data_type, taus)
+def _statistic(kind, description):
+    """AllanTools's function for `kind`: (data, rate=1.0, data_type="phase", taus=None)."""
+
+    def deviation(data, rate=1.0, data_type="phase", taus=None):
+        return _deviation(kind, data, rate, data_type, taus)
+
+    deviation.__name__ = deviation.__qualname__ = kind
+    deviation.__doc__ = (f"{description}\n\nAllanTools's arguments and result: "
+                         "(taus, devs, errors, ns); see the module's documentation.")
+    return deviation
 
 
-def oadev(data, rate=1.0, data_type="phase", taus=None):
-    """Overlapping Allan deviation, SP 1065 eq. 11."""
-    return _deviation("oadev", data, rate, data_type, taus)
-
-
-def mdev(data, rate=1.0, data_type="phase", taus=None):
-    """Modified Allan deviation, SP 1065 eq. 15."""
-    return _deviation("mdev", data, rate, data_type, taus)
-
-
-def tdev(data, rate=1.0, data_type="phase", taus=None):
-    """Time deviation, tau / sqrt(3) times MDEV (SP 1065 eq. 17), in the phase's unit."""
-    return _deviation("tdev", data, rate, data_type, taus)
-
-
-def hdev(data, rate=1.0, data_type="phase", taus=None):
-    """Hadamard deviation (non-overlapping), SP 1065 eq. 18."""
-    return _deviation("hdev", data, rate, data_type, taus)
-
-
-def ohdev(data, rate=1.0, data_type="phase", taus=None):
-    """Overlapping Hadamard deviation, SP 1065 eq. 20."""
-    return _deviation("ohdev", data, rate, data_type, taus)
-
-
-def totdev(data, rate=1.0, data_type="phase", taus=None):
-    """Total deviation, SP 1065 eq. 25."""
-    return _deviation("totdev", data, rate, data_type, taus)
+adev = _statistic("adev", "Allan deviation (non-overlapping), SP 1065 eq. 7.")
+oadev = _statistic("oadev", "Overlapping Allan deviation, SP 1065 eq. 11.")
+mdev = _statistic("mdev", "Modified Allan deviation, SP 1065 eq. 15.")
+tdev = _statistic("tdev", "Time deviation, tau / sqrt(3) times MDEV (SP 1065 eq. 17), in the "
+                          "phase's unit.")
+hdev = _statistic("hdev", "Hadamard deviation (non-overlapping), SP 1065 eq. 18.")
+ohdev = _statistic("ohdev", "Overlapping Hadamard deviation, SP 1065 eq. 20.")
+totdev = _statistic("totdev", "Total deviation, SP 1065 eq. 25.")
