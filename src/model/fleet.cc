@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 
 namespace foglab::model {
 namespace {
@@ -62,24 +63,22 @@ FleetSummary summarize_fleet(const std::vector<FleetUnit>& units,
       continue;
     }
     std::sort(values.begin(), values.end());
-    std::sort(logs.begin(), logs.end());
-    const double centre = quantile(logs, 0.5);
-    for (double& v : logs) v = std::abs(v - centre);
-    std::sort(logs.begin(), logs.end());
-    const double mad = quantile(logs, 0.5);
-    p.median = std::pow(10.0, centre);
-    p.spread_log10 = kMadToSigma * mad;
+    // The median and 1.4826 MAD of log10 (core/numeric.h).
+    const RobustSpread log_spread = robust_spread(logs);
+    p.median = std::pow(10.0, log_spread.centre);
+    p.spread_log10 = log_spread.spread;
     p.spread_factor = std::pow(10.0, p.spread_log10);
     p.minimum = values.front();
     p.maximum = values.back();
     p.p05 = quantile(values, 0.05);
     p.p95 = quantile(values, 0.95);
     summary.parameters.push_back(p);
-    if (!(mad > 0.0)) continue;
+    if (!(log_spread.spread > 0.0)) continue;
     for (std::size_t k = 0; k < units.size(); ++k) {
       const auto it = units[k].values.find(name);
       if (it == units[k].values.end() || !counts(it->second)) continue;
-      const double z = kModifiedZFactor * (std::log10(it->second) - centre) / mad;
+      // 0.6745 (x - median) / MAD, with 0.6745 = 1 / 1.4826: the distance in robust sigmas.
+      const double z = (std::log10(it->second) - log_spread.centre) / log_spread.spread;
       if (std::abs(z) > options.outlier_z) {
         by_unit[k].push_back({units[k].name, name, it->second, z, it->second / p.median});
       }

@@ -5,11 +5,12 @@
 // Noise parameters are positive scale factors whose spread across units is multiplicative
 // (a unit twice as noisy as another is as far above the fleet as one half as noisy is
 // below), so every statistic of the spread is taken on log10 of the values:
-//   * the centre is the median; the spread the median absolute deviation (MAD) of log10,
-//     scaled by 1.4826 to estimate a normal sigma (robust: the outliers looked for do not
-//     widen it, as they would a standard deviation);
+//   * the centre is the median (of an even count, the upper middle); the spread the median
+//     absolute deviation (MAD) of log10, scaled by 1.4826 to estimate a normal sigma
+//     (core/numeric.h's robust_spread(); robust: the outliers looked for do not widen it, as
+//     they would a standard deviation);
 //   * a unit stands out on a parameter when its modified z-score
-//         M = 0.6745 (log10 x - median) / MAD
+//         M = 0.6745 (log10 x - median) / MAD = (log10 x - median) / (1.4826 MAD)
 //     exceeds `FleetOptions::outlier_z` in magnitude (3.5, B. Iglewicz and D. C. Hoaglin,
 //     "How to Detect and Handle Outliers", ASQC 1993: the rule's false-alarm rate for a
 //     normal population is about 5e-4 a unit). With a MAD of zero (half the units or more
