@@ -15,9 +15,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -290,32 +292,29 @@ py::dict generate(const std::string& preset, const std::optional<double>& rate_h
     model = p.model;
     fs = p.sample_rate_hz;
   }
+  // The model's fields by keyword, in the units of `foglab generate`'s options.
+  using Field = double& (*)(sim::ErrorModel&);
+  static const std::pair<std::string_view, Field> kTerms[] = {
+      {"N", [](sim::ErrorModel& m) -> double& { return m.noise.N; }},
+      {"B", [](sim::ErrorModel& m) -> double& { return m.noise.B; }},
+      {"K", [](sim::ErrorModel& m) -> double& { return m.noise.K; }},
+      {"R", [](sim::ErrorModel& m) -> double& { return m.noise.R; }},
+      {"Q", [](sim::ErrorModel& m) -> double& { return m.noise.Q; }},
+      {"gm_sigma", [](sim::ErrorModel& m) -> double& { return m.noise.gm_sigma; }},
+      {"gm_tc", [](sim::ErrorModel& m) -> double& { return m.noise.gm_tc; }},
+      {"bias", [](sim::ErrorModel& m) -> double& { return m.bias; }},
+      {"input_rate", [](sim::ErrorModel& m) -> double& { return m.input_rate; }},
+  };
   for (const auto& [key, value] : terms) {
     const std::string name = py::str(key);
-    const double v = value.cast<double>();
-    NoiseModel& n = model.noise;
-    if (name == "N")
-      n.N = v;
-    else if (name == "B")
-      n.B = v;
-    else if (name == "K")
-      n.K = v;
-    else if (name == "R")
-      n.R = v;
-    else if (name == "Q")
-      n.Q = v;
-    else if (name == "gm_sigma")
-      n.gm_sigma = v;
-    else if (name == "gm_tc")
-      n.gm_tc = v;
-    else if (name == "bias")
-      model.bias = v;
-    else if (name == "input_rate")
-      model.input_rate = v;
-    else {
-      throw UsageError("generate(" + name +
-                       "=...): expected N, B, K, R, Q, gm_sigma, gm_tc, bias or input_rate");
+    const auto* term = std::find_if(std::begin(kTerms), std::end(kTerms),
+                                    [&](const auto& t) { return t.first == name; });
+    if (term == std::end(kTerms)) {
+      std::string names;
+      for (const auto& t : kTerms) names += (names.empty() ? "" : ", ") + std::string(t.first);
+      throw UsageError("generate(" + name + "=...): expected one of " + names);
     }
+    term->second(model) = value.cast<double>();
   }
   if (rate_hz) fs = *rate_hz;
   if (!(fs > 0.0)) throw UsageError("generate(): give rate_hz (no preset sets it)");
