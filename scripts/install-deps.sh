@@ -28,9 +28,12 @@ if [ "${1:-}" = "--tests" ]; then
   # chromium opens the lab reports in the browser test (headless).
   # python3-rosbag with the sensor_msgs and std_msgs Python messages writes
   # the bags that tests/io/rosbag_test.cc reads (tests/io/make_imu_bag.py).
-  # python3-pytest runs the Python module's tests (python/tests).
+  # python3-pytest runs the Python module's tests (python/tests); python3-distributed
+  # (with python3-dask) runs foglab.dask's test on a LocalCluster. Users of foglab.dask
+  # install it the same way (docs/python.md).
   packages+=(octave fonts-freefont-otf chromium
-             python3-rosbag python3-sensor-msgs python3-std-msgs python3-pytest)
+             python3-rosbag python3-sensor-msgs python3-std-msgs python3-pytest
+             python3-dask python3-distributed)
 fi
 if [ "${1:-}" = "--tests" ] || [ "${1:-}" = "--fuzz" ]; then
   # clang-14 with its runtime (ASan, UBSan, libFuzzer) and OpenMP builds the

@@ -6,9 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "analysis_output.h"
 #include "cli_common.h"
 #include "foglab/io/reader.h"
+#include "foglab/io/rosbag.h"
 #include "foglab/model/analysis.h"
+#include "foglab/report/report.h"
 
 namespace foglab::cli {
 
@@ -41,6 +44,27 @@ void check_temperature_option(const AnalyzeCommand& c);
 /// The outputs checked against the input (never overwritten), the options
 /// parsed, --temp checked: what both forms do before reading.
 model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c);
+
+/// One channel analysed, and what its outputs need besides the analysis.
+struct ChannelAnalysis {
+  model::AnalysisResult result;
+  AnalysisJsonInput json_input;
+  report::ReportInput report_input;
+};
+
+/// `analyze`'s one-channel form on a loaded `series`: its temperature read
+/// (when `read_temperature`; a ROS bag has none) and paired, the analysis,
+/// and the inputs of the JSON and the report (with the record's preview
+/// for the time plots when `preview`). Notes go through note().
+ChannelAnalysis analyse_series(const AnalyzeCommand& c, io::Series series,
+                               const model::AnalysisOptions& options, bool preview,
+                               bool read_temperature);
+
+/// Axis `name` (gx .. az, io::kImuChannels) of a ROS bag read whole, as
+/// a Series in foglab's units (deg/h, m/s^2); its samples are moved out of
+/// `record`. `rate_from_option`: --fs set the rate.
+io::Series bag_axis_series(io::ImuRecord& record, const std::string& name, const std::string& path,
+                           bool rate_from_option);
 
 /// -1 for "auto", else 0..3 (UsageError otherwise).
 int parse_temp_degree(const std::string& text);

@@ -30,6 +30,7 @@ std::unique_ptr<CommandLine> make_command_line() {
     c->commands.emplace_back(app.get_subcommands({})[before], std::move(action));
   };
   add(register_analyze);
+  add(register_batch);
   add(register_allan);
   add(register_psd);
   add(register_generate);

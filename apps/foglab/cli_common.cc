@@ -24,6 +24,10 @@ void add_input_options(CLI::App& command, InputOptions& options, bool file_optio
                       "omitted: the built-in sample"
                     : "record: .mat, text (.csv/.tsv/.txt), .f32/.f64 or - for stdin");
   if (!file_optional) file->required();
+  add_reading_options(command, options);
+}
+
+void add_reading_options(CLI::App& command, InputOptions& options) {
   command.add_option("--channel", options.channel,
                      "variable (MAT) or column name/1-based index (text); default: the only "
                      "data channel, else Y1");
@@ -355,7 +359,21 @@ namespace {
 std::mutex stderr_lines;
 }  // namespace
 
+namespace {
+thread_local std::vector<std::string>* collected_notes = nullptr;
+}  // namespace
+
+CollectNotes::CollectNotes(std::vector<std::string>& into) : previous_(collected_notes) {
+  collected_notes = &into;
+}
+
+CollectNotes::~CollectNotes() { collected_notes = previous_; }
+
 void note(const std::string& text) {
+  if (collected_notes != nullptr) {
+    collected_notes->push_back(in_cli_terms(text));
+    return;
+  }
   const std::string line = "foglab: note: " + in_cli_terms(text) + "\n";
   const std::lock_guard<std::mutex> lock(stderr_lines);
   std::cerr << line;
@@ -363,7 +381,7 @@ void note(const std::string& text) {
 
 void progress(const std::string& step) {
   static const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (!terminal) return;
+  if (!terminal || collected_notes != nullptr) return;
   const std::lock_guard<std::mutex> lock(stderr_lines);
   std::cerr << "foglab: " << step << " ...\n";
 }

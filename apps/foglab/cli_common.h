@@ -51,6 +51,8 @@ io::ReadOptions read_options(const InputOptions& options);
 /// Adds FILE and --channel/--fs/--format/--units/--time/--decimal-comma/
 /// --max-samples to `command`.
 void add_input_options(CLI::App& command, InputOptions& options, bool file_optional);
+/// The same without FILE (a command that reads several files).
+void add_reading_options(CLI::App& command, InputOptions& options);
 
 /// --taus parsed; a UsageError names the option and, when given, `path`.
 stats::TauGrid parse_taus_option(const std::string& text, const std::string& path);
@@ -128,5 +130,19 @@ void note(const std::string& text);
 /// Announces a long step on stderr ("foglab: reading ..."), only when stderr
 /// is a terminal; nothing when it is redirected.
 void progress(const std::string& step);
+
+/// While one lives, note() on its thread adds the note (in the CLI's
+/// terms) to `into` instead of printing it, and progress() is silent:
+/// batch's workers keep each unit's notes with the unit. Nests.
+class CollectNotes {
+ public:
+  explicit CollectNotes(std::vector<std::string>& into);
+  ~CollectNotes();
+  CollectNotes(const CollectNotes&) = delete;
+  CollectNotes& operator=(const CollectNotes&) = delete;
+
+ private:
+  std::vector<std::string>* previous_;
+};
 
 }  // namespace foglab::cli

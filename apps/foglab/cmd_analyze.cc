@@ -143,12 +143,6 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   return {t.channel, std::move(t.values)};
 }
 
-namespace {
-
-// ---- the command ---------------------------------------------------------
-
-}  // namespace
-
 model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
   const RunPath inputs[] = {{"FILE", c.input.path}};
   const RunPath outputs[] = {{"--json", c.json_path},
@@ -163,18 +157,13 @@ model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
   return options;
 }
 
-namespace {
-
-void run(const AnalyzeCommand& c) {
-  if (const auto channels = imu_channels(c)) {
-    run_imu_analysis(c, *channels);
-    return;
-  }
-  const model::AnalysisOptions options = checked_analysis_options(c);
-
-  io::Series series = load_input(c.input);
+ChannelAnalysis analyse_series(const AnalyzeCommand& c, io::Series series,
+                               const model::AnalysisOptions& options, bool preview,
+                               bool read_temperature) {
+  ChannelAnalysis a;
   std::vector<std::string> notes;
-  Temperature temperature = load_temperature(c, series, notes);
+  Temperature temperature;
+  if (read_temperature) temperature = load_temperature(c, series, notes);
   if (temperature.channel.empty() && c.temp_degree != "auto") {
     const std::string text =
         fmt::format("--temp-degree {} ignored: there is no temperature", c.temp_degree);
@@ -186,37 +175,53 @@ void run(const AnalyzeCommand& c) {
       temperature.channel.empty() ? compensated_mean(series.values) : NAN;
 
   // The report's time plots need the record, which the analysis consumes.
-  report::ReportInput report_input;
+  report::ReportInput& report_input = a.report_input;
   report_input.file_name = series.path;
   report_input.channel = series.channel;
   report_input.temperature_channel = temperature.channel;
   report_input.input_unit = c.input.units;
   report_input.notes = notes;
   if (temperature.channel.empty()) report_input.record_mean_deg_h = record_mean_deg_h;
-  if (!c.report_path.empty()) {
+  if (preview) {
     report_input.preview = report::preview_record(series.values, temperature.values_c,
                                                   series.sample_rate_hz, 2000, series.gaps);
   }
 
   progress(fmt::format("analysing {} samples", samples));
-  model::AnalysisResult result = naming_the_input(series, [&] {
+  a.result = naming_the_input(series, [&] {
     return model::analyze(series.values, temperature.values_c, series.sample_rate_hz, options,
                           series.gaps);
   });
   series.values.clear();
   series.values.shrink_to_fit();
 
-  // Render everything first, then write: a failure never leaves half the outputs.
-  AnalysisJsonInput json_input;
+  AnalysisJsonInput& json_input = a.json_input;
   json_input.input = input_json(series);
   json_input.temperature_channel = temperature.channel;
   json_input.record_mean_deg_h = record_mean_deg_h;
   json_input.units = c.input.units;
   json_input.temp_degree = c.temp_degree;
   json_input.taus = c.taus;
-  json_input.notes = notes;
+  json_input.notes = std::move(notes);
+  return a;
+}
+
+namespace {
+
+void run(const AnalyzeCommand& c) {
+  if (const auto channels = imu_channels(c)) {
+    run_imu_analysis(c, *channels);
+    return;
+  }
+  const model::AnalysisOptions options = checked_analysis_options(c);
+  const ChannelAnalysis a =
+      analyse_series(c, load_input(c.input), options, !c.report_path.empty(), true);
+  const model::AnalysisResult& result = a.result;
+  const report::ReportInput& report_input = a.report_input;
+
+  // Render everything first, then write: a failure never leaves half the outputs.
   const std::string json =
-      c.json_path.empty() ? "" : json_text(analysis_json(result, json_input, options));
+      c.json_path.empty() ? "" : json_text(analysis_json(result, a.json_input, options));
   const std::string csv = c.csv_path.empty() ? "" : analysis_csv(result);
   std::string html, yaml;
   if (!c.report_path.empty()) {

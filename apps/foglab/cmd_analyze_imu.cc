@@ -188,6 +188,33 @@ std::string bag_timing_note(const io::ImuRecord& bag) {
 
 }  // namespace
 
+io::Series bag_axis_series(io::ImuRecord& record, const std::string& name, const std::string& path,
+                           bool rate_from_option) {
+  const auto axis = static_cast<std::size_t>(
+      std::find(io::kImuChannels.begin(), io::kImuChannels.end(), name) - io::kImuChannels.begin());
+  if (axis >= io::kImuChannels.size()) {
+    throw UsageError(fmt::format("'{}': a ROS bag's IMU channels are {}; there is no '{}'", path,
+                                 io::list_names({io::kImuChannels.begin(), io::kImuChannels.end()}),
+                                 name));
+  }
+  std::vector<double>& source =
+      axis < 3 ? record.angular_velocity_rad_s[axis] : record.linear_acceleration_m_s2[axis - 3];
+  io::Series series;
+  series.path = path;
+  series.channel = name;
+  series.values = std::move(source);
+  const double factor =
+      to_internal_unit(axis < 3 ? SampleUnit::rad_per_second : SampleUnit::m_per_s2);
+  for (double& v : series.values) v *= factor;
+  series.sample_rate_hz = record.sample_rate_hz;
+  series.sample_rate_source =
+      rate_from_option ? io::SampleRateSource::option : io::SampleRateSource::time_channel;
+  series.sample_rate_channel = "header.stamp";
+  series.gaps = record.gaps;
+  series.start_time_s = record.start_time_s;
+  return series;
+}
+
 std::optional<std::vector<std::string>> imu_channels(const AnalyzeCommand& c) {
   const bool bag = is_bag(c);
   const UnitSpec spec = parse_unit_spec(c.input.units, c.input.path);
@@ -263,22 +290,7 @@ void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& n
     model::RecordToAnalyse out;
     io::Series series;
     if (bag) {
-      const auto axis = static_cast<std::size_t>(
-          std::find(io::kImuChannels.begin(), io::kImuChannels.end(), run.name) -
-          io::kImuChannels.begin());
-      std::vector<double>& source = axis < 3 ? record->angular_velocity_rad_s[axis]
-                                             : record->linear_acceleration_m_s2[axis - 3];
-      series.path = c.input.path;
-      series.channel = run.name;
-      series.values = std::move(source);
-      const double factor = to_internal_unit(run.unit);
-      for (double& v : series.values) v *= factor;
-      series.sample_rate_hz = record->sample_rate_hz;
-      series.sample_rate_source = c.input.sample_rate_hz ? io::SampleRateSource::option
-                                                         : io::SampleRateSource::time_channel;
-      series.sample_rate_channel = "header.stamp";
-      series.gaps = record->gaps;
-      series.start_time_s = record->start_time_s;
+      series = bag_axis_series(*record, run.name, c.input.path, c.input.sample_rate_hz.has_value());
     } else {
       InputOptions in = c.input;
       in.units = "deg/h";  // set per channel below

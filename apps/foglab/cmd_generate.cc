@@ -20,6 +20,7 @@
 #include "foglab/io/rosbag.h"
 #include "foglab/io/writer.h"
 #include "foglab/report/imu.h"
+#include "foglab/sim/fleet.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/sim/presets.h"
@@ -51,6 +52,13 @@ struct GenerateCommand {
   bool imu = false;
   std::optional<double> accel_N, accel_B, accel_K;
   std::optional<double> stamp_jitter_s;
+  // A fleet (--fleet, sim/fleet.h).
+  std::optional<int> fleet;
+  double fleet_spread = 0.1;
+  bool fleet_spread_given = false;
+  std::size_t fleet_outliers = 0;
+  double outlier_factor = 5.0;
+  bool outlier_factor_given = false;
 };
 
 // `text` split at `separator` into numbers, naming the option and what was
@@ -412,13 +420,183 @@ void run_imu(const GenerateCommand& c) {
   }
 }
 
+/// The recording of `model` written to `out` with the seed and `stream`:
+/// its truth document, and the sentence that says what was written.
+struct Written {
+  nlohmann::json truth;
+  std::string summary;
+};
+
+Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
+                        const sim::GeneratorOptions& generator, std::int64_t samples,
+                        const std::string& out, const std::string& shown_out) {
+  sim::GeneratorOptions options = generator;
+  const OutFormat format = format_of(out);
+  const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
+  const double t_ref = temperature.reference_c(options.duration_s);
+
+  std::vector<std::string> variables;
+  const bool raw = format == OutFormat::f32 || format == OutFormat::f64;
+  if (raw && !model.output.dropouts.empty()) {
+    throw UsageError(
+        fmt::format("--drop: '{}' is a raw file, which has no time column to show "
+                    "the gaps; write a .mat or .csv file",
+                    shown_out));
+  }
+  if (raw) {
+    // streamed block by block: constant memory whatever the length
+    io::RawFileWriter writer(out, format == OutFormat::f32 ? io::RawType::f32 : io::RawType::f64);
+    sim::generate(model, temperature, options,
+                  [&](const sim::Block& block) { writer.append(block.rate_deg_h); });
+    writer.commit();
+    variables = {"rate"};
+  } else {
+    sim::Recording rec = sim::generate(model, temperature, options);
+    sim::remove_dropouts(rec, model.output);
+    if (format == OutFormat::mat) {
+      const double f = rec.sample_rate_hz;
+      const std::vector<io::NamedVector> vars = {
+          {"f", {&f, 1}}, {"t", rec.time_s}, {"Y1", rec.rate_deg_h}, {"T1", rec.temperature_c}};
+      io::write_mat(out, vars);
+      variables = {"f", "t", "Y1", "T1"};
+    } else {
+      const std::vector<io::NamedVector> cols = {
+          {"t", rec.time_s}, {"rate", rec.rate_deg_h}, {"temperature", rec.temperature_c}};
+      const std::vector<std::string> comments = {
+          fmt::format("foglab {} generate: t [s], rate [deg/h], temperature [degC]; {} Hz, "
+                      "seed {}, stream {}",
+                      version(), rec.sample_rate_hz, options.seed, options.stream)};
+      io::write_csv(out, cols, comments);
+      variables = {"t", "rate", "temperature"};
+    }
+  }
+
+  const AdevMinimum bi =
+      adev_minimum(model.noise, 1.0 / options.sample_rate_hz,
+                   std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
+  const double arw = arw_deg_sqrt_h(model.noise.N);
+  const ClassVerdict verdict = classify(bi.adev_deg_h, arw);
+  nlohmann::json temp = {{"spec", c.temperature},
+                         {"kind", std::string(sim::to_string(temperature.kind))},
+                         {"start_c", temperature.start_c},
+                         {"span_c", temperature.span_c},
+                         {"jitter_c", temperature.jitter_c},
+                         {"reference_c", t_ref}};
+  Written w;
+  w.truth = {
+      {"generator", "foglab generate"},
+      {"foglab_version", std::string(version())},
+      {"preset", c.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.preset)},
+      {"model", model_json(model)},
+      {"sensor_output", sensor_output_json(model.output, options, samples)},
+      {"units", units_json()},
+      {"arw_deg_per_sqrt_h", arw},
+      {"temperature", temp},
+      {"sample_rate_hz", options.sample_rate_hz},
+      {"duration_s", options.duration_s},
+      {"samples", samples},
+      {"seed", options.seed},
+      {"stream", options.stream},
+      {"output",
+       {{"path", shown_out}, {"format", std::string(to_string(format))}, {"variables", variables}}},
+      {"theory",
+       {{"bias_instability_deg_h", bi.adev_deg_h},
+        {"bias_instability_tau_s", bi.tau_s},
+        {"bias_instability_at_range_edge", bi.at_range_edge},
+        {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
+        {"accuracy_class", std::string(to_string(verdict.accuracy_class))},
+        {"class_decided_by", std::string(to_string(verdict.decided_by))}}}};
+  w.summary = fmt::format(
+      "wrote '{}': {} samples at {} Hz ({} h), seed {}, stream {}; model ADEV minimum "
+      "{:.4g} deg/h at {:.4g} s, ARW {:.4g} deg/sqrt(h), class {}",
+      shown_out, samples, options.sample_rate_hz, *c.hours, options.seed, options.stream,
+      bi.adev_deg_h, bi.tau_s, arw, to_string(verdict.accuracy_class));
+  return w;
+}
+
+/// `generate --fleet`: a folder of units scattered about the model (sim/fleet.h),
+/// DIR/NAME_001.EXT ..., and DIR/fleet_truth.json.
+void run_fleet(const GenerateCommand& c, const sim::ErrorModel& nominal,
+               const sim::GeneratorOptions& options, std::int64_t samples) {
+  if (!c.truth.empty()) {
+    throw UsageError(
+        "--truth: a fleet's truth is written beside its units (fleet_truth.json in --out's "
+        "folder)");
+  }
+  const std::filesystem::path pattern(c.out);
+  if (pattern.stem().empty() || !pattern.has_parent_path()) {
+    throw UsageError(fmt::format(
+        "--out '{}': with --fleet, --out is FOLDER/NAME.EXT (e.g. fleet/unit.mat): the folder "
+        "to write, the units' name and their type",
+        c.out));
+  }
+  (void)format_of(c.out);
+  sim::FleetSpec spec;
+  spec.units = static_cast<std::size_t>(*c.fleet);
+  spec.spread_log10 = c.fleet_spread;
+  spec.outliers = c.fleet_outliers;
+  spec.outlier_factor = c.outlier_factor;
+  spec.seed = c.seed;
+  const std::vector<sim::FleetMember> fleet = sim::draw_fleet(nominal, spec);
+
+  OutputFolder folder("--out", pattern.parent_path().string());
+  const int digits = std::max(3, static_cast<int>(std::to_string(fleet.size()).size()));
+  nlohmann::json units = nlohmann::json::array();
+  nlohmann::json outliers = nlohmann::json::array();
+  for (std::size_t k = 0; k < fleet.size(); ++k) {
+    const std::string name = fmt::format("{}_{:0{}}", pattern.stem().string(), k + 1, digits);
+    const std::string file = name + pattern.extension().string();
+    progress(fmt::format("[{}/{}] generating {}", k + 1, fleet.size(), file));
+    sim::GeneratorOptions unit_options = options;
+    unit_options.stream = c.stream + k;
+    Written w = write_recording(c, fleet[k].model, unit_options, samples, folder.file(file),
+                                folder.final_file(file));
+    const nlohmann::json outlier = fleet[k].outlier_parameter.empty()
+                                       ? nlohmann::json(nullptr)
+                                       : nlohmann::json(fleet[k].outlier_parameter);
+    if (!fleet[k].outlier_parameter.empty()) {
+      outliers.push_back({{"unit", name}, {"parameter", fleet[k].outlier_parameter}});
+    }
+    w.truth["unit"] = name;
+    w.truth["outlier_parameter"] = outlier;
+    units.push_back(std::move(w.truth));
+  }
+  const nlohmann::json truth = {
+      {"generator", "foglab generate --fleet"},
+      {"foglab_version", std::string(version())},
+      {"preset", c.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.preset)},
+      {"nominal_model", model_json(nominal)},
+      {"units_count", fleet.size()},
+      {"spread_log10", spec.spread_log10},
+      {"outlier_factor", spec.outlier_factor},
+      {"seed", spec.seed},
+      {"about",
+       "each unit's N, B, K, R, Q, gm_sigma are the nominal ones times independent factors "
+       "10^(spread_log10 z), z standard normal: the fleet's median of each is the nominal value "
+       "and its log10 has standard deviation spread_log10; an outlier has one of N, B, K "
+       "multiplied further by outlier_factor"},
+      {"outliers", outliers},
+      {"units", units}};
+  write_text_file(folder.file("fleet_truth.json"), json_text(truth));
+  folder.commit();
+  std::cout << fmt::format(
+      "wrote {} units to '{}' ({} samples each at {} Hz, {} h; spread {} in log10, {} "
+      "outlier(s) x{}) and their truth, fleet_truth.json\n",
+      fleet.size(), pattern.parent_path().string(), samples, options.sample_rate_hz, *c.hours,
+      spec.spread_log10, spec.outliers, spec.outlier_factor);
+}
+
 void run(const GenerateCommand& c) {
   if (c.imu) {
+    if (c.fleet) throw UsageError("--fleet and --imu: a fleet is of single gyroscopes");
     run_imu(c);
     return;
   }
   if (c.accel_N || c.accel_B || c.accel_K || c.stamp_jitter_s) {
     throw UsageError("--accel-N, --accel-B, --accel-K and --stamp-jitter need --imu");
+  }
+  if (!c.fleet && (c.fleet_outliers != 0 || c.fleet_spread_given || c.outlier_factor_given)) {
+    throw UsageError("--spread, --outliers and --outlier-factor need --fleet");
   }
   check_generate_paths(c);
   sim::ErrorModel model;
@@ -433,92 +611,15 @@ void run(const GenerateCommand& c) {
 
   std::int64_t samples = 0;
   const sim::GeneratorOptions options = generator_options(c, preset_rate, samples);
-  const OutFormat format = format_of(c.out);
-  const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
-  const double t_ref = temperature.reference_c(options.duration_s);
+  if (c.fleet) {
+    run_fleet(c, model, options, samples);
+    return;
+  }
   progress(fmt::format("generating {} samples ({} h at {} Hz)", samples, *c.hours,
                        options.sample_rate_hz));
-
-  std::vector<std::string> variables;
-  const bool raw = format == OutFormat::f32 || format == OutFormat::f64;
-  if (raw && !model.output.dropouts.empty()) {
-    throw UsageError(
-        fmt::format("--drop: '{}' is a raw file, which has no time column to show "
-                    "the gaps; write a .mat or .csv file",
-                    c.out));
-  }
-  if (raw) {
-    // streamed block by block: constant memory whatever the length
-    io::RawFileWriter writer(c.out, format == OutFormat::f32 ? io::RawType::f32 : io::RawType::f64);
-    sim::generate(model, temperature, options,
-                  [&](const sim::Block& block) { writer.append(block.rate_deg_h); });
-    writer.commit();
-    variables = {"rate"};
-  } else {
-    sim::Recording rec = sim::generate(model, temperature, options);
-    sim::remove_dropouts(rec, model.output);
-    if (format == OutFormat::mat) {
-      const double f = rec.sample_rate_hz;
-      const std::vector<io::NamedVector> vars = {
-          {"f", {&f, 1}}, {"t", rec.time_s}, {"Y1", rec.rate_deg_h}, {"T1", rec.temperature_c}};
-      io::write_mat(c.out, vars);
-      variables = {"f", "t", "Y1", "T1"};
-    } else {
-      const std::vector<io::NamedVector> cols = {
-          {"t", rec.time_s}, {"rate", rec.rate_deg_h}, {"temperature", rec.temperature_c}};
-      const std::vector<std::string> comments = {
-          fmt::format("foglab {} generate: t [s], rate [deg/h], temperature [degC]; {} Hz, "
-                      "seed {}, stream {}",
-                      version(), rec.sample_rate_hz, options.seed, options.stream)};
-      io::write_csv(c.out, cols, comments);
-      variables = {"t", "rate", "temperature"};
-    }
-  }
-
-  const AdevMinimum bi =
-      adev_minimum(model.noise, 1.0 / options.sample_rate_hz,
-                   std::max(1.0 / options.sample_rate_hz, options.duration_s / 10.0));
-  const double arw = arw_deg_sqrt_h(model.noise.N);
-  const ClassVerdict verdict = classify(bi.adev_deg_h, arw);
-  if (!c.truth.empty()) {
-    nlohmann::json temp = {{"spec", c.temperature},
-                           {"kind", std::string(sim::to_string(temperature.kind))},
-                           {"start_c", temperature.start_c},
-                           {"span_c", temperature.span_c},
-                           {"jitter_c", temperature.jitter_c},
-                           {"reference_c", t_ref}};
-    const nlohmann::json truth = {
-        {"generator", "foglab generate"},
-        {"foglab_version", std::string(version())},
-        {"preset", c.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.preset)},
-        {"model", model_json(model)},
-        {"sensor_output", sensor_output_json(model.output, options, samples)},
-        {"units", units_json()},
-        {"arw_deg_per_sqrt_h", arw},
-        {"temperature", temp},
-        {"sample_rate_hz", options.sample_rate_hz},
-        {"duration_s", options.duration_s},
-        {"samples", samples},
-        {"seed", options.seed},
-        {"stream", options.stream},
-        {"output",
-         {{"path", c.out}, {"format", std::string(to_string(format))}, {"variables", variables}}},
-        {"theory",
-         {{"bias_instability_deg_h", bi.adev_deg_h},
-          {"bias_instability_tau_s", bi.tau_s},
-          {"bias_instability_at_range_edge", bi.at_range_edge},
-          {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
-          {"accuracy_class", std::string(to_string(verdict.accuracy_class))},
-          {"class_decided_by", std::string(to_string(verdict.decided_by))}}}};
-    write_text_file(c.truth, json_text(truth));
-  }
-  if (c.truth != "-") {
-    std::cout << fmt::format(
-        "wrote '{}': {} samples at {} Hz ({} h), seed {}, stream {}; model ADEV minimum "
-        "{:.4g} deg/h at {:.4g} s, ARW {:.4g} deg/sqrt(h), class {}\n",
-        c.out, samples, options.sample_rate_hz, *c.hours, options.seed, options.stream,
-        bi.adev_deg_h, bi.tau_s, arw, to_string(verdict.accuracy_class));
-  }
+  const Written w = write_recording(c, model, options, samples, c.out, c.out);
+  if (!c.truth.empty()) write_text_file(c.truth, json_text(w.truth));
+  if (c.truth != "-") std::cout << w.summary << "\n";
 }
 
 }  // namespace
@@ -583,6 +684,27 @@ std::function<void()> register_generate(CLI::App& app) {
                   "--imu: accelerometer bias random walk K [m/s^2/sqrt(s)] (= m/s^3/sqrt(Hz))");
   cmd->add_option("--stamp-jitter", c->stamp_jitter_s,
                   "--imu to a .bag: uniform jitter of the message stamps, +- this many s");
+  cmd->add_option("--fleet", c->fleet,
+                  "a fleet of this many units scattered about the model, one file each: --out "
+                  "FOLDER/NAME.EXT writes FOLDER/NAME_001.EXT ... and FOLDER/fleet_truth.json")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option_function<double>(
+      "--spread",
+      [c](double v) {
+        c->fleet_spread = v;
+        c->fleet_spread_given = true;
+      },
+      "--fleet: sigma of log10 of each noise coefficient across the units (0.1: a factor "
+      "1.26) [default: 0.1]");
+  cmd->add_option("--outliers", c->fleet_outliers,
+                  "--fleet: units with one of N, B, K multiplied by --outlier-factor");
+  cmd->add_option_function<double>(
+      "--outlier-factor",
+      [c](double v) {
+        c->outlier_factor = v;
+        c->outlier_factor_given = true;
+      },
+      "--fleet: what an outlier's coefficient is multiplied by [default: 5]");
   return [c] { run(*c); };
 }
 

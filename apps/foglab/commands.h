@@ -9,6 +9,7 @@ namespace foglab::cli {
 /// Each registers its subcommand on `app` and returns the action to run when
 /// the subcommand was chosen.
 std::function<void()> register_analyze(CLI::App& app);
+std::function<void()> register_batch(CLI::App& app);
 std::function<void()> register_allan(CLI::App& app);
 std::function<void()> register_psd(CLI::App& app);
 std::function<void()> register_generate(CLI::App& app);

@@ -42,10 +42,14 @@ void restart_with_malloc_tunables(char** argv) {
 int main(int argc, char** argv) {
   // Under an address-space limit (`ulimit -v`), glibc's per-thread malloc
   // arenas (64 MiB of address space each) run out long before memory
-  // does: lab2's threads failed to start under 500 MB. Two arenas suffice.
+  // does: lab2's threads failed to start under 500 MB. And a thread whose
+  // arena cannot be made gets every block from mmap and gives it back with
+  // munmap, two system calls an allocation: under 150 MB the noise fit ran
+  // for minutes instead of a second. One arena, the main heap, shared by
+  // every thread, grows to the limit and then fails plainly.
   rlimit limit{};
   if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
-    ::mallopt(M_ARENA_MAX, 2);
+    ::mallopt(M_ARENA_MAX, 1);
   } else {
     restart_with_malloc_tunables(argv);
   }

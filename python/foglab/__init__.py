@@ -13,6 +13,10 @@ The numbers come from foglab's C++ library (the module ``foglab._foglab``), the 
   its truth, bit for bit those of ``foglab generate``;
 - ``read(path, channel="", rate_hz=None, units="deg/h")``: a channel of a MAT, text or raw
   file, or a ROS bag's six IMU channels;
+- ``batch(inputs, out, **options)``: a fleet of recordings analysed in parallel and its report,
+  as ``foglab batch`` does it (docs/cli.md#batch); returns the fleet.json document;
+- ``dask.batch(client, inputs, out, **options)``: the same batch with each recording analysed
+  on a Dask cluster (``foglab.dask``, docs/python.md);
 - ``compat``: AllanTools's functions and return values (``foglab.compat.oadev(...)``).
 
 Errors: a bad argument raises ``ValueError``, unusable data ``foglab.DataError``, each with
@@ -25,6 +29,7 @@ from ._foglab import (  # noqa: F401
     __version__,
     allan,
     analyze,
+    batch,
     generate,
     max_factor,
     psd,
@@ -32,5 +37,5 @@ from ._foglab import (  # noqa: F401
 )
 from . import compat  # noqa: F401
 
-__all__ = ["AllanResult", "DataError", "allan", "analyze", "compat", "generate", "max_factor",
-           "psd", "read", "__version__"]
+__all__ = ["AllanResult", "DataError", "allan", "analyze", "batch", "compat", "generate",
+           "max_factor", "psd", "read", "__version__"]

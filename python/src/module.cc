@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "analysis_output.h"
+#include "batch.h"
 #include "cli_common.h"
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
@@ -338,6 +339,98 @@ py::dict generate(const std::string& preset, const std::optional<double>& rate_h
   return d;
 }
 
+// ---- a fleet (foglab batch) -----------------------------------------------------------
+
+// The batch options of the keywords: those of `foglab batch` (docs/cli.md), snake_case.
+cli::BatchCommand batch_command(const py::kwargs& options) {
+  cli::BatchCommand c;
+  for (const auto& [key, value] : options) {
+    const std::string k = py::str(key);
+    if (value.is_none()) continue;
+    if (k == "channel") {
+      c.analyze.input.channel = value.cast<std::string>();
+    } else if (k == "rate_hz") {
+      c.analyze.input.sample_rate_hz = value.cast<double>();
+    } else if (k == "units") {
+      c.analyze.input.units = value.cast<std::string>();
+      c.analyze.input.units_given = true;
+    } else if (k == "format") {
+      c.analyze.input.format = value.cast<std::string>();
+    } else if (k == "time") {
+      c.analyze.input.time_channel = value.cast<std::string>();
+    } else if (k == "decimal_comma") {
+      c.analyze.input.decimal_comma = value.cast<bool>();
+    } else if (k == "topic") {
+      c.analyze.topic = value.cast<std::string>();
+    } else if (k == "temp") {
+      c.analyze.temp_channel = value.cast<std::string>();
+    } else if (k == "temp_degree") {
+      c.analyze.temp_degree = py::str(value);
+    } else if (k == "taus") {
+      c.analyze.taus = value.cast<std::string>();
+    } else if (k == "workers") {
+      c.workers = value.cast<unsigned>();
+    } else if (k == "outlier_z") {
+      c.outlier_z = value.cast<double>();
+    } else if (k == "redo") {
+      c.redo = value.cast<bool>();
+    } else if (k == "plots") {
+      c.no_plots = !value.cast<bool>();
+    } else {
+      throw UsageError("unknown option '" + k +
+                       "'; the options are channel, rate_hz, units, format, time, "
+                       "decimal_comma, topic, temp, temp_degree, taus, workers, outlier_z, redo, "
+                       "plots");
+    }
+  }
+  return c;
+}
+
+py::list batch_files(const std::vector<std::string>& inputs) {
+  py::list out;
+  for (const cli::BatchFile& f : cli::batch_files(inputs))
+    out.append(py::make_tuple(f.path, f.name));
+  return out;
+}
+
+// One file's units analysed here, nothing written (a Dask task): a dict per unit.
+py::list batch_file_units(const std::string& path, const std::string& name,
+                          const py::kwargs& options) {
+  const cli::BatchCommand c = batch_command(options);
+  std::vector<cli::UnitOutcome> units;
+  {
+    py::gil_scoped_release release;
+    const model::AnalysisOptions analysis = cli::batch_analysis_options(c, path);
+    units = cli::batch_file_units(c, {path, name}, analysis, "");
+  }
+  py::list out;
+  for (const cli::UnitOutcome& u : units) {
+    py::dict d;
+    d["name"] = u.name;
+    d["channel"] = u.channel;
+    d["input"] = u.input;
+    d["json"] = u.json;
+    d["error"] = u.error;
+    d["exit_code"] = u.exit_code;
+    out.append(d);
+  }
+  return out;
+}
+
+// The whole batch, as `foglab batch` runs it: the fleet.json document.
+py::object batch(const std::vector<std::string>& inputs, const std::string& out,
+                 const py::kwargs& options) {
+  cli::BatchCommand c = batch_command(options);
+  c.inputs = inputs;
+  c.out = out;
+  std::string text;
+  {
+    py::gil_scoped_release release;
+    text = cli::run_batch(c).fleet_json;
+  }
+  return py::module_::import("json").attr("loads")(text);
+}
+
 }  // namespace
 }  // namespace foglab::python
 
@@ -404,6 +497,17 @@ PYBIND11_MODULE(_foglab, m) {
       "A synthetic static recording (the generator of `foglab generate`): a preset and/or the "
       "terms N, B, K, R, Q, gm_sigma, gm_tc, bias, input_rate as keywords (deg/h units); "
       "returns time_s, rate_deg_h, temperature_c and the truth.");
+  m.def("batch", &batch, py::arg("inputs"), py::arg("out"),
+        "A fleet, as `foglab batch INPUTS --out OUT` analyses it (docs/cli.md#batch): files, "
+        "folders or globs; options channel, rate_hz, units, format, time, decimal_comma, topic, "
+        "temp, temp_degree, taus, workers, outlier_z, redo, plots. Writes OUT/units/*.json and "
+        "OUT/fleet.{json,csv,md,html}; returns the fleet.json document. A record that fails is "
+        "listed under 'failures', not raised.");
+  m.def("_batch_files", &batch_files, py::arg("inputs"),
+        "The files of a batch's inputs with their units' names: [(path, name)].");
+  m.def("_batch_file_units", &batch_file_units, py::arg("path"), py::arg("name"),
+        "One file's units analysed (nothing written): [{name, channel, input, json, error, "
+        "exit_code}].");
   m.def("analyze", &analyze, py::arg("rate"), py::arg("rate_hz"),
         py::arg("temperature") = py::none(), py::arg("units") = "deg/h",
         py::arg("channel") = "rate",

@@ -479,39 +479,26 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   return r;
 }
 
-std::vector<AnalysisResult> analyze_records(std::size_t count,
-                                            const std::function<RecordToAnalyse(std::size_t)>& load,
-                                            const AnalysisOptions& options, unsigned workers,
-                                            const std::function<void(std::size_t)>& done,
-                                            const std::function<std::string(std::size_t)>& label) {
-  std::vector<AnalysisResult> results(count);
-  if (count == 0) return results;
+std::vector<std::exception_ptr> run_work_queue(std::size_t count,
+                                               const std::function<void(std::size_t)>& job,
+                                               unsigned workers, OnFailure on_failure) {
+  std::vector<std::exception_ptr> errors(count);
+  if (count == 0) return errors;
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   if (workers == 0) workers = cores;
   workers = static_cast<unsigned>(std::min<std::size_t>(workers, count));
   // Each worker's OpenMP teams get its share of the cores (at least one).
   const int team = static_cast<int>(std::max(1u, cores / workers));
 
-  std::vector<std::exception_ptr> errors(count);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
   auto work = [&] {
     const int before = omp_get_max_threads();
     omp_set_num_threads(team);  // this thread's teams only
-    for (std::size_t k = next++; k < count && !failed; k = next++) {
+    for (std::size_t k = next++; k < count; k = next++) {
+      if (failed && on_failure == OnFailure::stop) break;
       try {
-        RecordToAnalyse record = load(k);
-        results[k] = analyze(record.rate_deg_h, record.temperature_c, record.sample_rate_hz,
-                             options, record.gaps);
-        if (done) done(k);
-      } catch (const UsageError& e) {
-        errors[k] = label ? std::make_exception_ptr(UsageError(label(k) + ": " + e.what()))
-                          : std::current_exception();
-        failed = true;
-      } catch (const DataError& e) {
-        errors[k] = label ? std::make_exception_ptr(DataError(label(k) + ": " + e.what()))
-                          : std::current_exception();
-        failed = true;
+        job(k);
       } catch (...) {
         errors[k] = std::current_exception();
         failed = true;
@@ -523,7 +510,30 @@ std::vector<AnalysisResult> analyze_records(std::size_t count,
   for (unsigned w = 1; w < workers; ++w) threads.emplace_back(work);
   work();
   for (std::thread& t : threads) t.join();
-  for (const std::exception_ptr& e : errors) {
+  return errors;
+}
+
+std::vector<AnalysisResult> analyze_records(std::size_t count,
+                                            const std::function<RecordToAnalyse(std::size_t)>& load,
+                                            const AnalysisOptions& options, unsigned workers,
+                                            const std::function<void(std::size_t)>& done,
+                                            const std::function<std::string(std::size_t)>& label) {
+  std::vector<AnalysisResult> results(count);
+  auto job = [&](std::size_t k) {
+    try {
+      RecordToAnalyse record = load(k);
+      results[k] = analyze(record.rate_deg_h, record.temperature_c, record.sample_rate_hz, options,
+                           record.gaps);
+    } catch (const UsageError& e) {
+      if (label) throw UsageError(label(k) + ": " + e.what());
+      throw;
+    } catch (const DataError& e) {
+      if (label) throw DataError(label(k) + ": " + e.what());
+      throw;
+    }
+    if (done) done(k);
+  };
+  for (const std::exception_ptr& e : run_work_queue(count, job, workers, OnFailure::stop)) {
     if (e) std::rethrow_exception(e);
   }
   return results;

@@ -79,9 +79,16 @@ FleetSummary summarize_fleet(const std::vector<FleetUnit>& units,
       if (it == units[k].values.end() || !counts(it->second)) continue;
       // 0.6745 (x - median) / MAD, with 0.6745 = 1 / 1.4826: the distance in robust sigmas.
       const double z = (std::log10(it->second) - log_spread.centre) / log_spread.spread;
-      if (std::abs(z) > options.outlier_z) {
-        by_unit[k].push_back({units[k].name, name, it->second, z, it->second / p.median});
+      if (!(std::abs(z) > options.outlier_z)) continue;
+      // With its interval, beyond the limit only if the whole interval is.
+      const auto interval = units[k].ci95.find(name);
+      if (interval != units[k].ci95.end()) {
+        const double limit = std::pow(
+            10.0, log_spread.centre + std::copysign(options.outlier_z, z) * log_spread.spread);
+        const double near_end = z > 0 ? interval->second.first : interval->second.second;
+        if (std::isnan(near_end) || (z > 0 ? near_end <= limit : near_end >= limit)) continue;
       }
+      by_unit[k].push_back({units[k].name, name, it->second, z, it->second / p.median});
     }
   }
   for (auto& list : by_unit) {

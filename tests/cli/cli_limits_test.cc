@@ -33,7 +33,12 @@ namespace foglab {
 namespace {
 
 namespace fs = std::filesystem;
+using test::kUnderAddressSanitizer;
 using test::quote;
+using test::start_foglab;
+using test::temporaries;
+using test::wait_for;
+using test::wait_until;
 using ::testing::AnyOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -60,16 +65,6 @@ ShellRun shell(const std::string& script, const test::TempDir& dir) {
   return r;
 }
 
-// The names in `dir` that are foglab temporaries (".NAME.tmpPID").
-std::vector<std::string> temporaries(const fs::path& dir) {
-  std::vector<std::string> found;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    if (name.find(".tmp") != std::string::npos) found.push_back(e.path().string());
-  }
-  return found;
-}
-
 // Every file below `dir` with its content, for "unchanged" checks.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
   std::map<std::string, std::string> files;
@@ -81,20 +76,6 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
 }
 
 bool is_root() { return ::geteuid() == 0; }
-
-// AddressSanitizer reserves terabytes of address space for its shadow: an
-// address-space limit (`ulimit -v`) cannot be tested under it.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kUnderAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kUnderAddressSanitizer = true;
-#else
-constexpr bool kUnderAddressSanitizer = false;
-#endif
-#else
-constexpr bool kUnderAddressSanitizer = false;
-#endif
 
 // Whether this process may make a private mount namespace with a tmpfs.
 bool can_mount_tmpfs(const test::TempDir& dir) {
@@ -117,41 +98,6 @@ std::string make_record(const test::TempDir& dir, const std::string& name = "run
 }
 
 // ---- interruptions ---------------------------------------------------------
-
-// Starts `foglab ARGS` in the background; its standard error goes to `err`.
-pid_t start_foglab(const std::string& args, const fs::path& err) {
-  const std::string command =
-      "exec " + kFoglab + " " + args + " < /dev/null > /dev/null 2> " + quote(err);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  return pid;
-}
-
-int wait_for(pid_t pid) {
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-// Polls (1 ms) until `ready` holds or the process ends (left for
-// wait_for() to collect); true when it held.
-template <typename Ready>
-bool wait_until(pid_t pid, Ready ready) {
-  for (int i = 0; i < 60000; ++i) {
-    if (ready()) return true;
-    siginfo_t info{};
-    if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-        info.si_pid == pid) {
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return false;
-}
 
 TEST(CliInterrupt, ASignalMidWriteRemovesTheTemporaryAndExits128PlusSignal) {
   const test::TempDir dir;

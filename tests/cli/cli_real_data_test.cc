@@ -163,8 +163,9 @@ TEST(RealImu, ThreeAxesInOneRunGiveEachAxisItsOwnAnalysis) {
     EXPECT_EQ(z_in_all["noise_model"][p]["status"], z["noise_model"][p]["status"]);
     const json &a = z_in_all["noise_model"][p]["value"], &b = z["noise_model"][p]["value"];
     ASSERT_EQ(a.is_null(), b.is_null());
-    if (!a.is_null())
+    if (!a.is_null()) {
       EXPECT_NEAR(a.get<double>(), b.get<double>(), 1e-6 * std::fabs(b.get<double>()));
+    }
   }
   const auto adev_all = z_in_all["allan"]["adev_deg_h"].get<std::vector<double>>();
   const auto adev_one = z["allan"]["adev_deg_h"].get<std::vector<double>>();

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -196,6 +198,54 @@ TEST(Analysis, TooShortARecordIsADataErrorThatSaysHowMany) {
   std::vector<double> rate(40, 1.0);
   EXPECT_NE(test::message_of<DataError>([&] { analyze(rate, {}, 10.0); }).find("40 samples"),
             std::string::npos);
+}
+
+TEST(WorkQueue, KeepGoingRunsEveryJobAndReturnsEachFailure) {
+  std::vector<std::atomic<int>> runs(40);
+  auto job = [&](std::size_t k) {
+    ++runs[k];
+    if (k % 7 == 3) throw DataError("job " + std::to_string(k));
+  };
+  const auto errors = run_work_queue(runs.size(), job, 3, OnFailure::keep_going);
+  ASSERT_EQ(errors.size(), runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    EXPECT_EQ(runs[k], 1) << k;  // each job once
+    EXPECT_EQ(errors[k] != nullptr, k % 7 == 3) << k;
+  }
+  try {
+    std::rethrow_exception(errors[10]);
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(), "job 10");
+  }
+}
+
+TEST(WorkQueue, StopStartsNoJobAfterAFailure) {
+  std::vector<int> runs(10, 0);
+  auto job = [&](std::size_t k) {
+    ++runs[k];
+    if (k == 2) throw UsageError("bad");
+  };
+  const auto errors = run_work_queue(runs.size(), job, 1, OnFailure::stop);
+  EXPECT_EQ(runs, (std::vector<int>{1, 1, 1, 0, 0, 0, 0, 0, 0, 0}));  // one worker: in order
+  EXPECT_NE(errors[2], nullptr);
+  EXPECT_EQ(std::count(errors.begin(), errors.end(), nullptr), 9);
+}
+
+TEST(WorkQueue, AnalyzeRecordsNamesTheRecordThatFailed) {
+  auto load = [](std::size_t k) {
+    RecordToAnalyse r;
+    r.rate_deg_h.assign(k == 1 ? 5 : 4000, 1.0);  // record 1 is too short
+    for (std::size_t i = 0; i < r.rate_deg_h.size(); ++i) r.rate_deg_h[i] += std::sin(i * 1.7);
+    r.sample_rate_hz = 10.0;
+    return r;
+  };
+  try {
+    analyze_records(3, load, {}, 2, {},
+                    [](std::size_t k) { return "record " + std::to_string(k); });
+    FAIL() << "record 1 is too short";
+  } catch (const DataError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("record 1: ", 0), 0u) << e.what();
+  }
 }
 
 }  // namespace

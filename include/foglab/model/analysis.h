@@ -14,6 +14,7 @@
 //   5. Table 1 class from that minimum and the ARW (N/60).
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <optional>
 #include <span>
@@ -109,13 +110,28 @@ struct RecordToAnalyse {
   std::vector<Gap> gaps;
 };
 
-/// Analyses `count` records, several at a time: a record is loaded by
+/// What a work queue (run_work_queue()) does once a job has failed.
+enum class OnFailure {
+  stop,        ///< start no new job; the running ones finish
+  keep_going,  ///< run every job
+};
+
+/// Runs `job(k)` for k = 0 .. count-1 on `workers` threads taking the next
+/// job as they finish one (`workers` 0: one per core; never more than
+/// `count`). The cores are shared out between the workers for the
+/// parallel parts of each job (each worker's OpenMP teams get cores /
+/// workers threads, at least one), so that the machine is neither idle
+/// nor oversubscribed. Returns each job's exception, null for a job that
+/// succeeded or (OnFailure::stop) was never started.
+std::vector<std::exception_ptr> run_work_queue(std::size_t count,
+                                               const std::function<void(std::size_t)>& job,
+                                               unsigned workers = 0,
+                                               OnFailure on_failure = OnFailure::stop);
+
+/// Analyses `count` records, several at a time (run_work_queue()): a record is loaded by
 /// `load(k)` (k = 0 .. count-1) in the worker that analyses it, so reading
 /// too runs in parallel and at most `workers` records are in memory at
-/// once. `workers` 0 means one per core, at most `count`; the cores are
-/// shared out between the workers for the parallel parts of each analysis
-/// (OpenMP teams), so that the machine is neither idle nor oversubscribed.
-/// `done(k)` (optional) is called in the worker once record k is analysed,
+/// once. `done(k)` (optional) is called in the worker once record k is analysed,
 /// for progress. The results come in record order. When a load or an
 /// analysis throws, no new record is started, the running ones finish,
 /// and the first error in record order is rethrown; a UsageError or

@@ -15,6 +15,13 @@
 //     "How to Detect and Handle Outliers", ASQC 1993: the rule's false-alarm rate for a
 //     normal population is about 5e-4 a unit). With a MAD of zero (half the units or more
 //     equal) no unit is flagged.
+//   * a value is an estimate: a unit with a 95 % interval for the parameter stands out
+//     only when the whole interval lies beyond the limit median x 10^(+-z spread). A unit
+//     of a normal fleet whose estimate strays past the limit by its own error (a flicker
+//     coefficient from an hour of data is uncertain by tens of per cent) is not flagged;
+//     one whose parameter is, at 95 % confidence, beyond the fleet's is. The spread is
+//     that of the estimates: the fleet's own spread widened by the units' estimation
+//     errors (in quadrature, for independent errors).
 // A value that is not finite or not positive (a term the analysis did not resolve) counts
 // in no statistic and is never an outlier; the parameter's `units` says how many counted.
 #pragma once
@@ -22,6 +29,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace foglab::model {
@@ -30,6 +38,9 @@ namespace foglab::model {
 struct FleetUnit {
   std::string name;
   std::map<std::string, double> values;
+  /// 95 % intervals (low, high) by parameter name, where the values are estimates that
+  /// have them (a NaN end: open on that side).
+  std::map<std::string, std::pair<double, double>> ci95;
   std::string accuracy_class;  ///< Table 1 class; empty when none
 };
 
