@@ -8,20 +8,16 @@
 #include <numbers>
 
 #include "foglab/core/error.h"
+#include "generator_internal.h"
 
 namespace foglab::sim {
 namespace {
 
-std::uint64_t splitmix64(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
+using detail::mix64;  // SplitMix64 (generator_internal.h)
 
 /// A uniform number in (0, 1), a pure function of its arguments.
 double uniform(std::uint64_t seed, std::uint64_t unit, std::uint64_t draw) {
-  const std::uint64_t bits = splitmix64(splitmix64(splitmix64(seed) ^ unit) + draw);
+  const std::uint64_t bits = mix64(mix64(mix64(seed) ^ unit) + draw);
   return (static_cast<double>(bits >> 11) + 0.5) * 0x1.0p-53;
 }
 

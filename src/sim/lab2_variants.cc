@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "generator_internal.h"
 
 namespace foglab::sim {
 
@@ -29,21 +30,16 @@ std::vector<double> raw_temperature_polynomial(const ErrorModel& model, double t
 
 namespace {
 
-std::uint64_t splitmix64(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
+using detail::mix64;  // SplitMix64 (generator_internal.h)
 
 /// A uniform number in [0, 1), a pure function of its arguments.
 class Draw {
  public:
   Draw(std::uint64_t seed, int variant, int gyro)
-      : base_(splitmix64(splitmix64(seed) ^ (static_cast<std::uint64_t>(variant) << 8) ^
-                         static_cast<std::uint64_t>(gyro))) {}
+      : base_(mix64(mix64(seed) ^ (static_cast<std::uint64_t>(variant) << 8) ^
+                    static_cast<std::uint64_t>(gyro))) {}
   double uniform(int parameter) const {
-    return static_cast<double>(splitmix64(base_ + static_cast<std::uint64_t>(parameter)) >> 11) *
+    return static_cast<double>(mix64(base_ + static_cast<std::uint64_t>(parameter)) >> 11) *
            0x1.0p-53;
   }
   double linear(int parameter, double lo, double hi) const {

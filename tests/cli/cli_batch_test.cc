@@ -25,10 +25,7 @@ namespace fs = std::filesystem;
 using test::quote;
 using ::testing::HasSubstr;
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+using test::read_json;
 
 std::size_t json_files(const fs::path& dir) {
   if (!fs::exists(dir)) return 0;

@@ -21,10 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
-}
+using test::read_json;
 
 /// A `name: value` line of imu.yaml.
 double yaml_value(const std::string& yaml, const std::string& name) {
