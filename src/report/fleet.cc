@@ -74,9 +74,10 @@ std::vector<std::pair<std::string, std::size_t>> class_counts(const FleetReport&
     const auto found = fleet.summary.classes.find(name);
     out.emplace_back(name, found == fleet.summary.classes.end() ? 0 : found->second);
   }
-  for (const auto& [name, count] : fleet.summary.classes) {
-    if (std::none_of(out.begin(), out.end(), [&](const auto& e) { return e.first == name; })) {
-      out.emplace_back(name, count);
+  for (const auto& entry : fleet.summary.classes) {
+    if (std::none_of(out.begin(), out.end(),
+                     [&](const auto& e) { return e.first == entry.first; })) {
+      out.push_back(entry);
     }
   }
   return out;
