@@ -69,9 +69,9 @@ def batch(client, inputs, out, progress=False, **options):
     files = _foglab._batch_files(inputs)
     units_dir = os.path.join(out, "units")
     os.makedirs(units_dir, exist_ok=True)
-    # What an earlier run left is kept: only the rest goes to the workers. The command's own
-    # rule decides (same file, not modified since, same options), by a batch over the
-    # recordings with nothing to analyse, which writes the report; it runs again at the end.
+    # Recordings whose units an earlier run left are not sent to the workers. The report at
+    # the end applies the command's own rule (same file, not modified since, same options)
+    # and analyses here, where the client runs, any unit that fails it.
     todo = [(path, name) for path, name in files
             if options.get("redo") or not _all_units_present(units_dir, name)]
     futures = client.map(_units_of_file, [p for p, _ in todo], [n for _, n in todo],
