@@ -39,7 +39,7 @@ model::AnalysisOptions batch_analysis_options(const BatchCommand& c, const std::
 struct UnitOutcome {
   std::string name;     ///< "unit_007", "imu1.gyro_x"
   std::string channel;  ///< as read ("" before, when the reader chose)
-  std::string json;     ///< analysed: the `analyze --json` document
+  std::string json;     ///< analysed with no units folder: the `analyze --json` document
   bool kept = false;    ///< its JSON in the units folder stands (same file, same options)
   std::string input;    ///< "FILE" or "FILE channel C", for messages
   std::string error;    ///< failed: the message

@@ -182,18 +182,27 @@ bool reusable(const BatchCommand& c, const std::string& file, const std::string&
   }
 }
 
+/// Where a unit's `analyze --json` document lives in the units folder.
+std::string unit_json_path(const std::string& units_dir, const std::string& name) {
+  return (fs::path(units_dir) / (name + ".json")).string();
+}
+
+/// A JSON number, NaN for null (docs/json.md writes NaN and infinity as null).
+double number_or_nan(const nlohmann::json& v) {
+  return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
 report::FleetTerm term_of(const nlohmann::json& j) {
-  auto num = [](const nlohmann::json& v) {
-    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
-  };
+  constexpr auto num = number_or_nan;
   report::FleetTerm t;
   t.status = j.at("status").get<std::string>();
   // A term left out: its 95 % upper bound where the data pull it above zero, else none.
   t.value = t.status == "upper_bound" && !j.at("value").is_number() ? num(j.at("upper_95"))
                                                                     : num(j.at("value"));
   const nlohmann::json& ci = j.at("ci95");
-  t.ci95_low = ci.is_array() && ci.size() == 2 ? num(ci[0]) : num(nullptr);
-  t.ci95_high = ci.is_array() && ci.size() == 2 ? num(ci[1]) : num(nullptr);
+  const bool pair = ci.is_array() && ci.size() == 2;
+  t.ci95_low = pair ? num(ci[0]) : std::numeric_limits<double>::quiet_NaN();
+  t.ci95_high = pair ? num(ci[1]) : std::numeric_limits<double>::quiet_NaN();
   return t;
 }
 
@@ -202,10 +211,7 @@ report::FleetRow row_of(const std::string& name, const std::string& file,
                         const std::string& json_path) {
   std::ifstream in(json_path);
   const nlohmann::json doc = nlohmann::json::parse(in);
-  auto value = [](const nlohmann::json& v) {
-    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
-  };
-  auto num = [&](const char* key) { return value(doc.at(key)); };
+  auto num = [&](const char* key) { return number_or_nan(doc.at(key)); };
   report::FleetRow r;
   r.unit = name;
   r.file = file;
@@ -216,12 +222,13 @@ report::FleetRow row_of(const std::string& name, const std::string& file,
   r.K = term_of(noise.at("K"));
   r.bias_instability_deg_h = num("bias_instability_deg_h");
   r.bias_instability_tau_s = num("bias_instability_tau_s");
-  r.bias_instability_ci95_low = r.bias_instability_ci95_high = value(nullptr);
+  r.bias_instability_ci95_low = r.bias_instability_ci95_high =
+      std::numeric_limits<double>::quiet_NaN();
   const nlohmann::json& allan = doc.at("allan");
   for (std::size_t k = 0; k < allan.at("tau_s").size(); ++k) {
     if (allan["tau_s"][k] == doc.at("bias_instability_tau_s")) {
-      r.bias_instability_ci95_low = value(allan.at("ci95_low")[k]);
-      r.bias_instability_ci95_high = value(allan.at("ci95_high")[k]);
+      r.bias_instability_ci95_low = number_or_nan(allan.at("ci95_low")[k]);
+      r.bias_instability_ci95_high = number_or_nan(allan.at("ci95_high")[k]);
     }
   }
   r.arw_deg_sqrt_h = num("arw_deg_per_sqrt_h");
@@ -388,7 +395,7 @@ std::vector<UnitOutcome> batch_file_units(const BatchCommand& c, const BatchFile
     u.channel = channel;
     u.input = channel.empty() ? file.path : file.path + " channel " + channel;
     const std::string json_path =
-        units_dir.empty() ? "" : (fs::path(units_dir) / (u.name + ".json")).string();
+        units_dir.empty() ? "" : unit_json_path(units_dir, u.name);
     if (!json_path.empty() && !c.redo && reusable(c, file.path, channel, json_path)) {
       u.kept = true;
       outcomes.push_back(std::move(u));
@@ -396,7 +403,10 @@ std::vector<UnitOutcome> batch_file_units(const BatchCommand& c, const BatchFile
     }
     try {
       u.json = analyse_unit(c, file.path, channel, options, bag);
-      if (!json_path.empty()) write_text_file(json_path, u.json);
+      if (!json_path.empty()) {
+        write_text_file(json_path, u.json);
+        u.json.clear();  // on disk now: a fleet of thousands need not hold every document
+      }
     } catch (const UsageError& e) {
       u.error = in_cli_terms(e.what());
       u.exit_code = 2;
@@ -478,7 +488,7 @@ BatchSummary run_batch(const BatchCommand& c) {
         summary.failures.push_back(u);
         continue;
       }
-      const std::string json_path = (units_dir / (u.name + ".json")).string();
+      const std::string json_path = unit_json_path(units_dir.string(), u.name);
       try {
         fleet.rows.push_back(row_of(u.name, files[k].path, json_path));
         json_of[u.name] = fs::relative(json_path, c.out).string();

@@ -430,7 +430,7 @@ struct Written {
 Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
                         const sim::GeneratorOptions& generator, std::int64_t samples,
                         const std::string& out, const std::string& shown_out) {
-  sim::GeneratorOptions options = generator;
+  const sim::GeneratorOptions& options = generator;
   const OutFormat format = format_of(out);
   const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
   const double t_ref = temperature.reference_c(options.duration_s);
