@@ -55,6 +55,11 @@ std::vector<UnitOutcome> batch_file_units(const BatchCommand& c, const BatchFile
                                           const model::AnalysisOptions& options,
                                           const std::string& units_dir);
 
+/// Whether every unit of `file` has its result in `units_dir` from an earlier run that
+/// stands for it (the same file, not modified since, the same channel and options): what
+/// batch_file_units() keeps.
+bool batch_file_kept(const BatchCommand& c, const BatchFile& file, const std::string& units_dir);
+
 /// What a batch did.
 struct BatchSummary {
   std::size_t files = 0;

@@ -182,6 +182,12 @@ bool reusable(const BatchCommand& c, const std::string& file, const std::string&
   }
 }
 
+/// A unit's name: the file's, with the channel after a dot when the file has several units.
+std::string unit_name(const BatchFile& file, const std::vector<std::string>& channels,
+                      const std::string& channel) {
+  return channels.size() > 1 ? file.name + "." + channel : file.name;
+}
+
 /// Where a unit's `analyze --json` document lives in the units folder.
 std::string unit_json_path(const std::string& units_dir, const std::string& name) {
   return (fs::path(units_dir) / (name + ".json")).string();
@@ -391,7 +397,7 @@ std::vector<UnitOutcome> batch_file_units(const BatchCommand& c, const BatchFile
   std::optional<io::ImuRecord> bag;
   for (const std::string& channel : channels) {
     UnitOutcome u;
-    u.name = channels.size() > 1 ? file.name + "." + channel : file.name;
+    u.name = unit_name(file, channels, channel);
     u.channel = channel;
     u.input = channel.empty() ? file.path : file.path + " channel " + channel;
     const std::string json_path =
@@ -426,6 +432,14 @@ std::vector<UnitOutcome> batch_file_units(const BatchCommand& c, const BatchFile
     outcomes.push_back(std::move(u));
   }
   return outcomes;
+}
+
+bool batch_file_kept(const BatchCommand& c, const BatchFile& file, const std::string& units_dir) {
+  const std::vector<std::string> channels = unit_channels(c, file.path);
+  return std::all_of(channels.begin(), channels.end(), [&](const std::string& channel) {
+    return reusable(c, file.path, channel,
+                    unit_json_path(units_dir, unit_name(file, channels, channel)));
+  });
 }
 
 BatchSummary run_batch(const BatchCommand& c) {

@@ -69,11 +69,11 @@ def batch(client, inputs, out, progress=False, **options):
     files = _foglab._batch_files(inputs)
     units_dir = os.path.join(out, "units")
     os.makedirs(units_dir, exist_ok=True)
-    # Recordings whose units an earlier run left are not sent to the workers. The report at
-    # the end applies the command's own rule (same file, not modified since, same options)
-    # and analyses here, where the client runs, any unit that fails it.
+    # Recordings whose units an earlier run left, by the command's own rule (same file, not
+    # modified since, same options), are not sent to the workers.
+    rule = {k: v for k, v in options.items() if k != "redo"}
     todo = [(path, name) for path, name in files
-            if options.get("redo") or not _all_units_present(units_dir, name)]
+            if options.get("redo") or not _foglab._batch_file_kept(path, name, units_dir, **rule)]
     futures = client.map(_units_of_file, [p for p, _ in todo], [n for _, n in todo],
                          options=options, pure=False)
     done = 0
@@ -90,11 +90,3 @@ def batch(client, inputs, out, progress=False, **options):
     kept.pop("redo", None)  # the units just written stand
     return _foglab.batch(inputs, out, **kept)
 
-
-def _all_units_present(units_dir, name):
-    """Whether a recording's unit JSON (or, for an IMU, its channels') is there already."""
-    if os.path.exists(os.path.join(units_dir, name + ".json")):
-        return True
-    prefix = name + "."
-    return any(entry.startswith(prefix) and entry.endswith(".json")
-               for entry in os.listdir(units_dir))

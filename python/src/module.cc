@@ -417,6 +417,14 @@ py::list batch_file_units(const std::string& path, const std::string& name,
   return out;
 }
 
+// Whether a file's units all stand in `units_dir` from an earlier run (batch's rule).
+bool batch_file_kept(const std::string& path, const std::string& name,
+                     const std::string& units_dir, const py::kwargs& options) {
+  const cli::BatchCommand c = batch_command(options);
+  py::gil_scoped_release release;
+  return cli::batch_file_kept(c, {path, name}, units_dir);
+}
+
 // The whole batch, as `foglab batch` runs it: the fleet.json document.
 py::object batch(const std::vector<std::string>& inputs, const std::string& out,
                  const py::kwargs& options) {
@@ -508,6 +516,10 @@ PYBIND11_MODULE(_foglab, m) {
   m.def("_batch_file_units", &batch_file_units, py::arg("path"), py::arg("name"),
         "One file's units analysed (nothing written): [{name, channel, input, json, error, "
         "exit_code}].");
+  m.def("_batch_file_kept", &batch_file_kept, py::arg("path"), py::arg("name"),
+        py::arg("units_dir"),
+        "Whether every unit of a file stands in units_dir from an earlier run (what batch "
+        "keeps).");
   m.def("analyze", &analyze, py::arg("rate"), py::arg("rate_hz"),
         py::arg("temperature") = py::none(), py::arg("units") = "deg/h",
         py::arg("channel") = "rate",

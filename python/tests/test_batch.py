@@ -82,7 +82,9 @@ def test_dask_batch_on_a_local_cluster_is_the_command(cli, tmp_path):
         assert by_dask["units_kept_from_earlier_run"] == 12
         assert _comparable(by_dask) == _comparable(by_cli) | {"inputs": by_dask["inputs"]}
         assert _unit_documents(tmp_path / "dask") == _unit_documents(tmp_path / "cli")
-        # A rerun sends nothing to the workers and gives the same report.
+        # A rerun sends nothing to the workers (no unit written again) and gives the same report.
+        written = {p: p.stat().st_mtime_ns for p in (tmp_path / "dask" / "units").iterdir()}
         again = foglab.dask.batch(client, [str(tmp_path / "fleet" / "*.mat")],
                                   tmp_path / "dask", plots=False)
         assert again == by_dask
+        assert {p: p.stat().st_mtime_ns for p in (tmp_path / "dask" / "units").iterdir()} == written
