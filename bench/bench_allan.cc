@@ -41,20 +41,11 @@ std::vector<std::int64_t> octave_factors(std::size_t phase_points) {
                                                     static_cast<std::int64_t>(phase_points)));
 }
 
-// One parallel read of the whole array: the unit of the streaming bound.
-double read_once(const std::vector<double>& x) {
-  double sum = 0.0;
-  const auto n = static_cast<std::int64_t>(x.size());
-#pragma omp parallel for reduction(+ : sum) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) sum += x[i];
-  return sum;
-}
-
 double seconds_of_read(const std::vector<double>& x) {
   double best = 1e30;
   for (int r = 0; r < 5; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(read_once(x));
+    benchmark::DoNotOptimize(bench::read_once(x));
     const auto t1 = std::chrono::steady_clock::now();
     best = std::min(best, std::chrono::duration<double>(t1 - t0).count());
   }
@@ -63,7 +54,7 @@ double seconds_of_read(const std::vector<double>& x) {
 
 void BM_ReadOnce(benchmark::State& state) {
   const auto& x = phase();
-  for (auto _ : state) benchmark::DoNotOptimize(read_once(x));
+  for (auto _ : state) benchmark::DoNotOptimize(bench::read_once(x));
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * x.size() * 8));
 }
 

@@ -28,4 +28,14 @@ inline std::vector<double> gyro_record(std::size_t count) {
   return y;
 }
 
+/// One parallel read of the whole array (a sum): the unit of the streaming
+/// bounds the Allan benchmarks set their stages against.
+inline double read_once(const std::vector<double>& x) {
+  double sum = 0.0;
+  const auto n = static_cast<std::int64_t>(x.size());
+#pragma omp parallel for reduction(+ : sum) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) sum += x[i];
+  return sum;
+}
+
 }  // namespace foglab::bench

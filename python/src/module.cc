@@ -56,13 +56,13 @@ std::span<const double> samples_of(const InputArray& a, const char* name) {
   const std::span<const double> samples(a.data(), static_cast<std::size_t>(a.shape(0)));
   // As the file readers do: a value that is not finite is refused by its index, before it
   // turns every statistic into NaN.
-  const auto bad =
-      std::find_if(samples.begin(), samples.end(), [](double v) { return !std::isfinite(v); });
-  if (bad != samples.end()) {
-    throw DataError(std::string(name) + "[" + std::to_string(bad - samples.begin()) + "] is " +
-                    (std::isnan(*bad) ? "nan"
-                     : *bad > 0       ? "inf"
-                                      : "-inf") +
+  const std::size_t index = first_non_finite(samples);
+  if (index < samples.size()) {
+    const double bad = samples[index];
+    throw DataError(std::string(name) + "[" + std::to_string(index) + "] is " +
+                    (std::isnan(bad) ? "nan"
+                     : bad > 0       ? "inf"
+                                     : "-inf") +
                     ": every sample must be a finite number");
   }
   return samples;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "foglab/io/channels.h"
 #include "foglab/io/rosbag.h"
 #include "readers_internal.h"
@@ -252,36 +253,56 @@ std::string describe_non_finite(double value) {
 }
 
 // Checks every sample and converts it to deg/h (m/s^2 for an acceleration
-// unit) in the same pass.
+// unit). In parallel, chunk by chunk: a chunk whose every converted sample is
+// finite and within the limit (which may be infinite) is converted
+// at once; a chunk that is not is walked sample by sample for the message.
 void finish_values(Series& series, RateUnit unit, double max_magnitude) {
   if (series.values.empty()) {
     throw_data_error(series.path, fmt::format("channel '{}' has no samples", series.channel));
   }
   const double factor = to_internal_unit(unit);
   const SampleUnit target = internal_unit(sensor_of(unit));
-  for (std::size_t i = 0; i < series.values.size(); ++i) {
-    const double value = series.values[i];
-    if (!std::isfinite(value)) {
-      throw_data_error(series.path, fmt::format("sample {} of '{}' is {}", i + 1, series.channel,
-                                                describe_non_finite(value)));
+  const std::size_t n = series.values.size();
+  const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
+  std::vector<char> converted(chunks, 0);
+  double* values = series.values.data();
+#pragma omp parallel for schedule(static) if (chunks > 1)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t begin = c * kChunkSamples, end = std::min(n, begin + kChunkSamples);
+    bool within = true;
+    for (std::size_t i = begin; i < end; ++i) {
+      const double in_unit = values[i] * factor;  // in - in: 0 if finite, else NaN
+      within &= in_unit - in_unit == 0.0 && std::fabs(in_unit) <= max_magnitude;
     }
-    const double converted = value * factor;
-    if (!std::isfinite(converted)) {
-      throw_data_error(series.path,
-                       fmt::format("sample {} of '{}' ({} {}) overflows when converted to {}",
-                                   i + 1, series.channel, internal::format_value(value),
-                                   to_string(unit), to_string(target)));
+    if (!within) continue;
+    for (std::size_t i = begin; i < end; ++i) values[i] *= factor;
+    converted[c] = 1;
+  }
+  for (std::size_t c = 0; c < chunks; ++c) {
+    if (converted[c]) continue;
+    for (std::size_t i = c * kChunkSamples; i < std::min(n, (c + 1) * kChunkSamples); ++i) {
+      const double value = values[i];
+      if (!std::isfinite(value)) {
+        throw_data_error(series.path, fmt::format("sample {} of '{}' is {}", i + 1, series.channel,
+                                                  describe_non_finite(value)));
+      }
+      const double in_unit = value * factor;
+      if (!std::isfinite(in_unit)) {
+        throw_data_error(series.path,
+                         fmt::format("sample {} of '{}' ({} {}) overflows when converted to {}",
+                                     i + 1, series.channel, internal::format_value(value),
+                                     to_string(unit), to_string(target)));
+      }
+      if (std::fabs(in_unit) > max_magnitude) {
+        throw_data_error(
+            series.path,
+            fmt::format("sample {} of '{}' is {}{}: too large (more than {:g} in magnitude, far "
+                        "beyond any sensor's output or temperature, and the statistics would "
+                        "overflow); check the channel, its unit and the file",
+                        i + 1, series.channel, internal::format_value(value),
+                        unit == target ? "" : " " + std::string(to_string(unit)), max_magnitude));
+      }
     }
-    if (std::fabs(converted) > max_magnitude) {
-      throw_data_error(
-          series.path,
-          fmt::format("sample {} of '{}' is {}{}: too large (more than {:g} in magnitude, far "
-                      "beyond any sensor's output or temperature, and the statistics would "
-                      "overflow); check the channel, its unit and the file",
-                      i + 1, series.channel, internal::format_value(value),
-                      unit == target ? "" : " " + std::string(to_string(unit)), max_magnitude));
-    }
-    series.values[i] = converted;
   }
 }
 

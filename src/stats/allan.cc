@@ -6,7 +6,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 
+#include "../core/simd_clones.h"
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
 #include "foglab/stats/confidence.h"
@@ -28,6 +30,89 @@ constexpr auto kChunk = static_cast<std::int64_t>(kChunkSamples);
 
 std::int64_t chunk_count(std::int64_t n, std::int64_t chunk) { return (n + chunk - 1) / chunk; }
 
+// Sum over i in [i0, i1) of the squared D-th difference at lag m (D = 2:
+// Allan, D = 3: Hadamard).
+template <int D>
+FOGLAB_CLONED_INLINE double difference_sum(const double* p, std::int64_t i0, std::int64_t i1,
+                                           std::int64_t m) {
+  double s = 0.0;
+  if constexpr (D == 2) {
+#pragma omp simd reduction(+ : s)
+    for (std::int64_t i = i0; i < i1; ++i) {
+      const double d = p[i + 2 * m] - 2.0 * p[i + m] + p[i];
+      s += d * d;
+    }
+  } else {
+#pragma omp simd reduction(+ : s)
+    for (std::int64_t i = i0; i < i1; ++i) {
+      const double d = p[i + 3 * m] - 3.0 * p[i + 2 * m] + 3.0 * p[i + m] - p[i];
+      s += d * d;
+    }
+  }
+  return s;
+}
+
+FOGLAB_SIMD_CLONES double second_difference_sum(const double* p, std::int64_t i0, std::int64_t i1,
+                                                std::int64_t m) {
+  return difference_sum<2>(p, i0, i1, m);
+}
+
+FOGLAB_SIMD_CLONES double third_difference_sum(const double* p, std::int64_t i0, std::int64_t i1,
+                                               std::int64_t m) {
+  return difference_sum<3>(p, i0, i1, m);
+}
+
+// An octave chain: the factors m, 2m, 4m, 8m, whose second differences at i
+// use the angle points i, i + m, i + 2m, ..., i + 16m. Their four sums over
+// i in [i0, i1) are taken in one loop that loads each of those six points
+// once, not twelve times (about twice as fast as four separate loops on an
+// octave grid).
+constexpr int kChainLength = 4;
+
+FOGLAB_SIMD_CLONES void octave_chain_sums(const double* p, std::int64_t i0, std::int64_t i1,
+                                          std::int64_t m, double* sums) {
+  const double* q0 = p + m;
+  const double* q1 = p + 2 * m;
+  const double* q2 = p + 4 * m;
+  const double* q3 = p + 8 * m;
+  const double* q4 = p + 16 * m;
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+#pragma omp simd reduction(+ : s0, s1, s2, s3)
+  for (std::int64_t i = i0; i < i1; ++i) {
+    const double x = p[i];
+    const double d0 = q1[i] - 2.0 * q0[i] + x;
+    const double d1 = q2[i] - 2.0 * q1[i] + x;
+    const double d2 = q3[i] - 2.0 * q2[i] + x;
+    const double d3 = q4[i] - 2.0 * q3[i] + x;
+    s0 += d0 * d0;
+    s1 += d1 * d1;
+    s2 += d2 * d2;
+    s3 += d3 * d3;
+  }
+  sums[0] += s0;
+  sums[1] += s1;
+  sums[2] += s2;
+  sums[3] += s3;
+}
+
+// Where each octave chain of `factors` starts (Allan family only): a factor
+// followed by its doubles 2m, 4m, 8m. The other factors are summed alone.
+std::vector<bool> octave_chain_starts(std::span<const std::int64_t> factors, int order) {
+  std::vector<bool> starts(factors.size(), false);
+  if (order != 2) return starts;
+  for (std::size_t k = 0; k + kChainLength <= factors.size();) {
+    bool chain = true;
+    for (int g = 1; g < kChainLength; ++g) chain = chain && factors[k + g] == (factors[k] << g);
+    if (chain) {
+      starts[k] = true;
+      k += kChainLength;
+    } else {
+      ++k;
+    }
+  }
+  return starts;
+}
+
 // Sum over i = 0 .. N - D m - 1 of the squared D-th difference at lag m, for
 // every m at once (D = 2: Allan, D = 3: Hadamard).
 template <int D>
@@ -36,31 +121,36 @@ std::vector<double> overlapping_sums(std::span<const double> x,
   const auto n = static_cast<std::int64_t>(x.size());
   const auto k_count = static_cast<std::int64_t>(factors.size());
   const std::int64_t chunks = chunk_count(n, kChunk);
+  const std::vector<bool> chain_starts = octave_chain_starts(factors, D);
   std::vector<double> partial(static_cast<std::size_t>(chunks * k_count), 0.0);
   const double* p = x.data();
+  auto single = [p](std::int64_t i0, std::int64_t i1, std::int64_t m) {
+    if (i0 >= i1) return 0.0;
+    return D == 2 ? second_difference_sum(p, i0, i1, m) : third_difference_sum(p, i0, i1, m);
+  };
 #pragma omp parallel for schedule(dynamic, 2) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::int64_t c_end = std::min(n, (c + 1) * kChunk);
+    double* sums = &partial[static_cast<std::size_t>(c * k_count)];
     for (std::int64_t b = c * kChunk; b < c_end; b += kBlock) {
       const std::int64_t b_end = std::min(c_end, b + kBlock);
-      for (std::int64_t k = 0; k < k_count; ++k) {
-        const std::int64_t m = factors[k];
-        const std::int64_t end = std::min(b_end, n - D * m);
-        double s = 0.0;
-        if constexpr (D == 2) {
-#pragma omp simd reduction(+ : s)
-          for (std::int64_t i = b; i < end; ++i) {
-            const double d = p[i + 2 * m] - 2.0 * p[i + m] + p[i];
-            s += d * d;
-          }
-        } else {
-#pragma omp simd reduction(+ : s)
-          for (std::int64_t i = b; i < end; ++i) {
-            const double d = p[i + 3 * m] - 3.0 * p[i + 2 * m] + 3.0 * p[i + m] - p[i];
-            s += d * d;
-          }
+      for (std::int64_t k = 0; k < k_count;) {
+        if (!chain_starts[k]) {
+          const std::int64_t m = factors[k];
+          sums[k] += single(b, std::min(b_end, n - D * m), m);
+          ++k;
+          continue;
         }
-        partial[c * k_count + k] += s;
+        // The whole chain where its longest factor still has terms, then
+        // each factor alone up to its own end.
+        const std::int64_t m = factors[k];
+        const std::int64_t shared_end = std::max(b, std::min(b_end, n - 2 * (m << 3)));
+        if (b < shared_end) octave_chain_sums(p, b, shared_end, m, sums + k);
+        for (int g = 0; g < kChainLength; ++g) {
+          const std::int64_t mg = factors[k + g];
+          sums[k + g] += single(shared_end, std::min(b_end, n - 2 * mg), mg);
+        }
+        k += kChainLength;
       }
     }
   }
@@ -453,8 +543,14 @@ std::vector<Stretch> angle_stretches(std::size_t samples, InputKind input,
 AllanResult allan_deviation(std::span<const double> samples, double sample_rate_hz, InputKind input,
                             const AllanOptions& options, std::span<const Gap> gaps) {
   check_gaps(gaps, static_cast<std::int64_t>(samples.size()), "allan_deviation");
-  const std::vector<double> phase = detail::to_phase(samples, sample_rate_hz, input);
-  return allan_from_phase(phase, angle_stretches(samples.size(), input, gaps), samples.size(),
+  // Not a zero-filled vector: writing 8 N bytes of zeros on one thread cost as
+  // much as the integration that overwrites them (bench_allan_stages).
+  const std::size_t points = detail::phase_points(samples.size(), input);
+  const auto phase = std::make_unique_for_overwrite<double[]>(points);
+  advise_huge_pages(phase.get(), points);
+  detail::to_phase_into(samples, sample_rate_hz, input, phase.get());
+  return allan_from_phase(std::span<const double>(phase.get(), points),
+                          angle_stretches(samples.size(), input, gaps), samples.size(),
                           sample_rate_hz, input, options);
 }
 

@@ -214,6 +214,29 @@ TEST(AllanTheory, ResultDoesNotDependOnTheNumberOfThreads) {
   }
 }
 
+TEST(AllanTheory, OctaveChainsGiveTheSumOfEachFactorTakenAlone) {
+  // OADEV and TOTDEV take runs of m, 2m, 4m, 8m in one loop; a factor asked
+  // for alone never is. A record of three chunks, a whole octave grid (whose
+  // long factors stop inside a block), and factors that chain only in part.
+  std::vector<double> rate = test::white(150000, 41, 1.0);
+  const std::vector<double> walk = test::random_walk(150000, 42, 0.01);
+  for (std::size_t i = 0; i < rate.size(); ++i) rate[i] += walk[i];
+  const std::vector<double> phase = detail::to_phase(rate, 1.0, InputKind::rate);
+  const std::vector<std::vector<std::int64_t>> grids = {
+      {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384, 32768, 65536},
+      {3, 6, 12, 24, 5, 7, 14, 28, 56, 112, 9000, 18000, 36000, 72000, 74000}};
+  for (const AllanKind kind : {AllanKind::oadev, AllanKind::totdev}) {
+    for (const auto& factors : grids) {
+      const std::vector<double> together = detail::deviations_from_phase(phase, kind, factors);
+      for (std::size_t k = 0; k < factors.size(); ++k) {
+        const std::int64_t alone[] = {factors[k]};
+        EXPECT_NEAR(together[k] / detail::deviations_from_phase(phase, kind, alone)[0], 1.0, 1e-12)
+            << to_string(kind) << " m " << factors[k];
+      }
+    }
+  }
+}
+
 TEST(AllanInput, TooShortRecordsAreDataErrorsThatSayWhatIsNeeded) {
   const std::vector<double> two = {1.0, 2.0};
   AllanOptions options;

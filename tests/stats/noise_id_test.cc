@@ -1,10 +1,16 @@
 // Power-law noise identification on simulated noise of known type.
+#include "foglab/stats/noise_id.h"
+
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "foglab/stats/allan.h"
-#include "foglab/stats/noise_id.h"
 #include "support/noise.h"
 
 namespace foglab::stats {
@@ -71,6 +77,65 @@ TEST(NoiseId, FewAveragesUseTheB1Ratio) {
   // B1 is a coarse test with 20 averages; it must still be right most times.
   EXPECT_GE(white_fm, 14);
   EXPECT_GE(rw_fm, 14);
+}
+
+// Riley & Greenhall's lag-1 method done the textbook way, one factor at a
+// time: decimate, fit and remove a quadratic (least squares), then difference
+// until rho = r1 / (1 + r1) < 0.25 or d = d_max.
+NoiseId textbook_lag1(const std::vector<double>& phase, std::int64_t m, int d_max) {
+  const auto count = static_cast<std::int64_t>((phase.size() - 1) / m + 1);
+  Eigen::MatrixXd basis(count, 3);
+  Eigen::VectorXd points(count);
+  for (std::int64_t k = 0; k < count; ++k) {
+    const double u = 2.0 * static_cast<double>(k) / static_cast<double>(count - 1) - 1.0;
+    basis.row(k) << 1.0, u, u * u;
+    points(k) = phase[static_cast<std::size_t>(k * m)];
+  }
+  const Eigen::VectorXd fit = basis.colPivHouseholderQr().solve(points);
+  const Eigen::VectorXd residual = points - basis * fit;
+  std::vector<double> z(residual.data(), residual.data() + residual.size());
+  NoiseId id;
+  for (int d = 0;; ++d) {
+    const double r1 = lag1_autocorrelation(z);
+    id.rho = r1 / (1.0 + r1);
+    id.differences = d;
+    if (id.rho < 0.25 || d == d_max) break;
+    for (std::size_t k = 0; k + 1 < z.size(); ++k) z[k] = z[k + 1] - z[k];
+    z.pop_back();
+  }
+  id.alpha = 2 - 2 * id.differences - static_cast<int>(std::nearbyint(2.0 * id.rho));
+  return id;
+}
+
+TEST(NoiseId, AllFactorsAtOnceGiveTheTextbookRhoOfEachFactor) {
+  // Records of three chunks and more, so that chunk boundaries, the first
+  // points (where a difference or its lag is missing) and every order of
+  // difference are exercised: white rate (one difference), random-walk rate
+  // (two), and its integral (three, with the Hadamard d_max).
+  const std::size_t n = 150001;
+  std::vector<double> white = test::white(n, 31, 1.0);
+  std::vector<double> walk = test::random_walk(n, 32, 1.0);
+  std::vector<double> run = walk;
+  for (std::size_t i = 1; i < n; ++i) run[i] += run[i - 1];
+  const std::vector<std::int64_t> factors = {1, 2, 3, 4, 5, 8, 16, 100, 1000};
+  for (const auto& [name, rate] : {std::pair{"white", white}, {"walk", walk}, {"run", run}}) {
+    const auto phase = phase_of_rate(rate);
+    for (const int d_max : {2, 3}) {
+      const std::vector<NoiseId> ids = identify_noise(phase, factors, d_max);
+      for (std::size_t q = 0; q < factors.size(); ++q) {
+        const NoiseId expected = textbook_lag1(phase, factors[q], d_max);
+        SCOPED_TRACE(std::string(name) + " m " + std::to_string(factors[q]) + " d_max " +
+                     std::to_string(d_max));
+        EXPECT_EQ(ids[q].method, NoiseIdMethod::lag1_acf);
+        EXPECT_EQ(ids[q].differences, expected.differences);
+        // The third integral of white noise reaches 1e13 at 150001 points: its
+        // residual after the fit keeps only about 1e-7 of rho's digits, in
+        // either computation.
+        EXPECT_NEAR(ids[q].rho, expected.rho, std::string(name) == "run" ? 1e-6 : 1e-10);
+        EXPECT_EQ(ids[q].alpha, std::clamp(expected.alpha, d_max == 3 ? -4 : -2, 2));
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -43,9 +43,11 @@ class CompensatedSum {
 /// Neumaier's rule. Serial; the building block of the parallel sums below.
 CompensatedSum chunk_sum(std::span<const double> values, double shift = 0.0);
 
-/// chunk_sum() of every kChunkSamples-long chunk of `values`, in parallel;
-/// combining them in order gives a thread-count independent result.
-std::vector<CompensatedSum> chunk_sums(std::span<const double> values, double shift = 0.0);
+/// chunk_sum() of every `chunk`-long piece of `values` (by default
+/// kChunkSamples), in parallel; combining them in order gives a thread-count
+/// independent result.
+std::vector<CompensatedSum> chunk_sums(std::span<const double> values, double shift = 0.0,
+                                       std::size_t chunk = 0);
 
 /// Compensated sum of `values`, computed in parallel with a thread-count
 /// independent result.
@@ -53,6 +55,10 @@ double compensated_sum(std::span<const double> values);
 
 /// Compensated arithmetic mean of `values` (0 for an empty span).
 double compensated_mean(std::span<const double> values);
+
+/// The index of the first value of `values` that is NaN or infinite, or
+/// values.size() if every one is finite; in parallel, a vectorised pass.
+std::size_t first_non_finite(std::span<const double> values);
 
 /// Throws DataError "the record is constant: all N samples equal X UNIT,
 /// so there is no noise to analyse" when every value is the same (an
@@ -91,7 +97,9 @@ int worker_threads();
 
 /// Work is split into chunks of this many samples for parallel loops; the
 /// split, and therefore every floating-point result, is independent of the
-/// number of threads.
+/// number of threads. (Not of the processor: the hottest loops have an AVX2
+/// form, whose sums run in another order, so a result may differ in its last
+/// bits between a processor with AVX2 and one without.)
 inline constexpr std::size_t kChunkSamples = std::size_t{1} << 16;
 
 }  // namespace foglab

@@ -132,6 +132,16 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
 /// The same in place; a rate record grows by one element.
 void to_phase_in_place(std::vector<double>& samples, double sample_rate_hz, InputKind input);
 
+/// The number of angle points of a record of `samples` samples: N + 1 for a
+/// rate record, N for an angle record.
+std::size_t phase_points(std::size_t samples, InputKind input);
+
+/// The same angle record written to out[0 .. phase_points() - 1], in
+/// parallel (each thread first touches the part it writes, so `out` may be
+/// fresh, uninitialised memory); `out` may be `samples.data()`.
+void to_phase_into(std::span<const double> samples, double sample_rate_hz, InputKind input,
+                   double* out);
+
 /// Deviation values only (no confidence intervals) on an angle record made by
 /// to_phase(), for the given averaging factors. Throws DataError if an
 /// averaging factor is too large for the statistic.
