@@ -3,11 +3,16 @@
 // 2e-4 relative, confidence bounds to 1 %).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "foglab/core/error.h"
 #include "foglab/stats/allan.h"
+#include "foglab/stats/time_error.h"
 #include "support/reference_data.h"
 
 namespace foglab::stats {
@@ -127,6 +132,43 @@ INSTANTIATE_TEST_SUITE_P(
       std::string name = info.param.file.substr(0, info.param.file.size() - 4);
       return name;
     });
+
+TEST(Stable32PhaseDatTimeError, MtieAndTieRmsMatchTheTables) {
+  const std::vector<double> x = test::phase_dat();
+  for (const char* file : {"phase_dat_mtie.txt", "phase_dat_tierms.txt"}) {
+    const std::vector<Stable32Row> rows = test::read_stable32_values(file);
+    ASSERT_FALSE(rows.empty()) << file;
+    std::vector<std::int64_t> factors;
+    for (const auto& row : rows) factors.push_back(row.af);
+    const bool is_mtie = std::string(file) == "phase_dat_mtie.txt";
+    const std::vector<double> values = is_mtie ? mtie(x, factors) : tie_rms(x, factors);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_NEAR(values[k] / rows[k].sigma, 1.0, 2e-4) << file << " AF " << rows[k].af;
+      EXPECT_EQ(time_error_count(static_cast<std::int64_t>(x.size()), rows[k].af), rows[k].n)
+          << file << " AF " << rows[k].af;
+    }
+  }
+}
+
+TEST(TimeError, MtieIsTheLargestExcursionOfAnyWindowTakenOneByOne) {
+  // Quantised values, so that equal maxima and minima meet in a window.
+  std::vector<double> x = test::phase_dat();
+  for (double& v : x) v = std::round(v * 4.0) / 4.0;
+  const std::vector<std::int64_t> factors = {1, 2, 5, 64, 333, 999, 1000};
+  const std::vector<double> fast = mtie(x, factors);
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    double largest = 0.0;
+    for (std::size_t i = 0; i + factors[k] < x.size(); ++i) {
+      const auto window = std::span(x).subspan(i, static_cast<std::size_t>(factors[k]) + 1);
+      const auto [low, high] = std::minmax_element(window.begin(), window.end());
+      largest = std::max(largest, *high - *low);
+    }
+    EXPECT_EQ(fast[k], largest) << "m " << factors[k];
+  }
+  const std::int64_t too_long[] = {1001};
+  EXPECT_THROW(mtie(x, too_long), DataError);
+  EXPECT_THROW(tie_rms(x, too_long), DataError);
+}
 
 }  // namespace
 }  // namespace foglab::stats

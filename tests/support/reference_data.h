@@ -56,6 +56,22 @@ inline std::vector<Stable32Row> read_stable32(const std::string& file) {
   return rows;
 }
 
+/// A Stable32 table without intervals (AF, tau, count, value: MTIE, TIE
+/// rms); `sigma` holds the value.
+inline std::vector<Stable32Row> read_stable32_values(const std::string& file) {
+  std::ifstream in(data_path("stable32-phasedat/" + file));
+  if (!in) throw std::runtime_error("missing reference file " + file);
+  std::vector<Stable32Row> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    Stable32Row r;
+    if (fields >> r.af >> r.tau_s >> r.n >> r.sigma) rows.push_back(r);
+  }
+  return rows;
+}
+
 /// PHASE.DAT: 1001 phase points, tau0 = 1 s.
 inline std::vector<double> phase_dat() {
   std::ifstream in(data_path("stable32-phasedat/PHASE.DAT"));
