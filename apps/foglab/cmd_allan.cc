@@ -11,6 +11,7 @@
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/stats/allan.h"
+#include "foglab/stats/time_error.h"
 
 namespace foglab::cli {
 namespace {
@@ -93,12 +94,78 @@ std::string to_table(const stats::AllanResult& r, const io::Series& series, Sens
   return out;
 }
 
+// MTIE and TIE rms: the same input, grid and outputs, a value per tau in the
+// angle's unit and no intervals.
+void run_time_error(const AllanCommand& c) {
+  const stats::TimeErrorKind kind = stats::time_error_kind_from_string(c.kind);
+  stats::TauGrid grid = parse_taus_option(c.taus, c.input.path);
+  grid.min_clusters = c.min_clusters;
+  const InputKind input = input_kind_from_string(c.input_kind);
+  io::Series series = load_input(c.input);
+  naming_the_input(series, [&] {
+    require_varying(series.values, input == InputKind::rate ? "deg/h" : "(deg/h)*s (phase)");
+    return 0;
+  });
+  if (!series.gaps.empty()) {
+    naming_the_input(series, [&]() -> int {
+      throw DataError(fmt::format(
+          "{} gap(s) in the time column: {} across a gap would take the missing time for none; "
+          "analyse each stretch on its own",
+          series.gaps.size(), stats::to_string(kind)));
+    });
+  }
+  progress(fmt::format("{} of {} samples", stats::to_string(kind), series.values.size()));
+  const stats::TimeErrorResult r = naming_the_input(series, [&] {
+    return stats::time_error(series.values, series.sample_rate_hz, input, kind, grid);
+  });
+  const Sensor sensor = sensor_of_input(c);
+  const std::string unit = in_sensor_units("deg/h*s", sensor);
+  const std::string name(stats::to_string(kind));
+  const nlohmann::json document = {{"kind", name},
+                                   {"input", std::string(to_string(input))},
+                                   {"unit", unit},
+                                   {"tau_s", r.tau_s},
+                                   {"value", numbers(r.value)},
+                                   {"n", r.n},
+                                   {"m", r.m},
+                                   {"taus", c.taus},
+                                   {"min_clusters", c.min_clusters},
+                                   {"source", input_json(series)},
+                                   {"foglab_version", std::string(version())}};
+  const std::string json = c.json_path.empty() ? "" : json_text(document);
+  const std::string column =
+      fmt::format("{}_{}_s", name, sensor == Sensor::gyroscope ? "deg_h" : "m_s2");
+  std::string csv = fmt::format("tau_s,m,n,{}\n", column);
+  std::string table =
+      fmt::format("{} of '{}' channel {} ({} samples at {} Hz, {})\n{:>12} {:>10} {:>16}\n", name,
+                  series.path, series.channel, series.values.size(), series.sample_rate_hz,
+                  to_string(input), "tau [s]", "n", fmt::format("{} [{}]", name, unit));
+  for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+    csv += fmt::format("{:.10g},{},{},{}\n", r.tau_s[k], r.m[k], r.n[k], cell(r.value[k]));
+    table += fmt::format("{:>12.6g} {:>10} {:>16.6g}\n", r.tau_s[k], r.n[k], r.value[k]);
+  }
+  if (!c.json_path.empty()) write_text_file(c.json_path, json);
+  if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
+  if (c.json_path != "-" && c.csv_path != "-") std::cout << table;
+}
+
 void run(const AllanCommand& c) {
   const RunPath inputs[] = {{"FILE", c.input.path}};
   const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
   check_outputs(inputs, outputs);
+  if (stats::is_time_error_kind(c.kind)) {
+    run_time_error(c);
+    return;
+  }
   stats::AllanOptions options;
-  options.kind = stats::allan_kind_from_string(c.kind);
+  try {
+    options.kind = stats::allan_kind_from_string(c.kind);
+  } catch (const UsageError&) {
+    throw UsageError(
+        fmt::format("unknown statistic '{}': expected adev, oadev, mdev, hdev, "
+                    "ohdev, tdev, totdev, mtie or tierms",
+                    c.kind));
+  }
   options.grid = parse_taus_option(c.taus, c.input.path);
   options.grid.min_clusters = c.min_clusters;
   options.confidence = !c.no_ci;
@@ -135,7 +202,9 @@ std::function<void()> register_allan(CLI::App& app) {
       "Allan-family deviation (ADEV, OADEV, MDEV, HDEV, OHDEV, TDEV, TOTDEV) with "
       "68 % and 95 % confidence intervals");
   add_input_options(*cmd, c->input, /*file_optional=*/true);
-  cmd->add_option("--kind", c->kind, "oadev, adev, mdev, hdev, ohdev, tdev or totdev")
+  cmd->add_option("--kind", c->kind,
+                  "oadev, adev, mdev, hdev, ohdev, tdev or totdev; or mtie or tierms (the "
+                  "angle's largest excursion and rms change over tau, no intervals)")
       ->capture_default_str();
   cmd->add_option("--taus", c->taus,
                   "octave, decade, all, N-per-decade, or averaging times in s (1,10,100)")

@@ -81,4 +81,59 @@ std::vector<double> tie_rms(std::span<const double> angle, std::span<const std::
   return per_factor(angle, factors, change_rms);
 }
 
+std::string_view to_string(TimeErrorKind kind) {
+  return kind == TimeErrorKind::mtie ? "mtie" : "tierms";
+}
+
+bool is_time_error_kind(std::string_view text) { return text == "mtie" || text == "tierms"; }
+
+TimeErrorKind time_error_kind_from_string(std::string_view text) {
+  if (text == "mtie") return TimeErrorKind::mtie;
+  if (text == "tierms") return TimeErrorKind::tie_rms;
+  throw UsageError(fmt::format("unknown time-error statistic '{}': expected mtie or tierms", text));
+}
+
+TimeErrorResult time_error(std::span<const double> samples, double sample_rate_hz, InputKind input,
+                           TimeErrorKind kind, const TauGrid& grid) {
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw UsageError(fmt::format("sample rate {} Hz: expected a positive number", sample_rate_hz));
+  }
+  std::vector<double> angle;
+  if (input == InputKind::rate) {
+    angle.reserve(samples.size() + 1);
+    CompensatedSum x;
+    angle.push_back(0.0);
+    for (const double y : samples) {
+      x.add(y / sample_rate_hz);
+      angle.push_back(x.value());
+    }
+  } else {
+    angle.assign(samples.begin(), samples.end());
+  }
+  const auto points = static_cast<std::int64_t>(angle.size());
+  if (points < 2) {
+    throw DataError(fmt::format("{} needs at least {} {} samples, the record has {}",
+                                to_string(kind), input == InputKind::rate ? 1 : 2, to_string(input),
+                                samples.size()));
+  }
+  TimeErrorResult r;
+  r.kind = kind;
+  r.input = input;
+  r.sample_rate_hz = sample_rate_hz;
+  r.angle_points = points;
+  r.m = averaging_factors(grid, points, sample_rate_hz, points - 1);
+  if (r.m.empty()) {
+    throw DataError(
+        fmt::format("{} {} samples are too few for {} with at least {} windows per "
+                    "tau; lower the minimum or list the taus",
+                    samples.size(), to_string(input), to_string(kind), grid.min_clusters));
+  }
+  for (const std::int64_t m : r.m) {
+    r.n.push_back(time_error_count(points, m));
+    r.tau_s.push_back(static_cast<double>(m) / sample_rate_hz);
+  }
+  r.value = kind == TimeErrorKind::mtie ? mtie(angle, r.m) : tie_rms(angle, r.m);
+  return r;
+}
+
 }  // namespace foglab::stats

@@ -3,13 +3,14 @@
 #include <gtest/gtest.h>
 #include <matio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <sstream>
-#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/cli.h"
@@ -88,6 +89,72 @@ TEST(CliAllan, EveryStable32AllTauTableThroughAnExplicitTauList) {
       EXPECT_EQ(j["n"][k].get<std::int64_t>(), rows[k].n) << file << " AF " << rows[k].af;
     }
   }
+}
+
+TEST(CliAllan, MtieAndTieRmsReproduceStable32AndTakeTheRateAsItsIntegral) {
+  const std::string phase_dat = quote(test::data_path("stable32-phasedat/PHASE.DAT"));
+  for (const auto& [kind, file] :
+       {std::pair{"mtie", "phase_dat_mtie.txt"}, std::pair{"tierms", "phase_dat_tierms.txt"}}) {
+    const auto rows = test::read_stable32_values(file);
+    std::string taus;
+    for (const auto& row : rows) taus += (taus.empty() ? "" : ",") + std::to_string(row.af);
+    const json j = run_json("allan " + phase_dat + " --input phase --fs 1 --kind " +
+                            std::string(kind) + " --taus " + taus);
+    EXPECT_EQ(j["kind"], kind);
+    EXPECT_EQ(j["unit"], "deg/h*s");
+    ASSERT_EQ(j["value"].size(), rows.size()) << file;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_NEAR(j["value"][k].get<double>() / rows[k].sigma, 1.0, 2e-4)
+          << file << " AF " << rows[k].af;
+      EXPECT_EQ(j["n"][k].get<std::int64_t>(), rows[k].n) << file << " AF " << rows[k].af;
+    }
+  }
+  // A rate record at 4 Hz is integrated as it is (its bias kept): the same
+  // values as its angle record x_{k+1} = x_k + y_k / 4 given as phase.
+  const test::TempDir dir;
+  const std::vector<double> y = test::nbs14_1000();
+  std::ofstream rate(dir / "rate.csv"), angle(dir / "angle.csv");
+  rate.precision(17);
+  angle.precision(17);
+  double x = 0.0;
+  angle << x << "\n";
+  for (const double v : y) {
+    rate << 1000.0 + v << "\n";
+    x += (1000.0 + v) / 4.0;
+    angle << x << "\n";
+  }
+  rate.close();
+  angle.close();
+  for (const char* kind : {"mtie", "tierms"}) {
+    const json from_rate = run_json("allan " + quote(dir / "rate.csv") + " --fs 4 --kind " + kind +
+                                    " --min-clusters 3");
+    const json from_angle = run_json("allan " + quote(dir / "angle.csv") +
+                                     " --input phase --fs 4 --kind " + kind + " --min-clusters 3");
+    ASSERT_EQ(from_rate["value"].size(), from_angle["value"].size()) << kind;
+    for (std::size_t k = 0; k < from_rate["value"].size(); ++k) {
+      EXPECT_NEAR(from_rate["value"][k].get<double>() / from_angle["value"][k].get<double>(), 1.0,
+                  1e-9)
+          << kind << " tau " << from_rate["tau_s"][k];
+    }
+  }
+  // MTIE of a rate with a bias grows with it: 250 deg/h for 1 s at least.
+  const json biased = run_json("allan " + quote(dir / "rate.csv") + " --fs 4 --kind mtie --taus 1");
+  EXPECT_GT(biased["value"][0].get<double>(), 250.0);
+}
+
+TEST(CliAllan, TimeErrorRefusesGapsAndUnknownKindsAreNamed) {
+  const test::TempDir dir;
+  const std::string out = quote(dir / "gaps.csv");
+  ASSERT_EQ(run_foglab("generate --N 0.2 --fs 10 --hours 0.05 --drop 60:5 --out " + out).exit_code,
+            0);
+  const test::CliRun gaps = run_foglab("allan " + out + " --kind mtie");
+  EXPECT_EQ(gaps.exit_code, 3) << gaps.err;
+  EXPECT_NE(gaps.err.find("1 gap(s)"), std::string::npos) << gaps.err;
+  EXPECT_NE(gaps.err.find("gaps.csv"), std::string::npos) << gaps.err;
+  const test::CliRun unknown = run_foglab("allan " + out + " --kind mtiex");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("'mtiex'"), std::string::npos) << unknown.err;
+  EXPECT_NE(unknown.err.find("mtie or tierms"), std::string::npos) << unknown.err;
 }
 
 TEST(CliAllan, Nbs14TableThroughCsvInputAndJsonOutput) {

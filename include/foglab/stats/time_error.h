@@ -18,7 +18,11 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
+
+#include "foglab/core/units.h"
+#include "foglab/stats/tau_grid.h"
 
 namespace foglab::stats {
 
@@ -31,5 +35,33 @@ std::vector<double> tie_rms(std::span<const double> angle, std::span<const std::
 
 /// The number of windows (MTIE) or differences (TIE rms) at factor m: N - m.
 inline std::int64_t time_error_count(std::int64_t points, std::int64_t m) { return points - m; }
+
+enum class TimeErrorKind { mtie, tie_rms };
+/// "mtie", "tierms".
+std::string_view to_string(TimeErrorKind kind);
+/// Whether `text` names one ("mtie", "tierms"), and which.
+bool is_time_error_kind(std::string_view text);
+TimeErrorKind time_error_kind_from_string(std::string_view text);
+
+/// A time-error statistic on the factors of a tau grid.
+struct TimeErrorResult {
+  TimeErrorKind kind = TimeErrorKind::mtie;
+  InputKind input = InputKind::rate;
+  double sample_rate_hz = 0.0;
+  std::int64_t angle_points = 0;
+  std::vector<std::int64_t> m, n;
+  std::vector<double> tau_s;
+  std::vector<double> value;  ///< in the angle's unit: the rate's unit times s
+};
+
+/// The statistic of a record: a rate record is integrated as it is, x_0 = 0,
+/// x_{k+1} = x_k + y_k / fs (compensated), its bias kept: MTIE is then the
+/// largest angle excursion the output gives over any window of tau, the
+/// drift of the bias included (take the bias out first to see the noise
+/// alone); an angle record is used as given. Generated grids stop where fewer
+/// than grid.min_clusters windows of m intervals fit; the largest factor is
+/// N - 1. Throws DataError for fewer than 2 angle points.
+TimeErrorResult time_error(std::span<const double> samples, double sample_rate_hz, InputKind input,
+                           TimeErrorKind kind, const TauGrid& grid);
 
 }  // namespace foglab::stats
