@@ -6,6 +6,8 @@ The numbers come from foglab's C++ library (the module ``foglab._foglab``), the 
 - ``allan(data, rate, kind="oadev", taus="octave", input="rate", min_clusters=10)``: one
   deviation (adev, oadev, mdev, hdev, ohdev, tdev, totdev) with noise identification, edf and
   68/95 % intervals, as numpy arrays (an ``AllanResult``);
+- ``time_error(data, rate, kind="mtie", taus="octave", input="rate")``: MTIE or TIE rms
+  (``kind="tierms"``) of the angle, as ``foglab allan --kind mtie`` computes it;
 - ``psd(data, rate)``: Welch's two-sided PSD;
 - ``analyze(rate, rate_hz, temperature=None, units="deg/h")``: the whole analysis of a static
   record, the document ``foglab analyze --json`` writes (docs/json.md);
@@ -34,8 +36,9 @@ from ._foglab import (  # noqa: F401
     max_factor,
     psd,
     read,
+    time_error,
 )
 from . import compat  # noqa: F401
 
 __all__ = ["AllanResult", "DataError", "allan", "analyze", "batch", "compat", "generate",
-           "max_factor", "psd", "read", "__version__"]
+           "max_factor", "psd", "read", "time_error", "__version__"]

@@ -39,6 +39,7 @@
 #include "foglab/stats/allan.h"
 #include "foglab/stats/psd.h"
 #include "foglab/stats/tau_grid.h"
+#include "foglab/stats/time_error.h"
 
 namespace py = pybind11;
 
@@ -155,6 +156,31 @@ PyAllanResult allan(const InputArray& data, double rate, const std::string& kind
     r = stats::allan_deviation(samples, rate, input_kind_value, options);
   }
   return to_python(std::move(r));
+}
+
+// time_error(): MTIE or TIE rms on a tau grid, as a dict of numpy arrays.
+py::dict time_error(const InputArray& data, double rate, const std::string& kind,
+                    const std::variant<std::string, std::vector<double>>& taus,
+                    const std::string& input, std::int64_t min_clusters, int per_decade) {
+  const std::span<const double> samples = samples_of(data, "data");
+  const stats::TimeErrorKind which = stats::time_error_kind_from_string(kind);
+  const stats::TauGrid grid = tau_grid(taus, min_clusters, per_decade);
+  const InputKind input_kind_value = input_kind_from_string(input);
+  stats::TimeErrorResult r;
+  {
+    py::gil_scoped_release release;
+    r = stats::time_error(samples, rate, input_kind_value, which, grid);
+  }
+  py::dict d;
+  d["kind"] = std::string(stats::to_string(r.kind));
+  d["input"] = std::string(to_string(r.input));
+  d["sample_rate_hz"] = r.sample_rate_hz;
+  d["angle_points"] = r.angle_points;
+  d["m"] = to_numpy(std::move(r.m));
+  d["n"] = to_numpy(std::move(r.n));
+  d["tau_s"] = to_numpy(std::move(r.tau_s));
+  d["value"] = to_numpy(std::move(r.value));
+  return d;
 }
 
 py::dict psd(const InputArray& data, double rate, std::size_t segment_length, double overlap) {
@@ -478,6 +504,12 @@ PYBIND11_MODULE(_foglab, m) {
         py::arg("per_decade") = 10, py::arg("confidence") = true,
         "One stability statistic (adev, oadev, mdev, hdev, ohdev, tdev, totdev) of `data` "
         "sampled at `rate` [Hz], with noise identification, edf and 68/95 % intervals.");
+  m.def("time_error", &time_error, py::arg("data"), py::arg("rate"), py::arg("kind") = "mtie",
+        py::arg("taus") = "octave", py::arg("input") = "rate", py::arg("min_clusters") = 10,
+        py::arg("per_decade") = 10,
+        "MTIE or TIE rms ('mtie', 'tierms') of `data` sampled at `rate` [Hz] on a tau grid, as "
+        "`foglab allan --kind mtie` computes it: a dict of tau_s, value (the angle's unit: the "
+        "rate's times s), n (windows) and m. A rate record is integrated with its bias kept.");
   m.def(
       "max_factor",
       [](const std::string& kind, std::int64_t phase_points) {

@@ -8,7 +8,7 @@ import pytest
 
 import foglab
 import foglab.compat as allantools
-from conftest import nbs14_1000, stable32_table
+from conftest import REFERENCE_DIR, nbs14_1000, stable32_table
 
 KINDS = ["adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev"]
 
@@ -148,3 +148,24 @@ def test_results_own_their_arrays():
     del r
     assert dev.dtype == np.float64 and dev.size > 5 and np.all(np.isfinite(dev))
     assert foglab.__version__
+
+
+@pytest.mark.parametrize("kind, table", [("mtie", "phase_dat_mtie.txt"),
+                                         ("tierms", "phase_dat_tierms.txt")])
+def test_time_error_reproduces_stable32(phase_dat, kind, table):
+    """MTIE and TIE rms on PHASE.DAT: Stable32's values to 2e-4 and its counts."""
+    rows = []
+    for line in (REFERENCE_DIR / table).read_text().splitlines():
+        fields = line.split()
+        if fields and not line.startswith("#") and len(fields) == 4:
+            rows.append((int(fields[0]), int(fields[2]), float(fields[3])))
+    assert rows
+    r = foglab.time_error(phase_dat, 1.0, kind=kind, taus=[float(af) for af, _, _ in rows],
+                          input="phase")
+    assert r["kind"] == kind
+    assert list(r["m"]) == [af for af, _, _ in rows]
+    assert list(r["n"]) == [n for _, n, _ in rows]
+    np.testing.assert_allclose(r["value"], [v for _, _, v in rows], rtol=2e-4)
+    with pytest.raises(ValueError, match="mtie or tierms"):
+        foglab.time_error(phase_dat, 1.0, kind="tie")
+
