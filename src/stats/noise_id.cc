@@ -46,17 +46,17 @@ struct Lag1Factor {
 // sum u^p p_k for p = 0..2 (the powers of u alone have closed forms).
 using Moments = std::array<double, 3>;
 
-// The decimated points x[k m] are read with a compile-time stride for the
-// factors 1, 2 and 4, which hold 7/8 of all the points the method visits:
-// the compiler then loads them as vectors and shuffles, instead of one by one.
 // A point's index within one chunk's range as a double, through a 32-bit
 // integer: AVX2 converts those four at a time but has no conversion from
-// 64-bit integers (the loops above ran at a quarter of their speed). A
+// 64-bit integers (the loops below ran at a quarter of their speed). A
 // chunk's range holds at most kChunkSamples + kMaxD + 1 points.
 FOGLAB_CLONED_INLINE double local_index(std::int64_t offset) {
   return static_cast<double>(static_cast<std::int32_t>(offset));
 }
 
+// The decimated points x[k m] are read with a compile-time stride for the
+// factors 1, 2 and 4, which hold 7/8 of all the points the method visits:
+// the compiler then loads them as vectors and shuffles, instead of one by one.
 template <std::int64_t Stride>
 FOGLAB_CLONED_INLINE Moments moments_with(const double* x, std::int64_t m, double scale,
                                           std::int64_t k0, std::int64_t k1) {
