@@ -94,18 +94,30 @@ std::string to_table(const stats::AllanResult& r, const io::Series& series, Sens
   return out;
 }
 
-// MTIE and TIE rms: the same input, grid and outputs, a value per tau in the
-// angle's unit and no intervals.
-void run_time_error(const AllanCommand& c) {
-  const stats::TimeErrorKind kind = stats::time_error_kind_from_string(c.kind);
+// The command's tau grid and its record, checked to vary: what both the
+// Allan family and the time error start from.
+stats::TauGrid tau_grid_of(const AllanCommand& c) {
   stats::TauGrid grid = parse_taus_option(c.taus, c.input.path);
   grid.min_clusters = c.min_clusters;
-  const InputKind input = input_kind_from_string(c.input_kind);
+  return grid;
+}
+
+io::Series load_varying_record(const AllanCommand& c, InputKind input) {
   io::Series series = load_input(c.input);
   naming_the_input(series, [&] {
     require_varying(series.values, input == InputKind::rate ? "deg/h" : "(deg/h)*s (phase)");
     return 0;
   });
+  return series;
+}
+
+// MTIE and TIE rms: the same input, grid and outputs, a value per tau in the
+// angle's unit and no intervals.
+void run_time_error(const AllanCommand& c) {
+  const stats::TimeErrorKind kind = stats::time_error_kind_from_string(c.kind);
+  const stats::TauGrid grid = tau_grid_of(c);
+  const InputKind input = input_kind_from_string(c.input_kind);
+  io::Series series = load_varying_record(c, input);
   if (!series.gaps.empty()) {
     naming_the_input(series, [&]() -> int {
       throw DataError(fmt::format(
@@ -166,15 +178,10 @@ void run(const AllanCommand& c) {
                     "ohdev, tdev, totdev, mtie or tierms",
                     c.kind));
   }
-  options.grid = parse_taus_option(c.taus, c.input.path);
-  options.grid.min_clusters = c.min_clusters;
+  options.grid = tau_grid_of(c);
   options.confidence = !c.no_ci;
   const InputKind input = input_kind_from_string(c.input_kind);
-  io::Series series = load_input(c.input);
-  naming_the_input(series, [&] {
-    require_varying(series.values, input == InputKind::rate ? "deg/h" : "(deg/h)*s (phase)");
-    return 0;
-  });
+  io::Series series = load_varying_record(c, input);
   const std::size_t samples = series.values.size();
   progress(fmt::format("{} of {} samples{}", stats::to_string(options.kind), samples,
                        options.confidence ? " with noise identification and intervals" : ""));

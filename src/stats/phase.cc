@@ -13,12 +13,6 @@ namespace foglab::stats {
 
 namespace {
 
-void check_rate(double sample_rate_hz) {
-  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
-    throw UsageError(fmt::format("sample rate {} Hz: expected a positive number", sample_rate_hz));
-  }
-}
-
 // Angle record: remove the straight line through the end points (a constant
 // rate; every statistic is blind to it, and removing it keeps numbers small)
 // and scale to tau0 = 1 units. `out` may alias `in`.
@@ -96,13 +90,19 @@ void integrate_rate(std::span<const double> rate, double* out) {
 
 }  // namespace
 
+void detail::check_sample_rate(double sample_rate_hz) {
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw UsageError(fmt::format("sample rate {} Hz: expected a positive number", sample_rate_hz));
+  }
+}
+
 std::size_t detail::phase_points(std::size_t samples, InputKind input) {
   return input == InputKind::rate ? samples + 1 : samples;
 }
 
 void detail::to_phase_into(std::span<const double> samples, double sample_rate_hz, InputKind input,
                            double* out) {
-  check_rate(sample_rate_hz);
+  check_sample_rate(sample_rate_hz);
   if (input == InputKind::phase) {
     angle_to_phase(samples, sample_rate_hz, out);
   } else {

@@ -8,6 +8,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
+#include "foglab/stats/allan.h"
 
 namespace foglab::stats {
 namespace {
@@ -95,9 +96,7 @@ TimeErrorKind time_error_kind_from_string(std::string_view text) {
 
 TimeErrorResult time_error(std::span<const double> samples, double sample_rate_hz, InputKind input,
                            TimeErrorKind kind, const TauGrid& grid) {
-  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
-    throw UsageError(fmt::format("sample rate {} Hz: expected a positive number", sample_rate_hz));
-  }
+  detail::check_sample_rate(sample_rate_hz);
   std::vector<double> angle;
   if (input == InputKind::rate) {
     angle.reserve(samples.size() + 1);

@@ -40,7 +40,10 @@ struct Stable32Row {
   double max_sigma = 0.0;
 };
 
-inline std::vector<Stable32Row> read_stable32(const std::string& file) {
+/// The rows of a Stable32 table whose data lines `parse` reads (it returns
+/// false for a line that is not a row).
+template <typename Parse>
+std::vector<Stable32Row> read_stable32_rows(const std::string& file, Parse parse) {
   std::ifstream in(data_path("stable32-phasedat/" + file));
   if (!in) throw std::runtime_error("missing reference file " + file);
   std::vector<Stable32Row> rows;
@@ -49,27 +52,25 @@ inline std::vector<Stable32Row> read_stable32(const std::string& file) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream fields(line);
     Stable32Row r;
-    if (fields >> r.af >> r.tau_s >> r.n >> r.alpha >> r.min_sigma >> r.sigma >> r.max_sigma) {
-      rows.push_back(r);
-    }
+    if (parse(fields, r)) rows.push_back(r);
   }
   return rows;
+}
+
+/// A table with intervals: AF, tau, count, alpha, min sigma, sigma, max sigma.
+inline std::vector<Stable32Row> read_stable32(const std::string& file) {
+  return read_stable32_rows(file, [](std::istringstream& f, Stable32Row& r) {
+    return static_cast<bool>(f >> r.af >> r.tau_s >> r.n >> r.alpha >> r.min_sigma >> r.sigma >>
+                             r.max_sigma);
+  });
 }
 
 /// A Stable32 table without intervals (AF, tau, count, value: MTIE, TIE
 /// rms); `sigma` holds the value.
 inline std::vector<Stable32Row> read_stable32_values(const std::string& file) {
-  std::ifstream in(data_path("stable32-phasedat/" + file));
-  if (!in) throw std::runtime_error("missing reference file " + file);
-  std::vector<Stable32Row> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    Stable32Row r;
-    if (fields >> r.af >> r.tau_s >> r.n >> r.sigma) rows.push_back(r);
-  }
-  return rows;
+  return read_stable32_rows(file, [](std::istringstream& f, Stable32Row& r) {
+    return static_cast<bool>(f >> r.af >> r.tau_s >> r.n >> r.sigma);
+  });
 }
 
 /// PHASE.DAT: 1001 phase points, tau0 = 1 s.

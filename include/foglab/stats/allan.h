@@ -132,6 +132,9 @@ std::vector<double> to_phase(std::span<const double> samples, double sample_rate
 /// The same in place; a rate record grows by one element.
 void to_phase_in_place(std::vector<double>& samples, double sample_rate_hz, InputKind input);
 
+/// Throws UsageError unless `sample_rate_hz` is a positive finite number.
+void check_sample_rate(double sample_rate_hz);
+
 /// The number of angle points of a record of `samples` samples: N + 1 for a
 /// rate record, N for an angle record.
 std::size_t phase_points(std::size_t samples, InputKind input);
