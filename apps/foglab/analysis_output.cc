@@ -492,4 +492,12 @@ std::string analysis_csv(const model::AnalysisResult& r) {
   return out;
 }
 
+nlohmann::json parameter_estimate_json(const model::ParameterEstimate& p) {
+  return parameter_json(p);
+}
+
+nlohmann::json noise_fit_json(const model::NoiseFitResult& f, const model::NoiseFitOptions& o) {
+  return fit_json(f, o);
+}
+
 }  // namespace foglab::cli

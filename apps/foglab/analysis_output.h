@@ -40,6 +40,13 @@ nlohmann::json accelerometer_json(nlohmann::json gyro_form);
 /// at the record's rate (see report/imu.h for the conversions).
 nlohmann::json sensor_terms_json(const model::AnalysisResult& result, Sensor sensor);
 
+/// One fitted parameter: value, ci95 ([low, high], null when not closed),
+/// status, upper_95 (as in `analyze --json`'s noise_model).
+nlohmann::json parameter_estimate_json(const model::ParameterEstimate& p);
+
+/// How the fit ended and the candidates it weighed (`analyze --json`'s fit).
+nlohmann::json noise_fit_json(const model::NoiseFitResult& f, const model::NoiseFitOptions& o);
+
 /// The Allan table of the residual with the fitted model and each term's part.
 std::string analysis_csv(const model::AnalysisResult& result);
 

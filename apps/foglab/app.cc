@@ -32,6 +32,7 @@ std::unique_ptr<CommandLine> make_command_line() {
   add(register_analyze);
   add(register_batch);
   add(register_allan);
+  add(register_fit);
   add(register_psd);
   add(register_generate);
   add(register_lab2_data);

@@ -29,14 +29,20 @@ struct AllanCommand {
   std::int64_t min_clusters = 10;
   std::string input_kind = "rate";
   bool no_ci = false;
+  bool no_bias_correction = false;
+  std::string noise_id = "foglab";
   std::string csv_path;
   std::string json_path;
 };
 
-/// The deviation's unit: the rate's (TDEV: times s); m/s^2 for an
+bool is_time_like(stats::AllanKind kind) {
+  return kind == stats::AllanKind::tdev || kind == stats::AllanKind::ttotdev;
+}
+
+/// The deviation's unit: the rate's (TDEV, TTOTDEV: times s); m/s^2 for an
 /// accelerometer read in an acceleration unit.
 std::string dev_unit(stats::AllanKind kind, Sensor sensor) {
-  return in_sensor_units(kind == stats::AllanKind::tdev ? "deg/h*s" : "deg/h", sensor);
+  return in_sensor_units(is_time_like(kind) ? "deg/h*s" : "deg/h", sensor);
 }
 
 Sensor sensor_of_input(const AllanCommand& c) {
@@ -61,6 +67,8 @@ nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
           {"ci95_high", numbers(r.ci95_high)},
           {"taus", c.taus},
           {"min_clusters", c.min_clusters},
+          {"noise_id", c.noise_id},
+          {"bias_correction", r.kind == stats::AllanKind::htotdev && !c.no_bias_correction},
           {"source", input_json(series)},
           {"foglab_version", std::string(version())}};
 }
@@ -69,7 +77,7 @@ std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v)
 
 std::string to_csv(const stats::AllanResult& r, Sensor sensor) {
   const std::string base = sensor == Sensor::gyroscope ? "deg_h" : "m_s2";
-  const std::string u = r.kind == stats::AllanKind::tdev ? base + "_s" : base;
+  const std::string u = is_time_like(r.kind) ? base + "_s" : base;
   std::string out = fmt::format(
       "tau_s,m,n,dev_{0},alpha,edf,ci68_low_{0},ci68_high_{0},ci95_low_{0},ci95_high_{0}\n", u);
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
@@ -174,12 +182,14 @@ void run(const AllanCommand& c) {
     options.kind = stats::allan_kind_from_string(c.kind);
   } catch (const UsageError&) {
     throw UsageError(
-        fmt::format("unknown statistic '{}': expected adev, oadev, mdev, hdev, "
-                    "ohdev, tdev, totdev, mtie or tierms",
+        fmt::format("unknown statistic '{}': expected adev, oadev, mdev, hdev, ohdev, tdev, "
+                    "totdev, mtotdev, ttotdev, htotdev, theo1, mtie or tierms",
                     c.kind));
   }
   options.grid = tau_grid_of(c);
   options.confidence = !c.no_ci;
+  options.bias_correction = !c.no_bias_correction;
+  options.noise_rules = stats::noise_rules_from_string(c.noise_id);
   const InputKind input = input_kind_from_string(c.input_kind);
   io::Series series = load_varying_record(c, input);
   const std::size_t samples = series.values.size();
@@ -206,12 +216,13 @@ std::function<void()> register_allan(CLI::App& app) {
   auto c = std::make_shared<AllanCommand>();
   CLI::App* cmd = app.add_subcommand(
       "allan",
-      "Allan-family deviation (ADEV, OADEV, MDEV, HDEV, OHDEV, TDEV, TOTDEV) with "
-      "68 % and 95 % confidence intervals");
+      "Allan-family deviation (ADEV, OADEV, MDEV, HDEV, OHDEV, TDEV, TOTDEV, MTOTDEV, "
+      "TTOTDEV, HTOTDEV, Theo1) with 68 % and 95 % confidence intervals");
   add_input_options(*cmd, c->input, /*file_optional=*/true);
   cmd->add_option("--kind", c->kind,
-                  "oadev, adev, mdev, hdev, ohdev, tdev or totdev; or mtie or tierms (the "
-                  "angle's largest excursion and rms change over tau, no intervals)")
+                  "oadev, adev, mdev, hdev, ohdev, tdev, totdev, mtotdev, ttotdev, htotdev or "
+                  "theo1 (tau = 0.75 m tau0); or mtie or tierms (the angle's largest excursion "
+                  "and rms change over tau, no intervals)")
       ->capture_default_str();
   cmd->add_option("--taus", c->taus,
                   "octave, decade, all, N-per-decade, or averaging times in s (1,10,100)")
@@ -222,6 +233,12 @@ std::function<void()> register_allan(CLI::App& app) {
   cmd->add_option("--input", c->input_kind, "rate (default) or phase (angle samples)")
       ->capture_default_str();
   cmd->add_flag("--no-ci", c->no_ci, "skip noise identification and confidence intervals");
+  cmd->add_flag("--no-bias-correction", c->no_bias_correction,
+                "htotdev: print the raw value, not divided by Riley's bias factor");
+  cmd->add_option("--noise-id", c->noise_id,
+                  "foglab (default: Stable32's rules, and no phase noise beyond the first "
+                  "frequency-noise tau) or stable32 (its alpha, tau for tau)")
+      ->capture_default_str();
   cmd->add_option("--csv", c->csv_path, "write the table as CSV ('-' for stdout)");
   cmd->add_option("--json", c->json_path, "write JSON ('-' for stdout)");
   return [c] { run(*c); };

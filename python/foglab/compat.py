@@ -20,15 +20,18 @@ Conventions kept (AllanTools 2024.06, allantools.py):
   intervals from the edf are in ``foglab.allan``.
 
 Differences that remain: ``ns`` is the number of terms foglab averages, which is AllanTools's
-for adev, oadev, mdev, tdev, hdev and ohdev; for totdev it is N - 2 (the reflected record's
-terms), as in SP 1065 eq. 25.
+for adev, oadev, mdev, tdev, hdev, ohdev, mtotdev, ttotdev and htotdev; for totdev it is
+N - 2 (the reflected record's terms), as in SP 1065 eq. 25. There is no ``theo1`` here:
+AllanTools labels Theo1 at tau = m tau0 where SP 1065 (and ``foglab.allan(kind="theo1")``)
+puts it at 0.75 m tau0.
 """
 
 import numpy as np
 
 from . import _foglab
 
-__all__ = ["adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev", "tau_generator"]
+__all__ = ["adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev", "mtotdev", "ttotdev",
+           "htotdev", "tau_generator"]
 
 
 def tau_generator(phase_points, rate, taus=None):
@@ -78,8 +81,9 @@ def _deviation(kind, data, rate, data_type, taus):
     if m.size == 0:
         empty = np.array([], dtype=float)
         return empty, empty, empty, np.array([], dtype=np.int64)
+    # AllanTools prints HTOTDEV without Riley's bias factor.
     r = _foglab.allan(data, rate, kind=kind, taus=list(m / float(rate)), input=input_kind,
-                      confidence=False)
+                      confidence=False, bias_correction=False)
     keep = r.n > 1
     taus_used = r.tau_s[keep]
     devs = r.dev[keep]
@@ -107,3 +111,8 @@ tdev = _statistic("tdev", "Time deviation, tau / sqrt(3) times MDEV (SP 1065 eq.
 hdev = _statistic("hdev", "Hadamard deviation (non-overlapping), SP 1065 eq. 18.")
 ohdev = _statistic("ohdev", "Overlapping Hadamard deviation, SP 1065 eq. 20.")
 totdev = _statistic("totdev", "Total deviation, SP 1065 eq. 25.")
+mtotdev = _statistic("mtotdev", "Modified total deviation, SP 1065 eq. 27 (no bias correction).")
+ttotdev = _statistic("ttotdev", "Time total deviation, tau / sqrt(3) times MTOTDEV (SP 1065 eq. 28), "
+                                "in the phase's unit.")
+htotdev = _statistic("htotdev", "Hadamard total deviation, SP 1065 eq. 29, OHDEV at m = 1 (no bias "
+                                "correction).")

@@ -143,12 +143,14 @@ PyAllanResult to_python(stats::AllanResult&& r) {
 PyAllanResult allan(const InputArray& data, double rate, const std::string& kind,
                     const std::variant<std::string, std::vector<double>>& taus,
                     const std::string& input, std::int64_t min_clusters, int per_decade,
-                    bool confidence) {
+                    bool confidence, bool bias_correction, const std::string& noise_id) {
   const std::span<const double> samples = samples_of(data, "data");
   stats::AllanOptions options;
   options.kind = stats::allan_kind_from_string(kind);
   options.grid = tau_grid(taus, min_clusters, per_decade);
   options.confidence = confidence;
+  options.bias_correction = bias_correction;
+  options.noise_rules = stats::noise_rules_from_string(noise_id);
   const InputKind input_kind_value = input_kind_from_string(input);
   stats::AllanResult r;
   {
@@ -501,9 +503,12 @@ PYBIND11_MODULE(_foglab, m) {
 
   m.def("allan", &allan, py::arg("data"), py::arg("rate"), py::arg("kind") = "oadev",
         py::arg("taus") = "octave", py::arg("input") = "rate", py::arg("min_clusters") = 10,
-        py::arg("per_decade") = 10, py::arg("confidence") = true,
-        "One stability statistic (adev, oadev, mdev, hdev, ohdev, tdev, totdev) of `data` "
-        "sampled at `rate` [Hz], with noise identification, edf and 68/95 % intervals.");
+        py::arg("per_decade") = 10, py::arg("confidence") = true, py::arg("bias_correction") = true,
+        py::arg("noise_id") = "foglab",
+        "One stability statistic (adev, oadev, mdev, hdev, ohdev, tdev, totdev, mtotdev, "
+        "ttotdev, htotdev, theo1) of `data` sampled at `rate` [Hz], with noise identification, "
+        "edf and 68/95 % intervals. bias_correction: HTOTDEV divided by Riley's bias factor "
+        "(as Stable32). noise_id: 'foglab' or 'stable32' (Stable32's alpha, tau for tau).");
   m.def("time_error", &time_error, py::arg("data"), py::arg("rate"), py::arg("kind") = "mtie",
         py::arg("taus") = "octave", py::arg("input") = "rate", py::arg("min_clusters") = 10,
         py::arg("per_decade") = 10,

@@ -39,7 +39,8 @@ def stable32_table(name):
         if not fields or line.startswith("#") or len(fields) < 7:
             continue
         af, tau, n, alpha, low, sigma, high = fields[:7]
-        rows.append((int(af), float(tau), int(n), int(alpha), float(low), float(sigma),
+        # Theo1's tables print the count as a float (4.9550e+03).
+        rows.append((int(af), float(tau), round(float(n)), int(alpha), float(low), float(sigma),
                      float(high)))
     return rows
 

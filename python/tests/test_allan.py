@@ -32,6 +32,43 @@ def test_stable32_phase_dat_octave_tables(phase_dat, kind):
         assert r.ci95_low[k] < r.ci68_low[k] < r.dev[k] < r.ci68_high[k] < r.ci95_high[k]
 
 
+@pytest.mark.parametrize("kind, table, options", [
+    ("mtotdev", "phase_dat_mtotdev_decade.txt", {"noise_id": "stable32"}),
+    ("htotdev", "phase_dat_htotdev_octave.txt", {}),
+    ("htotdev", "phase_dat_htotdev_octave_nobias.txt", {"bias_correction": False}),
+    ("theo1", "phase_dat_theo1_alpha0_decade.txt", {"confidence": False}),
+])
+def test_total_and_theo_family_reproduce_stable32(phase_dat, kind, table, options):
+    """Values to 2e-4 at Stable32's factors (Theo1's tau = 0.75 m); the noise types and 68 %
+    bounds where Stable32 printed them with its own noise identification."""
+    rows = stable32_table(table)
+    assert rows
+    taus = [tau for _, tau, _, _, _, _, _ in rows]
+    r = foglab.allan(phase_dat, 1.0, kind=kind, taus=taus, input="phase", **options)
+    assert list(r.m) == [row[0] for row in rows]
+    for k, (m, tau, n, alpha, low, sigma, high) in enumerate(rows):
+        assert r.dev[k] == pytest.approx(sigma, rel=2e-4), f"{table} AF {m}"
+        if options.get("noise_id") == "stable32" or not options:
+            assert r.alpha[k] == alpha, f"{table} AF {m}"
+            assert r.ci68_low[k] == pytest.approx(low, rel=0.01), f"{table} AF {m}"
+
+
+def test_compat_total_family_is_raw_and_in_allantools_tuple(phase_dat):
+    """AllanTools's mtotdev/htotdev/ttotdev: raw values (Stable32 1.60's MTOTDEV octave table,
+    the bias-free HTOTDEV table), counts N - 3m + 1 and N - 3m."""
+    taus, devs, errors, ns = allantools.mtotdev(phase_dat, taus=[1.0, 2.0, 4.0, 8.0, 16.0])
+    table = stable32_table("phase_dat_mtotdev_octave.txt")
+    assert devs == pytest.approx([row[5] for row in table], rel=2e-4)
+    assert list(ns) == [row[2] for row in table]
+    assert errors == pytest.approx(devs / np.sqrt(ns))
+    _, hdevs, _, hns = allantools.htotdev(phase_dat, taus=[1.0, 2.0, 4.0, 8.0, 16.0])
+    nobias = stable32_table("phase_dat_htotdev_octave_nobias.txt")
+    assert hdevs == pytest.approx([row[5] for row in nobias], rel=2e-4)
+    assert list(hns) == [row[2] for row in nobias]
+    ttaus, tdevs, _, _ = allantools.ttotdev(phase_dat, taus=[1.0, 2.0, 4.0, 8.0, 16.0])
+    assert tdevs == pytest.approx(devs * ttaus / np.sqrt(3.0), rel=1e-12)
+
+
 NBS14 = {  # NIST SP 1065 Table 31: the NBS14 1000-point set at m = 1, 10, 100
     "adev": [2.922319e-01, 9.965736e-02, 3.897804e-02],
     "oadev": [2.922319e-01, 9.159953e-02, 3.241343e-02],

@@ -14,13 +14,16 @@
 #include "foglab/stats/confidence.h"
 #include "foglab/stats/edf.h"
 #include "foglab/stats/noise_id.h"
+#include "theo1_kernel.h"
+#include "total_kernel.h"
 
 namespace foglab::stats {
 namespace {
 
-constexpr std::array<AllanKind, 7> kKinds = {AllanKind::adev,  AllanKind::oadev, AllanKind::mdev,
-                                             AllanKind::hdev,  AllanKind::ohdev, AllanKind::tdev,
-                                             AllanKind::totdev};
+constexpr std::array<AllanKind, 11> kKinds = {
+    AllanKind::adev,    AllanKind::oadev,   AllanKind::mdev,   AllanKind::hdev,
+    AllanKind::ohdev,   AllanKind::tdev,    AllanKind::totdev, AllanKind::mtotdev,
+    AllanKind::ttotdev, AllanKind::htotdev, AllanKind::theo1};
 
 // Positions handled together: every offset stream of a block stays in the
 // L2 cache while all averaging factors use it, so each distinct offset is
@@ -270,6 +273,14 @@ double total_edge_sum(std::span<const double> x, std::int64_t m) {
   return s.value();
 }
 
+// The modified-total sum of SP1065 eqs. 27 and 29 on the record z (phase
+// for MTOTDEV, rate for HTOTDEV): for each subsequence of 3m points, its
+// frequency offset removed, reflected to 9m points, the sum of the squared
+// second differences of its m-point window sums at the 6m start points.
+double modified_total_sum(std::span<const double> z, std::int64_t m) {
+  return detail::total_modified_sum(z, m);
+}
+
 std::int64_t term_count(AllanKind kind, std::int64_t n, std::int64_t m) {
   switch (kind) {
     case AllanKind::adev: return (n - 1) / m - 1;
@@ -279,6 +290,13 @@ std::int64_t term_count(AllanKind kind, std::int64_t n, std::int64_t m) {
     case AllanKind::hdev: return (n - 1) / m - 2;
     case AllanKind::ohdev: return n - 3 * m;
     case AllanKind::totdev: return n - 2;
+    case AllanKind::mtotdev:
+    case AllanKind::ttotdev:
+      return n - 3 * m + 1;
+    case AllanKind::htotdev:
+      return n - 3 * m;
+    case AllanKind::theo1:
+      return (n - m) * (m / 2);
   }
   return 0;
 }
@@ -294,6 +312,14 @@ std::string_view to_string(AllanKind kind) {
     case AllanKind::ohdev: return "ohdev";
     case AllanKind::tdev: return "tdev";
     case AllanKind::totdev: return "totdev";
+    case AllanKind::mtotdev:
+      return "mtotdev";
+    case AllanKind::ttotdev:
+      return "ttotdev";
+    case AllanKind::htotdev:
+      return "htotdev";
+    case AllanKind::theo1:
+      return "theo1";
   }
   return "?";
 }
@@ -303,10 +329,23 @@ AllanKind allan_kind_from_string(std::string_view text) {
     if (to_string(kind) == text) return kind;
   }
   throw UsageError(fmt::format(
-      "unknown statistic '{}': expected adev, oadev, mdev, hdev, ohdev, tdev or totdev", text));
+      "unknown statistic '{}': expected adev, oadev, mdev, hdev, ohdev, tdev, totdev, mtotdev, "
+      "ttotdev, htotdev or theo1",
+      text));
 }
 
 std::span<const AllanKind> all_allan_kinds() { return kKinds; }
+
+std::string_view to_string(NoiseRules rules) {
+  return rules == NoiseRules::stable32 ? "stable32" : "foglab";
+}
+
+NoiseRules noise_rules_from_string(std::string_view text) {
+  if (text == "foglab") return NoiseRules::foglab;
+  if (text == "stable32") return NoiseRules::stable32;
+  throw UsageError(
+      fmt::format("unknown noise identification rules '{}': expected foglab or stable32", text));
+}
 
 std::int64_t max_factor(AllanKind kind, std::int64_t phase_points) {
   const std::int64_t n = phase_points;
@@ -317,7 +356,14 @@ std::int64_t max_factor(AllanKind kind, std::int64_t phase_points) {
     case AllanKind::mdev:
     case AllanKind::tdev: return n / 3;
     case AllanKind::hdev:
-    case AllanKind::ohdev: return (n - 1) / 3;
+    case AllanKind::ohdev:
+    case AllanKind::htotdev:
+      return (n - 1) / 3;
+    case AllanKind::mtotdev:
+    case AllanKind::ttotdev:
+      return n / 3;
+    case AllanKind::theo1:
+      return (n - 1) / 2 * 2 >= kTheo1MinFactor ? (n - 1) / 2 * 2 : 0;
   }
   return 0;
 }
@@ -331,8 +377,12 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
   for (std::size_t k = 0; k < factors.size(); ++k) {
     if (factors[k] < 1 || factors[k] > limit) {
       throw DataError(fmt::format(
-          "{} at averaging factor {} needs more data: {} angle points allow factors 1 to {}",
-          to_string(kind), factors[k], n, limit));
+          "{} at averaging factor {} needs more data: {} angle points allow factors {} to {}",
+          to_string(kind), factors[k], n, kind == AllanKind::theo1 ? kTheo1MinFactor : 1, limit));
+    }
+    if (kind == AllanKind::theo1 && (factors[k] % 2 != 0 || factors[k] < kTheo1MinFactor)) {
+      throw UsageError(fmt::format("theo1 needs even averaging factors of at least {}, not {}",
+                                   kTheo1MinFactor, factors[k]));
     }
     counts[k] = term_count(kind, n, factors[k]);
   }
@@ -344,6 +394,20 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
       for (std::size_t k = 0; k < factors.size(); ++k) sums[k] += total_edge_sum(phase, factors[k]);
       break;
     case AllanKind::ohdev: sums = overlapping_sums<3>(phase, factors); break;
+    case AllanKind::htotdev: {
+      // The rate record, y_k = x_{k+1} - x_k; at m = 1 the OHDEV sum.
+      std::vector<double> rate(phase.size() - 1);
+      for (std::size_t k = 0; k + 1 < phase.size(); ++k) rate[k] = phase[k + 1] - phase[k];
+      for (std::size_t k = 0; k < factors.size(); ++k) {
+        const std::int64_t m = factors[k];
+        sums[k] = m == 1 ? overlapping_sums<3>(phase, factors.subspan(k, 1))[0]
+                         : modified_total_sum(rate, m);
+      }
+      break;
+    }
+    case AllanKind::theo1:
+      sums = detail::theo1_sums(phase, factors);
+      break;
     default:
       for (std::size_t k = 0; k < factors.size(); ++k) {
         const std::int64_t m = factors[k];
@@ -352,6 +416,10 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
           case AllanKind::hdev: sums[k] = strided_sum<3>(phase, m, counts[k]); break;
           case AllanKind::mdev:
           case AllanKind::tdev: sums[k] = modified_sum(phase, m, counts[k]); break;
+          case AllanKind::mtotdev:
+          case AllanKind::ttotdev:
+            sums[k] = modified_total_sum(phase, m);
+            break;
           default: break;
         }
       }
@@ -370,6 +438,18 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
       case AllanKind::ohdev: variance = sums[k] / (6.0 * m * m * count); break;
       case AllanKind::mdev:
       case AllanKind::tdev: variance = sums[k] / (2.0 * m * m * m * m * count); break;
+      case AllanKind::mtotdev:
+      case AllanKind::ttotdev:
+        variance = sums[k] / (12.0 * m * m * m * m * m * count);
+        break;
+      case AllanKind::htotdev:
+        variance = factors[k] == 1 ? sums[k] / (6.0 * count) : sums[k] / (36.0 * m * m * m * count);
+        break;
+      case AllanKind::theo1: {
+        const double outer = static_cast<double>(n - factors[k]);  // N - m
+        variance = sums[k] / (0.75 * outer * m * m);
+        break;
+      }
     }
     dev[k] = std::sqrt(variance);
   }
@@ -393,8 +473,46 @@ double statistic_edf(AllanKind kind, int alpha, std::int64_t m,
       return pooled_edf(alpha, m, segment_points, {.order = 3, .stride = Stride::non_overlapping});
     case AllanKind::ohdev: return pooled_edf(alpha, m, segment_points, {.order = 3});
     case AllanKind::totdev: return pooled_totdev_edf(alpha, m, segment_points);
+    case AllanKind::mtotdev:
+    case AllanKind::ttotdev:
+      return pooled_mtotdev_edf(alpha, m, segment_points);
+    case AllanKind::htotdev:
+      return pooled_htotdev_edf(alpha, m, segment_points);
+    case AllanKind::theo1:
+      break;  // SP1065's Theo1 edf is not implemented yet
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+// Theo1's averaging factors: a generated grid's even factors from
+// kTheo1MinFactor on; an explicit list's Theo1 taus (0.75 m / fs) each at the
+// nearest even factor.
+std::vector<std::int64_t> theo1_factors(const TauGrid& grid, std::int64_t phase_points,
+                                        double sample_rate_hz, std::int64_t limit) {
+  std::vector<std::int64_t> factors;
+  if (grid.kind == TauGridKind::list) {
+    for (const double tau_s : grid.taus_s) {
+      if (!(tau_s > 0.0) || !std::isfinite(tau_s)) {
+        throw UsageError(fmt::format("tau {} s is not positive", tau_s));
+      }
+      // The nearest even factor to tau / (0.75 tau0), at least the smallest.
+      const double half = tau_s * sample_rate_hz / 1.5;
+      const std::int64_t m = std::max<std::int64_t>(
+          kTheo1MinFactor, 2 * static_cast<std::int64_t>(std::llround(half)));
+      if (m > limit) {
+        throw DataError(fmt::format(
+            "theo1 tau {} s needs more samples than the record has: {} angle points allow "
+            "theo1 taus up to {} s",
+            tau_s, phase_points, 0.75 * static_cast<double>(limit) / sample_rate_hz));
+      }
+      factors.push_back(m);
+    }
+    return factors;
+  }
+  for (const std::int64_t m : averaging_factors(grid, phase_points, sample_rate_hz, limit)) {
+    if (m % 2 == 0 && m >= kTheo1MinFactor) factors.push_back(m);
+  }
+  return factors;
 }
 
 // The stretches' pooled deviations: sum / count over the terms of every
@@ -438,11 +556,8 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
                         [](const Stretch& a, const Stretch& b) { return a.size() < b.size(); });
   const std::int64_t limit = max_factor(options.kind, longest.size());
   if (limit < 1) {
-    const std::int64_t needed = options.kind == AllanKind::adev ||
-                                        options.kind == AllanKind::oadev ||
-                                        options.kind == AllanKind::totdev
-                                    ? 3
-                                    : 4;  // angle points for averaging factor 1
+    std::int64_t needed = 1;  // angle points for the smallest averaging factor
+    while (max_factor(options.kind, needed) < 1) ++needed;
     const std::int64_t longest_samples = longest.size() - (input == InputKind::rate ? 1 : 0);
     throw DataError(fmt::format(
         "{} needs at least {} {} samples, the {} {}", to_string(options.kind),
@@ -456,7 +571,16 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   result.sample_rate_hz = sample_rate_hz;
   result.phase_points = n;
   for (const Stretch& s : stretches) result.segment_points.push_back(s.size());
-  result.m = averaging_factors(options.grid, n, sample_rate_hz, limit);
+  result.m = options.kind == AllanKind::theo1
+                 ? theo1_factors(options.grid, n, sample_rate_hz, limit)
+                 : averaging_factors(options.grid, n, sample_rate_hz, limit);
+  if (result.m.empty() && options.kind == AllanKind::theo1) {
+    throw DataError(fmt::format(
+        "{} {} samples are too few for theo1 with at least {} clusters per tau: its averaging "
+        "factors are even and at least {}; lower TauGrid::min_clusters or list the taus in "
+        "TauGrid::taus_s",
+        record_samples, to_string(input), options.grid.min_clusters, kTheo1MinFactor));
+  }
   if (result.m.empty()) {
     throw DataError(fmt::format(
         "{} {} samples are too few for {} with at least {} clusters per tau "
@@ -470,9 +594,11 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   const std::size_t count = result.m.size();
   const double tau0_s = 1.0 / sample_rate_hz;
   result.tau_s.resize(count);
+  const bool time_like = options.kind == AllanKind::tdev || options.kind == AllanKind::ttotdev;
   for (std::size_t k = 0; k < count; ++k) {
-    result.tau_s[k] = static_cast<double>(result.m[k]) * tau0_s;
-    if (options.kind == AllanKind::tdev) result.dev[k] *= result.tau_s[k] / std::sqrt(3.0);
+    const double m = static_cast<double>(result.m[k]);
+    result.tau_s[k] = (options.kind == AllanKind::theo1 ? 0.75 * m : m) * tau0_s;
+    if (time_like) result.dev[k] *= result.tau_s[k] / std::sqrt(3.0);
   }
 
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -483,18 +609,26 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   result.ci68_high.assign(count, nan);
   result.ci95_low.assign(count, nan);
   result.ci95_high.assign(count, nan);
-  if (!options.confidence) return result;
+  const bool htot_bias = options.kind == AllanKind::htotdev && options.bias_correction;
+  if (!options.confidence && !htot_bias) return result;
 
-  const bool hadamard = options.kind == AllanKind::hdev || options.kind == AllanKind::ohdev;
+  const bool hadamard = options.kind == AllanKind::hdev || options.kind == AllanKind::ohdev ||
+                        options.kind == AllanKind::htotdev;
+  // Theo1 at factor m speaks for tau = 0.75 m: its noise is identified there.
+  std::vector<std::int64_t> id_factors = result.m;
+  if (options.kind == AllanKind::theo1) {
+    for (std::int64_t& m : id_factors) m = std::max<std::int64_t>(1, (3 * m + 2) / 4);
+  }
   const std::vector<NoiseId> ids =
       identify_noise(phase.subspan(static_cast<std::size_t>(longest.begin),
                                    static_cast<std::size_t>(longest.size())),
-                     result.m, hadamard ? 3 : 2);
+                     id_factors, hadamard ? 3 : 2);
   // Phase-noise types (alpha > 0, ADEV ~ 1/tau) fall faster than every other
   // term, so once a frequency-noise type dominates at some tau, phase noise
   // cannot dominate at a longer one. With few decimated points the lag-1
   // method sometimes calls white FM "PM", which would give a far too large
-  // edf; such calls beyond the shortest FM tau are taken as white FM.
+  // edf, and so does B1 with 8-30 averages; such calls beyond the shortest
+  // FM tau are taken as white FM, unless Stable32's rules are asked for.
   std::int64_t shortest_fm_m = std::numeric_limits<std::int64_t>::max();
   for (std::size_t k = 0; k < count; ++k) {
     if (ids[k].method != NoiseIdMethod::none && ids[k].alpha <= 0) {
@@ -507,13 +641,15 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
     NoiseId id = ids[k];
     AlphaMethod how{id.method, false};
     if (id.method == NoiseIdMethod::none) id.alpha = previous_alpha;
-    if (id.alpha > 0 && m > shortest_fm_m) {
+    if (id.alpha > 0 && m > shortest_fm_m && options.noise_rules == NoiseRules::foglab) {
       id.alpha = 0;
       how.fm_floor = true;
     }
     previous_alpha = id.alpha;
     result.alpha[k] = id.alpha;
     result.alpha_method[k] = how;
+    if (htot_bias) result.dev[k] /= std::sqrt(htotdev_bias(id.alpha, m));
+    if (!options.confidence) continue;
     const double edf = statistic_edf(options.kind, id.alpha, m, result.segment_points);
     result.edf[k] = edf;
     const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);

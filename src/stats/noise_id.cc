@@ -16,6 +16,11 @@ namespace foglab::stats {
 namespace {
 
 constexpr std::int64_t kMinLag1Points = 30;  // Riley & Greenhall 2004: N >= 30
+// Barnes' B1 ratio needs at least this many m-sample averages: with fewer,
+// the previous tau's noise type holds. Stable32 does the same: its
+// PHASE.DAT tables (tests/data/stable32-phasedat) identify the noise down to
+// seven averages and carry the last type on below that.
+constexpr std::int64_t kB1MinAverages = 8;
 constexpr int kMaxD = 3;
 
 // Raw sums of the d-times differenced, detrended series z^(d), d = 0..3.
@@ -344,7 +349,7 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
   const auto n = static_cast<std::int64_t>(phase.size());
   const std::int64_t count = (n - 1) / m;  // number of m-sample averages
   NoiseId id;
-  if (count < 3) {
+  if (count < kB1MinAverages) {
     id.method = NoiseIdMethod::none;
     return id;
   }
@@ -379,30 +384,22 @@ NoiseId b1_identify(std::span<const double> phase, std::int64_t m, int d_max) {
     return id;
   }
   // White or flicker PM: the same ADEV slope; R(n) = MVAR/AVAR tells them
-  // apart (SP1065 section 5.6.2). With few averages B1 also mistakes white FM
-  // for PM, so white FM (R = 1/2) is the third candidate; the nearest theory
-  // on a log scale wins (boundaries at geometric means).
+  // apart, the boundary at the geometric mean of their theoretical ratios
+  // (SP1065 section 5.6.2; the two candidates Stable32 weighs).
   if (3 * m > n) {
-    id.alpha = 0;
+    id.alpha = 1;
     return id;
   }
   const std::array<std::int64_t, 1> factor = {m};
   const double adev = detail::deviations_from_phase(phase, AllanKind::adev, factor)[0];
   const double mdev = detail::deviations_from_phase(phase, AllanKind::mdev, factor)[0];
-  const double rn = adev > 0.0 ? (mdev * mdev) / (adev * adev) : 0.5;
+  const double rn = adev > 0.0 ? (mdev * mdev) / (adev * adev) : 1.0;
   const double md = static_cast<double>(m);
   const double rn_white_pm = 1.0 / md;
   const double rn_flicker_pm =
       3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
-  const double rn_white_fm = 0.5;
   id.method = NoiseIdMethod::b1_rn;
-  if (rn < std::sqrt(rn_white_pm * rn_flicker_pm)) {
-    id.alpha = 2;
-  } else if (rn < std::sqrt(rn_flicker_pm * rn_white_fm)) {
-    id.alpha = 1;
-  } else {
-    id.alpha = 0;
-  }
+  id.alpha = rn < std::sqrt(rn_white_pm * rn_flicker_pm) ? 2 : 1;
   return id;
 }
 

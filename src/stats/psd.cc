@@ -25,7 +25,7 @@
 // Speed and reproducibility: one FFTW plan (FFTW_ESTIMATE, real-to-complex)
 // is made per call and shared by all OpenMP threads through the new-array
 // execute interface (fftw_execute_dft_r2c is thread-safe; planning is not, so
-// planning and plan destruction are serialised by a mutex local to this file).
+// planning and plan destruction are serialised by fftw_support.h's mutex).
 // Each thread owns fftw_malloc'ed buffers, which are all equally aligned, so
 // every thread runs the same FFT code path. Segments are grouped into
 // chunks of a fixed size that depends only on L (at least kChunkSamples
@@ -54,10 +54,17 @@
 #include <numbers>
 #include <vector>
 
+#include "fftw_support.h"
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
 
 namespace foglab::stats {
+
+std::mutex& detail::fftw_planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 namespace {
 
 constexpr std::size_t kMinSegmentLength = 16;
@@ -73,29 +80,8 @@ constexpr std::size_t kPartialBudgetBytes = std::size_t{1} << 28;
 /// bin, so exact decades (1 Hz, 10 Hz, ...) open their bin despite rounding.
 constexpr double kEdgeTolerance = 1e-9;
 
-/// FFTW's planner and fftw_destroy_plan are not thread-safe.
-std::mutex& fftw_planner_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-/// An array from fftw_malloc, freed on scope exit (also during unwinding).
-template <typename T>
-class FftwArray {
- public:
-  explicit FftwArray(std::size_t count) : data_(static_cast<T*>(fftw_malloc(sizeof(T) * count))) {
-    if (data_ == nullptr) throw std::bad_alloc();
-  }
-  FftwArray(FftwArray&& other) noexcept : data_(other.data_) { other.data_ = nullptr; }
-  FftwArray(const FftwArray&) = delete;
-  FftwArray& operator=(const FftwArray&) = delete;
-  FftwArray& operator=(FftwArray&&) = delete;
-  ~FftwArray() { fftw_free(data_); }
-  T* get() const { return data_; }
-
- private:
-  T* data_;
-};
+using detail::fftw_planner_mutex;
+using detail::FftwArray;
 
 /// One real-to-complex plan of length n, destroyed on scope exit.
 class R2cPlan {

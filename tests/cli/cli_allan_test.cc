@@ -23,6 +23,14 @@ using nlohmann::json;
 using test::quote;
 using test::run_foglab;
 
+// A tau as the CLI reads it back exactly: Theo1's 0.75 m are not integers.
+std::string fmt_tau(double tau_s) {
+  std::ostringstream out;
+  out.precision(17);
+  out << tau_s;
+  return out.str();
+}
+
 json run_json(const std::string& args) {
   const test::CliRun r = run_foglab(args + " --json -");
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -155,6 +163,56 @@ TEST(CliAllan, TimeErrorRefusesGapsAndUnknownKindsAreNamed) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.err.find("'mtiex'"), std::string::npos) << unknown.err;
   EXPECT_NE(unknown.err.find("mtie or tierms"), std::string::npos) << unknown.err;
+}
+
+TEST(CliAllan, TotalAndTheoFamilyReproduceStable32WithTheirOptions) {
+  // Stable32 1.60's decade MTOTDEV/TTOTDEV (its noise types: --noise-id
+  // stable32), its HTOTDEV with and without the bias factor, its white-FM
+  // Theo1 (taus 0.75 m), each to the table's printed digits; the time-like
+  // TTOTDEV carries (deg/h)*s in the JSON unit and the CSV header.
+  const std::string phase_dat = quote(test::data_path("stable32-phasedat/PHASE.DAT"));
+  struct Case {
+    std::string kind, file, options;
+  };
+  const std::vector<Case> cases = {
+      {"mtotdev", "phase_dat_mtotdev_decade.txt", "--noise-id stable32"},
+      {"ttotdev", "phase_dat_ttotdev_decade.txt", "--noise-id stable32"},
+      {"htotdev", "phase_dat_htotdev_octave.txt", ""},
+      {"htotdev", "phase_dat_htotdev_octave_nobias.txt", "--no-bias-correction --no-ci"},
+      {"theo1", "phase_dat_theo1_alpha0_decade.txt", "--no-ci"}};
+  for (const Case& c : cases) {
+    const auto rows = test::read_stable32(c.file);
+    std::string taus;
+    for (const auto& row : rows) taus += (taus.empty() ? "" : ",") + fmt_tau(row.tau_s);
+    const json j = run_json("allan " + phase_dat + " --input phase --fs 1 --kind " + c.kind +
+                            " --taus " + taus + " " + c.options);
+    EXPECT_EQ(j["kind"], c.kind);
+    EXPECT_EQ(j["unit"], c.kind == "ttotdev" ? "deg/h*s" : "deg/h");
+    EXPECT_EQ(j["bias_correction"], c.kind == "htotdev" && c.options.empty()) << c.file;
+    ASSERT_EQ(j["dev"].size(), rows.size()) << c.file;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_EQ(j["m"][k].get<std::int64_t>(), rows[k].af) << c.file;
+      EXPECT_NEAR(j["dev"][k].get<double>() / rows[k].sigma, 1.0, 2e-4)
+          << c.file << " AF " << rows[k].af;
+      if (c.options.find("--no-ci") != std::string::npos) continue;
+      EXPECT_EQ(j["alpha"][k].get<int>(), rows[k].alpha) << c.file << " AF " << rows[k].af;
+      EXPECT_NEAR(j["ci68_low"][k].get<double>() / rows[k].min_sigma, 1.0, 0.01) << c.file;
+    }
+  }
+  const test::CliRun csv =
+      run_foglab("allan " + phase_dat + " --input phase --fs 1 --kind ttotdev --csv -");
+  EXPECT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_EQ(csv.out.substr(0, csv.out.find('\n')),
+            "tau_s,m,n,dev_deg_h_s,alpha,edf,ci68_low_deg_h_s,ci68_high_deg_h_s,"
+            "ci95_low_deg_h_s,ci95_high_deg_h_s");
+  const test::CliRun bad_rules =
+      run_foglab("allan " + phase_dat + " --input phase --fs 1 --noise-id stable33");
+  EXPECT_EQ(bad_rules.exit_code, 2);
+  EXPECT_NE(bad_rules.err.find("foglab or stable32"), std::string::npos) << bad_rules.err;
+  const test::CliRun odd_theo1 =
+      run_foglab("allan " + phase_dat + " --input phase --fs 1 --kind theo1 --taus 800");
+  EXPECT_EQ(odd_theo1.exit_code, 3) << odd_theo1.err;
+  EXPECT_NE(odd_theo1.err.find("theo1 taus up to 750 s"), std::string::npos) << odd_theo1.err;
 }
 
 TEST(CliAllan, Nbs14TableThroughCsvInputAndJsonOutput) {

@@ -1,6 +1,7 @@
 // Test support: the published reference data sets (NIST SP 1065, Stable32).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -57,11 +58,15 @@ std::vector<Stable32Row> read_stable32_rows(const std::string& file, Parse parse
   return rows;
 }
 
-/// A table with intervals: AF, tau, count, alpha, min sigma, sigma, max sigma.
+/// A table with intervals: AF, tau, count, alpha, min sigma, sigma, max sigma
+/// (Theo1's tables print the count as a float, 4.9550e+03).
 inline std::vector<Stable32Row> read_stable32(const std::string& file) {
   return read_stable32_rows(file, [](std::istringstream& f, Stable32Row& r) {
-    return static_cast<bool>(f >> r.af >> r.tau_s >> r.n >> r.alpha >> r.min_sigma >> r.sigma >>
-                             r.max_sigma);
+    double count = 0.0;
+    const bool ok = static_cast<bool>(f >> r.af >> r.tau_s >> count >> r.alpha >> r.min_sigma >>
+                                      r.sigma >> r.max_sigma);
+    r.n = std::llround(count);
+    return ok;
   });
 }
 

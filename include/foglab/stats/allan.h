@@ -22,6 +22,22 @@
 //          extended at both ends by reflection, x*_{-j} = 2 x_0 - x_j and
 //          x*_{N-1+j} = 2 x_{N-1} - x_{N-1-j};
 //          TOTVAR = sum / (2 tau^2 (N - 2))                              (eq. 25)
+//   MTOTDEV modified total deviation: for each of the n = N - 3m + 1
+//          subsequences of 3m points, remove its frequency offset (the
+//          difference of the means of its two halves over their distance),
+//          extend it to 9m points by uninverted even reflection on both
+//          sides, and average the squared second differences of m-point
+//          phase averages at its 6m start points;
+//          MTOTVAR = sum / (2 m^2 tau^2 6m n)                              (eq. 27)
+//   TTOTDEV time total deviation, tau/sqrt(3) MTOTDEV, in [deg/h * s]       (eq. 28)
+//   HTOTDEV Hadamard total deviation: the same subsequence procedure on the
+//          rate (frequency) record y_k = x_{k+1} - x_k with second
+//          differences of m-sample rate averages, HTOTVAR = sum / (6 * 6m n),
+//          n = N - 3m; at m = 1 it is OHDEV (Riley's choice, as Stable32)  (eq. 29)
+//   THEO1  Theo1 at even m (10 <= m <= N - 1), tau = 0.75 m tau0:
+//          sum_{i=0}^{N-m-1} sum_{d=0}^{m/2-1} (x_i - x_{i-d+m/2} + x_{i+m}
+//          - x_{i+d+m/2})^2 / (m/2 - d) / (0.75 (N - m) (m tau0)^2); "n" is
+//          the number of terms, (N - m) m / 2, as Stable32 prints it        (eq. 30)
 //
 // A gyro RATE record y_k [deg/h] (k = 0 .. N-2) is the analogue of
 // fractional frequency: foglab integrates it to an angle record after
@@ -63,19 +79,54 @@
 namespace foglab::stats {
 
 /// Which statistic to compute.
-enum class AllanKind { adev, oadev, mdev, hdev, ohdev, tdev, totdev };
+enum class AllanKind {
+  adev,
+  oadev,
+  mdev,
+  hdev,
+  ohdev,
+  tdev,
+  totdev,  // the classic seven
+  mtotdev,
+  ttotdev,
+  htotdev,
+  theo1  // the total and Theo family
+};
 
-/// "adev", "oadev", "mdev", "hdev", "ohdev", "tdev", "totdev".
+/// "adev", "oadev", "mdev", "hdev", "ohdev", "tdev", "totdev", "mtotdev",
+/// "ttotdev", "htotdev", "theo1".
 std::string_view to_string(AllanKind kind);
 /// Parses the names above; throws UsageError listing them otherwise.
 AllanKind allan_kind_from_string(std::string_view text);
 /// Every kind, in the order above.
 std::span<const AllanKind> all_allan_kinds();
 
+/// The rules that turn identify_noise()'s calls into each tau's alpha.
+enum class NoiseRules {
+  /// Stable32's rules (noise_id.h) plus the physical constraint that phase
+  /// noise cannot dominate beyond the shortest tau where frequency noise
+  /// does: a later PM call is taken as white FM ("fm_floor"). Keeps the
+  /// intervals of white FM honest where B1 and lag-1 misfire.
+  foglab,
+  /// Stable32's rules alone: its alpha column, tau for tau.
+  stable32,
+};
+
+/// "foglab", "stable32".
+std::string_view to_string(NoiseRules rules);
+/// Parses the names above; throws UsageError listing them otherwise.
+NoiseRules noise_rules_from_string(std::string_view text);
+
 struct AllanOptions {
   AllanKind kind = AllanKind::oadev;
   TauGrid grid;            ///< averaging times (default: octave, >= 10 clusters)
   bool confidence = true;  ///< identify noise, compute edf and intervals
+  /// HTOTDEV only: divide the variance by Riley's bias factor of the
+  /// identified noise type (white FM 0.995, flicker FM 0.851, random-walk FM
+  /// 0.771; none at m = 1 or for phase noise), as Stable32 prints it. The
+  /// noise is identified for this even without `confidence`.
+  bool bias_correction = true;
+  NoiseRules noise_rules = NoiseRules::foglab;
 };
 
 /// One statistic over a tau grid. All vectors have one entry per tau.
@@ -88,9 +139,10 @@ struct AllanResult {
   /// record without gaps). A rate stretch of L samples has L + 1 angle
   /// points, so with gaps the entries add up to N plus the number of gaps.
   std::vector<std::int64_t> segment_points;
-  std::vector<std::int64_t> m;       ///< averaging factors, tau = m / fs
+  /// averaging factors, tau = m / fs (THEO1: tau = 0.75 m / fs)
+  std::vector<std::int64_t> m;
   std::vector<double> tau_s;         ///< [s]
-  /// [deg/h] (TDEV: [deg/h * s], the analogue of a time deviation)
+  /// [deg/h] (TDEV, TTOTDEV: [deg/h * s], the analogue of a time deviation)
   std::vector<double> dev;
   std::vector<std::int64_t> n;       ///< number of terms in each estimate
   std::vector<int> alpha;            ///< identified noise exponent, S_y ~ f^alpha
@@ -116,7 +168,11 @@ AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample
                                      InputKind input, const AllanOptions& options = {},
                                      std::span<const Gap> gaps = {});
 
-/// Largest averaging factor at which `kind` is defined for N phase points.
+/// Theo1's smallest averaging factor (SP1065 section 5.2.15: even m >= 10).
+inline constexpr std::int64_t kTheo1MinFactor = 10;
+
+/// Largest averaging factor at which `kind` is defined for N phase points
+/// (0 if none is).
 std::int64_t max_factor(AllanKind kind, std::int64_t phase_points);
 
 // The steps of allan_deviation(), for the tests and benchmarks that check

@@ -21,4 +21,10 @@ struct Interval {
 /// `p` in (0, 1). NaN bounds when edf is not a positive finite number.
 Interval chi2_interval(double dev, double edf, double p);
 
+/// The edf whose interval at confidence `p` has the width of [low, high]
+/// around `dev` (log ratio high/low, the inverse of chi2_interval(): a
+/// printed table's bounds give back its edf). NaN unless 0 < low < dev <
+/// high; the edf is sought in [0.1, 1e9].
+double edf_from_interval(double dev, double low, double high, double p);
+
 }  // namespace foglab::stats

@@ -11,7 +11,14 @@
 //     the asymptotic cases;
 //   * for TOTDEV, NIST SP 1065 Table 12: edf = b (T/tau) - c for white,
 //     flicker and random-walk FM, with T/tau = N/m; Greenhall's OADEV edf for
-//     the phase-noise types.
+//     the phase-noise types;
+//   * for MTOTDEV and TTOTDEV, edf = b (T/tau) - c from m = 10, T/tau = N/m,
+//     with SP 1065's b, c for white PM, flicker FM and random-walk FM and
+//     Stable32's (larger) effective b, c for white FM and flicker PM (edf.cc);
+//     the MDEV edf below m = 10;
+//   * for HTOTDEV, SP 1065's edf = (T/tau) / (b0 + b1 tau/T) for white and
+//     flicker FM from m = 16; the OHDEV edf elsewhere (Stable32's bounds
+//     below m = 16 imply 10-35 % larger edf: bounds within 1 % all the same).
 #pragma once
 
 #include <cstdint>
@@ -50,5 +57,17 @@ double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
 
 /// The same pooled over contiguous stretches, as pooled_edf().
 double pooled_totdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
+
+/// edf of MTOTDEV and TTOTDEV (see above); NaN outside alpha = +2 .. -2.
+double mtotdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
+/// edf of HTOTDEV (see above).
+double htotdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
+/// Riley's HTOTDEV bias, the expected HTOTVAR / HVAR for noise alpha at
+/// factor m (1 at m = 1, where HTOTDEV is OHDEV, and for phase noise).
+double htotdev_bias(int alpha, std::int64_t m);
+
+/// The same pooled over contiguous stretches, as pooled_edf().
+double pooled_mtotdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
+double pooled_htotdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
 
 }  // namespace foglab::stats

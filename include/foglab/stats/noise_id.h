@@ -16,10 +16,15 @@
 //   * otherwise the B1 bias ratio (Barnes 1969; SP1065 eq. 73: standard
 //     variance over Allan variance of the m-sample averages) compared with
 //     its theoretical values at the geometric means between noise types,
-//     and the R(n) = MVAR/AVAR ratio to split white from flicker PM.
-// allan_deviation() adds one physical constraint: phase-noise types fall as
-// 1/tau, faster than any other term, so beyond the shortest tau identified as
-// frequency noise a PM call is taken as white FM (method "...,fm_floor").
+//     and, where B1 says phase noise, the R(n) = MVAR/AVAR ratio to split
+//     white from flicker PM (SP1065 section 5.6.2). B1 is used while at
+//     least 7 averages remain; below that the previous tau's type holds.
+//     These are Stable32's rules: on its PHASE.DAT tables foglab's alpha
+//     agrees at 136 of 139 OADEV taus (docs/theory/allan.md).
+// allan_deviation() adds by default one physical constraint (NoiseRules,
+// allan.h): phase-noise types fall as 1/tau, faster than any other term, so
+// beyond the shortest tau identified as frequency noise a PM call is taken
+// as white FM (method "...,fm_floor").
 #pragma once
 
 #include <cstdint>
