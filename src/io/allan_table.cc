@@ -55,7 +55,14 @@ std::string lower(std::string s) {
   return s;
 }
 
-enum class Column { none, tau, dev, n, m, alpha, edf, low, high };
+enum class Column { none, tau, dev, other_statistic, n, m, alpha, edf, low, high };
+
+// Statistics whose tau dependence differs from the Allan variance's for
+// some noise type (MVAR = AVAR / 2 for white FM, HVAR = AVAR / 2 for
+// random-walk FM, TDEV in angle units), so the model's Allan variance cannot
+// be fitted to them.
+constexpr std::string_view kOtherStatistics[] = {
+    "mdev", "tdev", "hdev", "ohdev", "mtotdev", "ttotdev", "htotdev", "theo", "dev_deg_h_s"};
 
 // What a header name means; deviation names carry units as a suffix
 // (dev_deg_h, ci68_low_deg_h_s).
@@ -76,8 +83,11 @@ Column column_of(const std::string& raw) {
     return Column::high;
   }
   if (starts("ci95")) return Column::none;
+  for (const std::string_view p : kOtherStatistics) {
+    if (starts(p)) return Column::other_statistic;
+  }
   for (const std::string_view p :
-       {"dev", "adev", "oadev", "mdev", "hdev", "ohdev", "totdev", "sigma", "allan", "deviation"}) {
+       {"dev", "adev", "oadev", "totdev", "sigma", "allan", "deviation"}) {
     if (starts(p)) return Column::dev;
   }
   return Column::none;
@@ -96,7 +106,22 @@ AllanTable read_allan_table(const std::string& path) {
   while (std::getline(in, line)) {
     ++line_number;
     const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
+    if (first == std::string::npos) continue;
+    if (line[first] == '#') {
+      // Stable32 names its statistic in a comment: "# Sigma Type: Modified Allan".
+      const std::size_t type = line.find("Sigma Type:");
+      if (type != std::string::npos) {
+        const std::string name = line.substr(type + 11);
+        const bool allan =
+            name.find("Allan") != std::string::npos && name.find("Modified") == std::string::npos;
+        if (!allan && name.find(" Total") != 0) {
+          throw_data_error(path, fmt::format("line {}: a table of{}: the noise model is fitted "
+                                             "to Allan deviations (ADEV, OADEV, TOTDEV)",
+                                             line_number, name));
+        }
+      }
+      continue;
+    }
     const std::vector<std::string> fields = fields_of(line.substr(first));
     std::vector<std::optional<double>> values;
     bool numeric = true;
@@ -107,6 +132,15 @@ AllanTable read_allan_table(const std::string& path) {
     if (columns.empty()) {
       if (!numeric) {  // the header
         for (const std::string& f : fields) columns.push_back(column_of(f));
+        const auto other = std::find(columns.begin(), columns.end(), Column::other_statistic);
+        if (other != columns.end()) {
+          throw_data_error(
+              path,
+              fmt::format("line {}: the column '{}' is not an Allan deviation: the noise "
+                          "model is fitted to ADEV, OADEV or TOTDEV (MDEV, TDEV, the "
+                          "Hadamard and the other total deviations follow other laws)",
+                          line_number, fields[static_cast<std::size_t>(other - columns.begin())]));
+        }
         if (std::count(columns.begin(), columns.end(), Column::tau) != 1 ||
             std::count(columns.begin(), columns.end(), Column::dev) != 1) {
           throw_data_error(path, fmt::format("line {}: the header '{}' names no tau column and "
@@ -165,6 +199,7 @@ AllanTable read_allan_table(const std::string& path) {
           high = v > 0.0 ? v : kNaN;
           break;
         case Column::none:
+        case Column::other_statistic:
           break;
       }
     }

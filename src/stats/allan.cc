@@ -479,7 +479,7 @@ double statistic_edf(AllanKind kind, int alpha, std::int64_t m,
     case AllanKind::htotdev:
       return pooled_htotdev_edf(alpha, m, segment_points);
     case AllanKind::theo1:
-      break;  // SP1065's Theo1 edf is not implemented yet
+      return pooled_theo1_edf(alpha, m, segment_points);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }

@@ -270,6 +270,46 @@ double htotdev_edf(int alpha, std::int64_t m, std::int64_t n_phase) {
   return greenhall_edf(alpha, m, n_phase, {.order = 3});
 }
 
+double theo1_edf(int alpha, std::int64_t m, std::int64_t n_phase) {
+  // D. A. Howe and T. K. Peppler, "Estimation of very long-term frequency
+  // stability using a special-purpose statistic", Proc. 2003 EFTF/IEEE FCS,
+  // as Riley's "Confidence intervals and bias corrections for the Stable32
+  // variance functions" lists them, with tau = 0.75 m in units of tau0 and
+  // N phase points.
+  const double n = static_cast<double>(n_phase);
+  const double t = 0.75 * static_cast<double>(m);
+  double edf = kNaN;
+  switch (alpha) {
+    case 2:
+      edf = 0.86 * (n + 1.0) * (n - 4.0 * t / 3.0) / (n - t) * (t / (t + 1.14));
+      break;
+    case 1:
+      edf = (4.798 * n * n - 6.374 * n * t + 12.387 * t) / (std::sqrt(t + 36.6) * (n - t)) *
+            (t / (t + 0.3));
+      break;
+    case 0: {
+      const double t15 = std::pow(t, 1.5);
+      edf = ((4.1 * n + 0.8) / t - (3.1 * n + 6.5) / n) * (t15 / (t15 + 5.2));
+      break;
+    }
+    case -1: {
+      const double t3 = t * t * t;
+      edf = (2.0 * n * n - 1.3 * n * t - 3.5 * t) / (n * t) * (t3 / (t3 + 2.3));
+      break;
+    }
+    case -2: {
+      const double a = 4.4 * n - 1.0;
+      edf = (4.4 * n - 2.0) / (2.9 * t) * (a * a - 8.6 * t * a + 11.4 * t * t) /
+            ((4.4 * n - 3.0) * (4.4 * n - 3.0));
+      break;
+    }
+    default:
+      break;
+  }
+  // The random-walk fit turns negative beyond m ~ 0.84 N: no interval there.
+  return edf > 0.0 ? edf : kNaN;
+}
+
 double htotdev_bias(int alpha, std::int64_t m) {
   // W. J. Riley, "Confidence intervals and bias corrections for the Stable32
   // variance functions" (Hamilton Technical Services, 2000): HTOTVAR / HVAR.
@@ -293,6 +333,12 @@ double htotdev_bias(int alpha, std::int64_t m) {
 double pooled_mtotdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points) {
   return sum_over_stretches(segment_points, [&](std::int64_t points) {
     return 3 * m <= points ? mtotdev_edf(alpha, m, points) : kNaN;
+  });
+}
+
+double pooled_theo1_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points) {
+  return sum_over_stretches(segment_points, [&](std::int64_t points) {
+    return m + 1 <= points ? theo1_edf(alpha, m, points) : kNaN;
   });
 }
 

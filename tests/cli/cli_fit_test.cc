@@ -132,6 +132,15 @@ TEST(CliFit, BadTablesAreDataErrorsThatNameTheLine) {
   const test::CliRun two = run_foglab("fit " + write("d.csv", "tau_s,adev\n1,0.3\n2,0.2\n"));
   EXPECT_EQ(two.exit_code, 3);
   EXPECT_NE(two.err.find("at least 3"), std::string::npos) << two.err;
+  // Another statistic's table, by its column name or Stable32's "Sigma Type".
+  const test::CliRun mdev =
+      run_foglab("fit " + write("e.csv", "tau_s,mdev\n1,0.3\n2,0.2\n4,0.1\n"));
+  EXPECT_EQ(mdev.exit_code, 3);
+  EXPECT_NE(mdev.err.find("'mdev' is not an Allan deviation"), std::string::npos) << mdev.err;
+  const test::CliRun modified =
+      run_foglab("fit " + quote(test::data_path("stable32-phasedat/phase_dat_mdev_octave.txt")));
+  EXPECT_EQ(modified.exit_code, 3);
+  EXPECT_NE(modified.err.find("Modified Allan"), std::string::npos) << modified.err;
   const test::CliRun missing = run_foglab("fit " + quote(dir / "none.csv"));
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("none.csv"), std::string::npos) << missing.err;

@@ -5,14 +5,17 @@
 // takes any of:
 //   * a header line naming the columns (comma, semicolon, tab or space
 //     separated; '#' lines are comments): tau (tau, tau_s, tau [s], t),
-//     deviation (dev..., adev, oadev, mdev, sigma, allan..., deviation),
+//     deviation (dev..., adev, oadev, totdev, sigma, allan..., deviation),
 //     and optionally the count (n, #, count, terms), the averaging factor
 //     (m, af), alpha, edf, the 68 % bounds (ci68_low/ci68_high, min
 //     sigma/max sigma, low/high). foglab's `allan --csv` header is one;
 //   * Stable32's printed table without a header: rows of seven numbers,
 //     AF, tau, count, alpha, min sigma, sigma, max sigma ('#' header lines
 //     as Stable32 writes them are skipped); bounds of 0 mean none.
-// Values are in the table's own unit (foglab fits them as deg/h).
+// Values are in the table's own unit (foglab fits them as deg/h). A table
+// of another statistic (MDEV, TDEV, the Hadamard or other total deviations,
+// by its column name or Stable32's "Sigma Type") is refused: the model's
+// Allan variance does not describe it.
 #pragma once
 
 #include <cstdint>

@@ -39,6 +39,10 @@
 //          - x_{i+d+m/2})^2 / (m/2 - d) / (0.75 (N - m) (m tau0)^2); "n" is
 //          the number of terms, (N - m) m / 2, as Stable32 prints it        (eq. 30)
 //
+// Cost per tau: O(N) for every kind but THEO1 (MTOTDEV/HTOTDEV by the
+// closed-form sums of src/stats/total_kernel.h), O(N log^2 m) for THEO1
+// (FFT correlations, src/stats/theo1_kernel.h).
+//
 // A gyro RATE record y_k [deg/h] (k = 0 .. N-2) is the analogue of
 // fractional frequency: foglab integrates it to an angle record after
 // removing its mean with a compensated sum (the statistics are blind to a

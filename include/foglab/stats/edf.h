@@ -16,6 +16,7 @@
 //     with SP 1065's b, c for white PM, flicker FM and random-walk FM and
 //     Stable32's (larger) effective b, c for white FM and flicker PM (edf.cc);
 //     the MDEV edf below m = 10;
+//   * for Theo1, Howe and Peppler's edf fits (theo1_edf());
 //   * for HTOTDEV, SP 1065's edf = (T/tau) / (b0 + b1 tau/T) for white and
 //     flicker FM from m = 16; the OHDEV edf elsewhere (Stable32's bounds
 //     below m = 16 imply 10-35 % larger edf: bounds within 1 % all the same).
@@ -62,6 +63,10 @@ double pooled_totdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t
 double mtotdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
 /// edf of HTOTDEV (see above).
 double htotdev_edf(int alpha, std::int64_t m, std::int64_t n_phase);
+/// edf of Theo1 at even factor m (tau = 0.75 m tau0), Howe and Peppler's
+/// fits for alpha = +2 .. -2; NaN outside them (and for random-walk FM
+/// beyond m ~ 0.84 N, where the fit turns negative).
+double theo1_edf(int alpha, std::int64_t m, std::int64_t n_phase);
 /// Riley's HTOTDEV bias, the expected HTOTVAR / HVAR for noise alpha at
 /// factor m (1 at m = 1, where HTOTDEV is OHDEV, and for phase noise).
 double htotdev_bias(int alpha, std::int64_t m);
@@ -69,5 +74,6 @@ double htotdev_bias(int alpha, std::int64_t m);
 /// The same pooled over contiguous stretches, as pooled_edf().
 double pooled_mtotdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
 double pooled_htotdev_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
+double pooled_theo1_edf(int alpha, std::int64_t m, std::span<const std::int64_t> segment_points);
 
 }  // namespace foglab::stats
