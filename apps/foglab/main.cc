@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <string_view>
 
 #include "app.h"
 #include "foglab/core/output.h"
@@ -18,12 +19,22 @@ namespace {
 // tunables change that (the glibc manual, "Memory Allocation Tunables"): large blocks stay
 // in the heap and are reused, and the heap gets transparent huge pages. They are read only
 // when a process starts, so foglab starts itself again once with them set; measured in
-// bench/RESULTS.md (issue 17). Not when GLIBC_TUNABLES is set already (the user's choice
-// stands, and it marks the second start), nor under an address-space limit, where memory is
-// better returned.
-void restart_with_malloc_tunables(char** argv) {
+// bench/RESULTS.md (issue 17). Only for the commands that run whole analyses, which allocate
+// and free such arrays over and over: a second start costs the others (`allan` on 2e7 samples
+// takes 0.2 s) a third of their time (issue 19). Not when GLIBC_TUNABLES is set already (the
+// user's choice stands, and it marks the second start), nor under an address-space limit,
+// where memory is better returned.
+bool runs_whole_analyses(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string_view word = argv[k];
+    if (word == "analyze" || word == "batch" || word == "lab2") return true;
+  }
+  return false;
+}
+
+void restart_with_malloc_tunables(int argc, char** argv) {
 #ifdef __linux__
-  if (std::getenv("GLIBC_TUNABLES") != nullptr) return;
+  if (std::getenv("GLIBC_TUNABLES") != nullptr || !runs_whole_analyses(argc, argv)) return;
   if (::setenv("GLIBC_TUNABLES",
                "glibc.malloc.hugetlb=1:glibc.malloc.mmap_max=0:"
                "glibc.malloc.trim_threshold=4294967296",
@@ -33,6 +44,7 @@ void restart_with_malloc_tunables(char** argv) {
   ::execv("/proc/self/exe", argv);
   ::unsetenv("GLIBC_TUNABLES");  // not restarted: on as before
 #else
+  (void)argc;
   (void)argv;
 #endif
 }
@@ -51,7 +63,7 @@ int main(int argc, char** argv) {
   if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
     ::mallopt(M_ARENA_MAX, 1);
   } else {
-    restart_with_malloc_tunables(argv);
+    restart_with_malloc_tunables(argc, argv);
   }
   // Before any thread starts: an interrupted run removes its unfinished
   // outputs (docs/guarantees.md).
