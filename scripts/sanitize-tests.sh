@@ -12,7 +12,9 @@
 # and run in the Release half): four of Bandwidth's six (the Butterworth and
 # flicker ones stay, and SensorEffects' filter cases), SpectralLine's broad
 # line, lab2's default and --no-answers runs (the generated variant and the
-# lab's files stay), and eight of the nine ADIS16405 channels (imu1_x stays).
+# lab's files stay), eight of the nine ADIS16405 channels (imu1_x stays), and
+# two of AllanTheory's 2^20-sample loops over all eleven statistics (their
+# kernels run under ASan in the kernel, gap and Stable32 tests).
 # Needs clang-14, libclang-rt-14-dev, libomp-14-dev (install-deps.sh --tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."
