@@ -51,6 +51,11 @@ class CMakeBuild(build_ext):
         target = pathlib.Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(built[-1], target)
+        # The ROS bag plugin, which the module loads from beside itself (src/io/rosbag_plugin.h).
+        plugin = build_dir / "lib" / "foglab" / "foglab_rosbag.so"
+        if not plugin.exists():
+            raise RuntimeError(f"CMake built no ROS bag plugin {plugin}")
+        shutil.copyfile(plugin, target.parent / plugin.name)
 
 
 # setuptools's own folders (below) must exist before it runs.

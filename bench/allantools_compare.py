@@ -34,41 +34,15 @@ core.
 """
 import argparse
 import os
-import platform
 import statistics
 import sys
 import time
 
 import numpy as np
 
+from bench_common import import_allantools, machine_line
+
 RATE_HZ = 400.0
-
-
-def import_allantools(path):
-    if path:
-        sys.path.insert(0, os.path.abspath(path))
-    try:
-        import allantools
-    except ImportError as e:
-        sys.exit(
-            f"error: cannot import allantools ({e}).\n"
-            "AllanTools is not part of this repository. Install it with\n"
-            "    pip install allantools\n"
-            "(it needs numpy and scipy) on a machine with PyPI access, or clone\n"
-            "https://github.com/aewallin/allantools and pass the clone's top\n"
-            "directory (the one holding allantools/) as --allantools DIR.")
-    return allantools
-
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def print_machine(at):
@@ -77,11 +51,9 @@ def print_machine(at):
         scipy_version = scipy.__version__
     except ImportError:
         scipy_version = "not installed"
-    print(f"machine: {platform.platform()} ({platform.machine()}), "
-          f"{os.cpu_count()} logical CPUs")
-    print(f"cpu: {cpu_model()}")
-    print(f"python {platform.python_version()}, numpy {np.__version__}, scipy {scipy_version}")
-    print(f"allantools {getattr(at, '__version__', 'unknown (no __version__)')} "
+    print(machine_line())
+    print(f"scipy {scipy_version}; allantools "
+          f"{getattr(at, '__version__', 'unknown (no __version__)')} "
           f"from {os.path.dirname(at.__file__)}")
 
 

@@ -1,4 +1,4 @@
-// Writes a lab-layout MAT v5 file (f, t, Y1) of white rate noise for timing
+// Writes a lab-layout MAT v5 file (f, Y1) of white rate noise for timing
 // the CLI end to end. Usage: bench_make_mat OUT.mat SAMPLES [FS_HZ]
 #include <fmt/format.h>
 #include <matio.h>
@@ -10,7 +10,7 @@
 #include "bench_support.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"Writes a lab-layout MAT v5 file (f, t, Y1) of white rate noise", "bench_make_mat"};
+  CLI::App app{"Writes a lab-layout MAT v5 file (f, Y1) of white rate noise", "bench_make_mat"};
   std::string out;
   std::size_t n = 0;
   double fs = 100.0;

@@ -17,27 +17,14 @@ Checks that foglab's taus equal AllanTools's and its deviations agree to 1e-9, a
 each median and the ratio.
 """
 import argparse
-import os
-import platform
-import statistics
-import sys
-import time
 
 import numpy as np
 
 import foglab
 import foglab.compat
+from bench_common import import_allantools, machine_line, runs_text, timed
 
 RATE_HZ = 100.0
-
-
-def timed(call, repeat):
-    times, result = [], None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        result = call()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), times, result
 
 
 def main():
@@ -48,33 +35,26 @@ def main():
     parser.add_argument("--seed", type=int, default=5)
     args = parser.parse_args()
     data = np.random.default_rng(args.seed).standard_normal(args.samples)
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
-                if line.startswith("model name")), platform.processor())
-    print(f"machine: {platform.platform()}, {cpu}, {os.cpu_count()} cores; python "
-          f"{platform.python_version()}, numpy {np.__version__}, foglab {foglab.__version__}")
+    print(f"{machine_line()}, foglab {foglab.__version__}")
     print(f"record: {args.samples} samples at {RATE_HZ} Hz, OADEV, octave taus")
 
     median, runs, (taus, devs, _, ns) = timed(
         lambda: foglab.compat.oadev(data, rate=RATE_HZ, data_type="freq", taus="octave"),
         args.repeat)
-    print(f"foglab.compat.oadev: median {median:.3f} s (runs {', '.join(f'{t:.3f}' for t in runs)}); "
+    print(f"foglab.compat.oadev: median {median:.3f} s (runs {runs_text(runs)}); "
           f"{taus.size} taus, m = {int(taus[0] * RATE_HZ)} .. {int(taus[-1] * RATE_HZ)}")
     full, full_runs, _ = timed(lambda: foglab.allan(data, RATE_HZ, taus=list(taus)), args.repeat)
     print(f"foglab.allan with noise ID, edf, intervals: median {full:.3f} s "
-          f"(runs {', '.join(f'{t:.3f}' for t in full_runs)})")
+          f"(runs {runs_text(full_runs)})")
 
-    if args.allantools:
-        sys.path.insert(0, os.path.abspath(args.allantools))
-    try:
-        import allantools
-    except ImportError as error:
-        print(f"AllanTools not timed: cannot import it ({error}); give --allantools DIR")
+    allantools = import_allantools(args.allantools, required=False)
+    if allantools is None:
         return
     at, at_runs, (at_taus, at_devs, _, at_ns) = timed(
         lambda: allantools.oadev(data, rate=RATE_HZ, data_type="freq", taus="octave"),
         args.repeat)
     print(f"allantools.oadev {getattr(allantools, '__version__', '?')}: median {at:.3f} s "
-          f"(runs {', '.join(f'{t:.3f}' for t in at_runs)})")
+          f"(runs {runs_text(at_runs)})")
     np.testing.assert_allclose(taus, at_taus, rtol=1e-15)
     np.testing.assert_array_equal(ns, at_ns)
     worst = float(np.max(np.abs(devs / at_devs - 1.0)))

@@ -14,25 +14,13 @@ keeps its run to minutes; foglab's whole octave grid to N/3 is timed as well. Ch
 deviations agree (1e-9) and prints each median and the ratio.
 """
 import argparse
-import os
-import platform
-import statistics
 import sys
-import time
 
 import numpy as np
 
 import foglab
 import foglab.compat
-
-
-def timed(call, repeat):
-    times, result = [], None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        result = call()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), result
+from bench_common import import_allantools, machine_line, timed
 
 
 def main():
@@ -44,15 +32,9 @@ def main():
     parser.add_argument("--seed", type=int, default=7)
     args = parser.parse_args()
     phase = np.cumsum(np.random.default_rng(args.seed).standard_normal(args.points))
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
-                if line.startswith("model name")), platform.processor())
-    print(f"machine: {platform.platform()}, {cpu}, {os.cpu_count()} cores; python "
-          f"{platform.python_version()}, numpy {np.__version__}, foglab {foglab.__version__}")
+    print(f"{machine_line()}, foglab {foglab.__version__}")
     print(f"record: {args.points} phase points (white FM), octave m = 1 .. {args.max_m}")
-    allantools = None
-    if args.allantools:
-        sys.path.insert(0, args.allantools)
-        import allantools  # noqa: E402  (optional, outside the repository)
+    allantools = import_allantools(args.allantools, required=False) if args.allantools else None
 
     octave = [float(2 ** k) for k in range(args.max_m.bit_length()) if 2 ** k <= args.max_m]
     theo_m = [m for m in range(10, 32 * args.max_m + 1, 2) if m & (m - 1) == 0 or m == 10]
@@ -61,24 +43,22 @@ def main():
             # AllanTools labels Theo1 at tau = m tau0; foglab at 0.75 m tau0.
             mine = lambda: foglab.allan(phase, 1.0, kind="theo1", input="phase",
                                         taus=[0.75 * m for m in theo_m], confidence=False)
-            median, r = timed(mine, args.repeat)
+            median, _, r = timed(mine, args.repeat)
             devs = r.dev
             taus_at = [float(m) for m in theo_m]
         else:
-            median, (taus, devs, _, _) = timed(
+            median, _, (taus, devs, _, _) = timed(
                 lambda: getattr(foglab.compat, kind)(phase, taus=octave), args.repeat)
             taus_at = list(taus)
         print(f"{kind}: foglab {median:.4f} s on {len(taus_at)} taus", end="")
-        whole, _ = timed(lambda: foglab.allan(phase, 1.0, kind=kind, input="phase",
+        whole, _, _ = timed(lambda: foglab.allan(phase, 1.0, kind=kind, input="phase",
                                               min_clusters=1, confidence=False), 1)
         print(f"; the whole octave grid (min_clusters 1): {whole:.3f} s", end="")
         if allantools is None:
             print()
             continue
-        start = time.perf_counter()
-        _, theirs, _, _ = getattr(allantools, kind)(phase, rate=1.0, data_type="phase",
-                                                    taus=taus_at)
-        theirs_s = time.perf_counter() - start
+        theirs_s, _, (_, theirs, _, _) = timed(
+            lambda: getattr(allantools, kind)(phase, rate=1.0, data_type="phase", taus=taus_at), 1)
         worst = float(np.max(np.abs(np.asarray(devs) / theirs - 1.0)))
         print(f"; AllanTools {theirs_s:.2f} s, ratio {theirs_s / median:.0f}x, "
               f"largest relative difference {worst:.1e}")

@@ -1,6 +1,5 @@
 # rosbag_storage (ROS 1 bags: Debian's librosbag-storage-dev) through pkg-config, as the target
-# PkgConfig::ROSBAG. Used by foglab_io and, since the installed libraries are static, by
-# foglabConfig.cmake for the projects that link them.
+# PkgConfig::ROSBAG. Used by the plugin foglab_rosbag (src/io/rosbag_plugin.h) only.
 #
 # Debian 12's rosbag_storage.pc requires "pluginlib" (rosbag/bag.h includes
 # <pluginlib/class_loader.hpp> for its encryption plugins), but Debian's pluginlib-dev is the

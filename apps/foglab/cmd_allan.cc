@@ -35,14 +35,10 @@ struct AllanCommand {
   std::string json_path;
 };
 
-bool is_time_like(stats::AllanKind kind) {
-  return kind == stats::AllanKind::tdev || kind == stats::AllanKind::ttotdev;
-}
-
 /// The deviation's unit: the rate's (TDEV, TTOTDEV: times s); m/s^2 for an
 /// accelerometer read in an acceleration unit.
 std::string dev_unit(stats::AllanKind kind, Sensor sensor) {
-  return in_sensor_units(is_time_like(kind) ? "deg/h*s" : "deg/h", sensor);
+  return in_sensor_units(stats::is_time_deviation(kind) ? "deg/h*s" : "deg/h", sensor);
 }
 
 Sensor sensor_of_input(const AllanCommand& c) {
@@ -77,7 +73,7 @@ std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v)
 
 std::string to_csv(const stats::AllanResult& r, Sensor sensor) {
   const std::string base = sensor == Sensor::gyroscope ? "deg_h" : "m_s2";
-  const std::string u = is_time_like(r.kind) ? base + "_s" : base;
+  const std::string u = stats::is_time_deviation(r.kind) ? base + "_s" : base;
   std::string out = fmt::format(
       "tau_s,m,n,dev_{0},alpha,edf,ci68_low_{0},ci68_high_{0},ci95_low_{0},ci95_high_{0}\n", u);
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {

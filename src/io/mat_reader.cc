@@ -378,12 +378,15 @@ class MatFile {
     if (error != 0 || !messages.empty()) {
       fail_read(var, messages.empty() ? matio_error_text(error) : summary(messages));
     }
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (std::bit_cast<std::uint64_t>(values[i]) == kUnreadBits) {
-        throw_data_error(path_, fmt::format("the MAT file is corrupt or truncated: variable "
-                                            "'{}' ({}) ends after {} samples",
-                                            var.name, describe(fresh), i));
-      }
+    // matio fills the array from its start, so a short read leaves the
+    // marker at the end: O(1) unless the read stopped early. (A marker left
+    // anywhere else is a NaN, which the reader's finite check refuses.)
+    std::size_t read = values.size();
+    while (read > 0 && std::bit_cast<std::uint64_t>(values[read - 1]) == kUnreadBits) --read;
+    if (read < values.size()) {
+      throw_data_error(path_, fmt::format("the MAT file is corrupt or truncated: variable "
+                                          "'{}' ({}) ends after {} samples",
+                                          var.name, describe(fresh), read));
     }
     return values;
   }

@@ -275,7 +275,9 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
       within &= in_unit - in_unit == 0.0 && std::fabs(in_unit) <= max_magnitude;
     }
     if (!within) continue;
-    for (std::size_t i = begin; i < end; ++i) values[i] *= factor;
+    if (factor != 1.0) {  // deg/h in: checked, nothing to write
+      for (std::size_t i = begin; i < end; ++i) values[i] *= factor;
+    }
     converted[c] = 1;
   }
   for (std::size_t c = 0; c < chunks; ++c) {

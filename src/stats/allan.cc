@@ -273,14 +273,6 @@ double total_edge_sum(std::span<const double> x, std::int64_t m) {
   return s.value();
 }
 
-// The modified-total sum of SP1065 eqs. 27 and 29 on the record z (phase
-// for MTOTDEV, rate for HTOTDEV): for each subsequence of 3m points, its
-// frequency offset removed, reflected to 9m points, the sum of the squared
-// second differences of its m-point window sums at the 6m start points.
-double modified_total_sum(std::span<const double> z, std::int64_t m) {
-  return detail::total_modified_sum(z, m);
-}
-
 std::int64_t term_count(AllanKind kind, std::int64_t n, std::int64_t m) {
   switch (kind) {
     case AllanKind::adev: return (n - 1) / m - 1;
@@ -338,6 +330,10 @@ std::span<const AllanKind> all_allan_kinds() { return kKinds; }
 
 std::string_view to_string(NoiseRules rules) {
   return rules == NoiseRules::stable32 ? "stable32" : "foglab";
+}
+
+bool is_time_deviation(AllanKind kind) {
+  return kind == AllanKind::tdev || kind == AllanKind::ttotdev;
 }
 
 NoiseRules noise_rules_from_string(std::string_view text) {
@@ -401,7 +397,7 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
       for (std::size_t k = 0; k < factors.size(); ++k) {
         const std::int64_t m = factors[k];
         sums[k] = m == 1 ? overlapping_sums<3>(phase, factors.subspan(k, 1))[0]
-                         : modified_total_sum(rate, m);
+                         : detail::total_modified_sum(rate, m);
       }
       break;
     }
@@ -418,7 +414,7 @@ std::vector<double> detail::deviations_from_phase(std::span<const double> phase,
           case AllanKind::tdev: sums[k] = modified_sum(phase, m, counts[k]); break;
           case AllanKind::mtotdev:
           case AllanKind::ttotdev:
-            sums[k] = modified_total_sum(phase, m);
+            sums[k] = detail::total_modified_sum(phase, m);
             break;
           default: break;
         }
@@ -594,7 +590,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   const std::size_t count = result.m.size();
   const double tau0_s = 1.0 / sample_rate_hz;
   result.tau_s.resize(count);
-  const bool time_like = options.kind == AllanKind::tdev || options.kind == AllanKind::ttotdev;
+  const bool time_like = is_time_deviation(options.kind);
   for (std::size_t k = 0; k < count; ++k) {
     const double m = static_cast<double>(result.m[k]);
     result.tau_s[k] = (options.kind == AllanKind::theo1 ? 0.75 * m : m) * tau0_s;

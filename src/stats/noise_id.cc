@@ -300,39 +300,59 @@ std::vector<NoiseId> lag1_identify(std::span<const double> phase,
   }
   const auto chunk = static_cast<std::int64_t>(kChunkSamples);
   const std::int64_t chunks = (n + chunk - 1) / chunk;
-
-  std::vector<Moments> moments(static_cast<std::size_t>(chunks * q_count));
-#pragma omp parallel for schedule(dynamic, 4) if (chunks > 1)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    const std::int64_t i0 = c * chunk, i1 = std::min(n, i0 + chunk);
-    for (std::int64_t q = 0; q < q_count; ++q) {
-      const std::int64_t k0 = fs[q].first_in(i0), k1 = fs[q].end_in(i1);
-      if (k0 < k1) moments[c * q_count + q] = chunk_moments(x, fs[q], k0, k1);
-    }
-  }
-  std::vector<Moments> parts1(static_cast<std::size_t>(chunks));
-  for (std::int64_t q = 0; q < q_count; ++q) {
-    for (std::int64_t c = 0; c < chunks; ++c) parts1[c] = moments[c * q_count + q];
-    fit_quadratic(parts1, fs[q]);
-  }
-
-  std::vector<DiffSums> sums(static_cast<std::size_t>(chunks * q_count));
-#pragma omp parallel if (chunks > 1)
-  {
-    std::vector<double> buffer;
-#pragma omp for schedule(dynamic, 4)
-    for (std::int64_t c = 0; c < chunks; ++c) {
+  // Each pass keeps one partial result per group of consecutive chunks and
+  // factor, summed in chunk order within the group, so the result depends on
+  // the record's length only, never on the threads. Groups, not chunks: a
+  // partial per chunk took a megabyte for 2e7 samples, whose fresh pages cost
+  // more than the arithmetic on a virtual machine (issue 19).
+  const std::int64_t group = std::clamp<std::int64_t>(chunks / 32, 1, 16);
+  const std::int64_t groups = (chunks + group - 1) / group;
+  auto for_each_chunk = [&](std::int64_t g, auto&& visit) {
+    for (std::int64_t c = g * group; c < std::min(chunks, (g + 1) * group); ++c) {
       const std::int64_t i0 = c * chunk, i1 = std::min(n, i0 + chunk);
       for (std::int64_t q = 0; q < q_count; ++q) {
         const std::int64_t k0 = fs[q].first_in(i0), k1 = fs[q].end_in(i1);
-        if (k0 < k1) sums[c * q_count + q] = chunk_diff_sums(x, fs[q], k0, k1, d_max, buffer);
+        if (k0 < k1) visit(q, k0, k1);
       }
+    }
+  };
+
+  std::vector<Moments> moments(static_cast<std::size_t>(groups * q_count));
+#pragma omp parallel for schedule(dynamic, 1) if (groups > 1)
+  for (std::int64_t g = 0; g < groups; ++g) {
+    for_each_chunk(g, [&](std::int64_t q, std::int64_t k0, std::int64_t k1) {
+      const Moments part = chunk_moments(x, fs[q], k0, k1);
+      Moments& into = moments[g * q_count + q];
+      for (int i = 0; i < 3; ++i) into[i] += part[i];
+    });
+  }
+  std::vector<Moments> parts1(static_cast<std::size_t>(groups));
+  for (std::int64_t q = 0; q < q_count; ++q) {
+    for (std::int64_t g = 0; g < groups; ++g) parts1[g] = moments[g * q_count + q];
+    fit_quadratic(parts1, fs[q]);
+  }
+
+  std::vector<DiffSums> sums(static_cast<std::size_t>(groups * q_count));
+#pragma omp parallel if (groups > 1)
+  {
+    std::vector<double> buffer;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t g = 0; g < groups; ++g) {
+      for_each_chunk(g, [&](std::int64_t q, std::int64_t k0, std::int64_t k1) {
+        const DiffSums part = chunk_diff_sums(x, fs[q], k0, k1, d_max, buffer);
+        DiffSums& into = sums[g * q_count + q];
+        for (int d = 0; d <= kMaxD; ++d) {
+          into.sum[d] += part.sum[d];
+          into.sum_sq[d] += part.sum_sq[d];
+          into.sum_lag[d] += part.sum_lag[d];
+        }
+      });
     }
   }
   std::vector<NoiseId> ids(factors.size());
-  std::vector<DiffSums> parts2(static_cast<std::size_t>(chunks));
+  std::vector<DiffSums> parts2(static_cast<std::size_t>(groups));
   for (std::int64_t q = 0; q < q_count; ++q) {
-    for (std::int64_t c = 0; c < chunks; ++c) parts2[c] = sums[c * q_count + q];
+    for (std::int64_t g = 0; g < groups; ++g) parts2[g] = sums[g * q_count + q];
     ids[q] = decide(x, fs[q], parts2, d_max);
   }
   return ids;

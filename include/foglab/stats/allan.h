@@ -104,6 +104,9 @@ std::string_view to_string(AllanKind kind);
 AllanKind allan_kind_from_string(std::string_view text);
 /// Every kind, in the order above.
 std::span<const AllanKind> all_allan_kinds();
+/// TDEV and TTOTDEV: time deviations, tau / sqrt(3) times their frequency
+/// deviation, in the rate's unit times s.
+bool is_time_deviation(AllanKind kind);
 
 /// The rules that turn identify_noise()'s calls into each tau's alpha.
 enum class NoiseRules {
