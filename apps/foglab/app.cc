@@ -33,6 +33,8 @@ std::unique_ptr<CommandLine> make_command_line() {
   add(register_batch);
   add(register_allan);
   add(register_fit);
+  add(register_calibrate);
+  add(register_rate_table);
   add(register_psd);
   add(register_generate);
   add(register_lab2_data);

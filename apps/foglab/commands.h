@@ -12,6 +12,8 @@ std::function<void()> register_analyze(CLI::App& app);
 std::function<void()> register_batch(CLI::App& app);
 std::function<void()> register_allan(CLI::App& app);
 std::function<void()> register_fit(CLI::App& app);
+std::function<void()> register_calibrate(CLI::App& app);
+std::function<void()> register_rate_table(CLI::App& app);
 std::function<void()> register_psd(CLI::App& app);
 std::function<void()> register_generate(CLI::App& app);
 std::function<void()> register_lab2_data(CLI::App& app);

@@ -1,0 +1,236 @@
+// foglab calibrate — the manual's output model (eq. 10) fitted to a rate-table run
+// (model/calibration.h): scale factor, bias, their temperature polynomials, nonlinearity,
+// asymmetry, with 95 % intervals, and the corrected-rate equation (eq. 11).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "foglab/core/output.h"
+#include "foglab/core/version.h"
+#include "foglab/io/reader.h"
+#include "foglab/model/calibration.h"
+
+namespace foglab::cli {
+namespace {
+
+struct CalibrateCommand {
+  std::string path;
+  std::string rate_column = "rate_cmd_deg_s";
+  std::string output_column = "output_lsb";
+  std::string temperature_column = "temperature_c";
+  std::optional<double> sample_rate_hz;
+  model::CalibrationOptions options;
+  std::string json_path;
+  std::string csv_path;
+};
+
+io::Series read_column(const CalibrateCommand& c, const std::string& column) {
+  io::ReadOptions options;
+  options.channel = column;
+  options.sample_rate_hz = c.sample_rate_hz;
+  return io::read_series(c.path, options);
+}
+
+nlohmann::json value_json(const model::CalibratedValue& v) {
+  return {{"value", number(v.value)},
+          {"sd", number(v.sd)},
+          {"ci95_low", number(v.ci95_low)},
+          {"ci95_high", number(v.ci95_high)}};
+}
+
+nlohmann::json values_json(const std::vector<model::CalibratedValue>& values) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& v : values) out.push_back(value_json(v));
+  return out;
+}
+
+// " +c1 X +c2 X^2 ..." of a power series with coefficients c_1, c_2, ...
+std::string series_text(const std::vector<model::CalibratedValue>& coefs, const char* x,
+                        double scale = 1.0) {
+  std::string out;
+  for (std::size_t k = 0; k < coefs.size(); ++k) {
+    out += fmt::format(" {:+.7g} {}{}", coefs[k].value * scale, x,
+                       k == 0 ? "" : fmt::format("^{}", k + 1));
+  }
+  return out;
+}
+
+// Eq. (11) with the fitted coefficients, as text.
+std::string corrected_rate_equation(const model::Calibration& r) {
+  std::string f = series_text(r.nonlinearity, "w");
+  if (std::isfinite(r.asymmetry.value)) {
+    f += fmt::format(" {:+.7g} sign(w)", 0.5 * r.asymmetry.value);
+  }
+  return fmt::format(
+      "w [deg/s] = (u - ({:.9g}{})) / ({:.10g} (1{}) (1{})),  dT = T - {:g} degC "
+      "(the nonlinearity's w: one or two fixed-point steps)",
+      r.bias.value, series_text(r.bias_temp, "dT"), r.scale_factor.value,
+      series_text(r.scale_factor_temp, "dT"), f, r.reference_c);
+}
+
+nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
+  nlohmann::json plateaus = nlohmann::json::array();
+  for (const auto& p : r.plateaus) {
+    plateaus.push_back({{"rate_deg_s", p.rate_deg_s},
+                        {"first_sample", p.first_sample},
+                        {"samples", p.samples},
+                        {"output_mean_lsb", p.output_mean_lsb},
+                        {"output_sd_lsb", p.output_sd_lsb},
+                        {"temperature_c", p.temperature_c},
+                        {"residual_lsb", p.residual_lsb}});
+  }
+  return {{"source", {{"path", c.path}}},
+          {"settle_s", c.options.settle_s},
+          {"reference_c", r.reference_c},
+          {"full_scale_deg_s", r.full_scale_deg_s},
+          {"temperatures_c", r.temperatures_c},
+          {"scale_factor_lsb_per_deg_s", value_json(r.scale_factor)},
+          {"scale_factor_temp_coefs_per_degc_k", values_json(r.scale_factor_temp)},
+          {"bias_lsb", value_json(r.bias)},
+          {"bias_deg_h", value_json(r.bias_deg_h)},
+          {"bias_temp_coefs_lsb_per_degc_k", values_json(r.bias_temp)},
+          {"nonlinearity_coefs_per_deg_s_k", values_json(r.nonlinearity)},
+          {"asymmetry", value_json(r.asymmetry)},
+          {"nonlinearity_ieee_ppm_fs", number(r.nonlinearity_ieee_ppm_fs)},
+          {"nonlinearity_lab1_percent", number(r.nonlinearity_lab1_percent)},
+          {"white_noise_deg_h_rt_hz", number(r.white_noise_deg_h_rt_hz)},
+          {"residual_rms_lsb", number(r.residual_rms_lsb)},
+          {"dof", r.dof},
+          {"error_budget_at_full_scale_deg_h",
+           {{"bias", number(r.budget.bias_deg_h)},
+            {"scale_factor", number(r.budget.scale_factor_deg_h)},
+            {"nonlinearity", number(r.budget.nonlinearity_deg_h)},
+            {"noise_1s", number(r.budget.noise_1s_deg_h)}}},
+          {"corrected_rate_equation", corrected_rate_equation(r)},
+          {"plateaus", plateaus},
+          {"notes", r.notes},
+          {"foglab_version", std::string(version())}};
+}
+
+std::string interval(const model::CalibratedValue& v, double scale = 1.0) {
+  // Digits enough to show the interval's width.
+  const double width = std::abs(v.ci95_high - v.ci95_low) * scale;
+  const double size = std::abs(v.value * scale);
+  const int digits =
+      width > 0.0 && size > 0.0
+          ? std::clamp(static_cast<int>(std::ceil(std::log10(size / width))) + 2, 4, 12)
+          : 7;
+  return fmt::format("{:.{}g} [{:.{}g}, {:.{}g}]", v.value * scale, digits, v.ci95_low * scale,
+                     digits, v.ci95_high * scale, digits);
+}
+
+std::string to_table(const CalibrateCommand& c, const model::Calibration& r) {
+  std::string out = fmt::format(
+      "rate-table calibration of '{}': {} plateaus, {} temperature(s), full scale {:g} deg/s, "
+      "T_ref {:g} degC ({} dof)\n",
+      c.path, r.plateaus.size(), r.temperatures_c.size(), r.full_scale_deg_s, r.reference_c, r.dof);
+  out += fmt::format("  scale factor S       {} LSB/(deg/s)\n", interval(r.scale_factor));
+  for (std::size_t k = 0; k < r.scale_factor_temp.size(); ++k) {
+    out += fmt::format("  S temperature s_{}   {} ppm/degC^{}\n", k + 1,
+                       interval(r.scale_factor_temp[k], 1e6), k + 1);
+  }
+  out += fmt::format("  bias u0              {} LSB = {} deg/h\n", interval(r.bias),
+                     interval(r.bias_deg_h));
+  for (std::size_t k = 0; k < r.bias_temp.size(); ++k) {
+    out += fmt::format("  bias temperature b_{} {} LSB/degC^{}\n", k + 1, interval(r.bias_temp[k]),
+                       k + 1);
+  }
+  for (std::size_t k = 0; k < r.nonlinearity.size(); ++k) {
+    const double fs = std::pow(r.full_scale_deg_s, static_cast<double>(k + 1)) * 1e6;
+    out += fmt::format("  nonlinearity a_{}     {} ppm of full scale\n", k + 1,
+                       interval(r.nonlinearity[k], fs));
+  }
+  if (std::isfinite(r.asymmetry.value)) {
+    out += fmt::format("  asymmetry A          {} ppm\n", interval(r.asymmetry, 1e6));
+  }
+  out += fmt::format(
+      "  nonlinearity: {:.4g} ppm of full scale (IEEE Std 952), {:.4g} % (the lab manual's "
+      "scale-factor spread)\n",
+      r.nonlinearity_ieee_ppm_fs, r.nonlinearity_lab1_percent);
+  out += fmt::format(
+      "  white noise N {:.4g} deg/h/sqrt(Hz) (ARW {:.4g} deg/sqrt(h)); plateau "
+      "residuals {:.4g} LSB rms\n",
+      r.white_noise_deg_h_rt_hz, r.white_noise_deg_h_rt_hz / 60.0, r.residual_rms_lsb);
+  out += fmt::format(
+      "  error budget at full scale (eq. 13, 95 %): bias {:.4g}, scale factor {:.4g}, "
+      "nonlinearity residual {:.4g}, noise over 1 s {:.4g} deg/h\n",
+      r.budget.bias_deg_h, r.budget.scale_factor_deg_h, r.budget.nonlinearity_deg_h,
+      r.budget.noise_1s_deg_h);
+  out += "  corrected rate (eq. 11): " + corrected_rate_equation(r) + "\n";
+  for (const std::string& note : r.notes) out += "note: " + note + "\n";
+  return out;
+}
+
+std::string to_csv(const model::Calibration& r) {
+  std::string out =
+      "rate_deg_s,first_sample,samples,output_mean_lsb,output_sd_lsb,temperature_c,"
+      "residual_lsb\n";
+  for (const auto& p : r.plateaus) {
+    out +=
+        fmt::format("{:.10g},{},{},{:.12g},{:.6g},{:.6g},{:.6g}\n", p.rate_deg_s, p.first_sample,
+                    p.samples, p.output_mean_lsb, p.output_sd_lsb, p.temperature_c, p.residual_lsb);
+  }
+  return out;
+}
+
+void run(const CalibrateCommand& c) {
+  const RunPath inputs[] = {{"FILE", c.path}};
+  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  check_outputs(inputs, outputs);
+  const io::Series rate = read_column(c, c.rate_column);
+  const io::Series output = read_column(c, c.output_column);
+  const io::Series temperature =
+      c.temperature_column.empty() ? io::Series{} : read_column(c, c.temperature_column);
+  progress(fmt::format("calibrating on {} samples at {} Hz", output.values.size(),
+                       output.sample_rate_hz));
+  const model::CalibrationRecord record{output.sample_rate_hz, rate.values, output.values,
+                                        temperature.values};
+  const model::Calibration result = model::calibrate(record, c.options);
+  // Render everything first, then write: a failure never leaves half the outputs.
+  const std::string json = c.json_path.empty() ? "" : json_text(to_json(c, result));
+  const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
+  if (!c.json_path.empty()) write_text_file(c.json_path, json);
+  if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
+  if (c.json_path != "-" && c.csv_path != "-") std::cout << to_table(c, result);
+}
+
+}  // namespace
+
+std::function<void()> register_calibrate(CLI::App& app) {
+  auto c = std::make_shared<CalibrateCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "calibrate",
+      "Fit the manual's output model (eq. 10) to a rate-table run: scale factor, bias, their "
+      "temperature polynomials, nonlinearity and asymmetry with 95 % intervals, and the "
+      "corrected-rate equation (eq. 11)");
+  cmd->add_option("FILE", c->path, "the run: CSV or MAT with a time column or f")->required();
+  cmd->add_option("--rate-column", c->rate_column, "the commanded rate [deg/s]")
+      ->capture_default_str();
+  cmd->add_option("--output-column", c->output_column, "the gyro's output [LSB]")
+      ->capture_default_str();
+  cmd->add_option("--temperature-column", c->temperature_column,
+                  "the temperature [degC] ('' for none)")
+      ->capture_default_str();
+  cmd->add_option("--fs", c->sample_rate_hz, "sample rate [Hz] (else from the file)");
+  cmd->add_option("--settle", c->options.settle_s, "left out at each plateau's start [s]")
+      ->capture_default_str();
+  cmd->add_option("--reference-c", c->options.reference_c,
+                  "T_ref of the temperature polynomials [degC]")
+      ->capture_default_str();
+  cmd->add_option("--nonlinearity-degree", c->options.nonlinearity_degree,
+                  "terms a_1 .. a_d of the nonlinearity f(w)")
+      ->capture_default_str();
+  cmd->add_flag("!--no-asymmetry", c->options.asymmetry, "do not fit the asymmetry");
+  cmd->add_option("--json", c->json_path, "write JSON ('-' for stdout)");
+  cmd->add_option("--csv", c->csv_path, "write the plateaus as CSV ('-' for stdout)");
+  return [c] { run(*c); };
+}
+
+}  // namespace foglab::cli

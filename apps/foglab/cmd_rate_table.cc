@@ -1,0 +1,152 @@
+// foglab rate-table — a generated rate-table run with known coefficients (sim/rate_table.h):
+// the truth `foglab calibrate` is checked against, and variant data for a lab.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "foglab/core/error.h"
+#include "foglab/core/output.h"
+#include "foglab/core/version.h"
+#include "foglab/io/writer.h"
+#include "foglab/sim/rate_table.h"
+
+namespace foglab::cli {
+namespace {
+
+struct RateTableCommand {
+  std::string out_path;
+  std::string truth_path;
+  double full_scale_deg_s = 300.0;
+  int rates_per_sign = 5;
+  std::vector<double> temperatures_c = {-20.0, 25.0, 60.0};
+  double plateau_s = 60.0;
+  sim::RateTableOptions options;
+  sim::RateTableGyro gyro;
+};
+
+nlohmann::json truth_json(const RateTableCommand& c) {
+  const sim::RateTableGyro& g = c.gyro;
+  return {{"model",
+           "u = S (1 + sum s_k dT^k) [1 + sum a_k w^k + (A/2) sign(w)] w + u0 + "
+           "sum b_k dT^k + S eta / 3600, dT = T - T_ref"},
+          {"scale_factor_lsb_per_deg_s", g.scale_factor_lsb_per_deg_s},
+          {"scale_factor_temp_coefs_per_degc_k", g.scale_factor_temp_coefs},
+          {"nonlinearity_coefs_per_deg_s_k", g.nonlinearity_coefs},
+          {"asymmetry", g.asymmetry},
+          {"bias_lsb", g.bias_lsb},
+          {"bias_temp_coefs_lsb_per_degc_k", g.bias_temp_coefs_lsb},
+          {"reference_c", g.reference_c},
+          {"noise",
+           {{"N_deg_h_rt_hz", g.noise.N}, {"B_deg_h", g.noise.B}, {"K_deg_h_rt_s", g.noise.K}}},
+          {"plan",
+           {{"full_scale_deg_s", c.full_scale_deg_s},
+            {"rates_per_sign", c.rates_per_sign},
+            {"temperatures_c", c.temperatures_c},
+            {"plateau_s", c.plateau_s},
+            {"settle_s", c.options.settle_s},
+            {"sample_rate_hz", c.options.sample_rate_hz},
+            {"seed", c.options.seed}}},
+          {"foglab_version", std::string(version())}};
+}
+
+std::string extension_of(const std::string& path) {
+  return std::filesystem::path(path).extension().string();
+}
+
+void run(const RateTableCommand& c) {
+  const RunPath outputs[] = {{"--out", c.out_path}, {"--truth", c.truth_path}};
+  check_outputs({}, outputs);
+  const std::string ext = extension_of(c.out_path);
+  if (ext != ".csv" && ext != ".mat") {
+    throw UsageError(
+        fmt::format("--out '{}': write a .csv or .mat file, not '{}'", c.out_path, ext));
+  }
+  const std::vector<sim::RatePlateau> plan = sim::standard_rate_table_plan(
+      c.full_scale_deg_s, c.rates_per_sign, c.temperatures_c, c.plateau_s);
+  progress(
+      fmt::format("generating a rate-table run: {} plateaus of {} s", plan.size(), c.plateau_s));
+  const sim::RateTableRecording run = sim::generate_rate_table(c.gyro, plan, c.options);
+  const io::NamedVector columns[] = {{"time_s", run.time_s},
+                                     {"rate_cmd_deg_s", run.rate_command_deg_s},
+                                     {"table_rate_deg_s", run.table_rate_deg_s},
+                                     {"output_lsb", run.output_lsb},
+                                     {"temperature_c", run.temperature_c}};
+  const std::string truth = c.truth_path.empty() ? "" : json_text(truth_json(c));
+  if (extension_of(c.out_path) == ".mat") {
+    io::write_mat(c.out_path, columns);
+  } else {
+    const std::string comments[] = {fmt::format("foglab {} rate-table run: {} plateaus, seed {}",
+                                                version(), plan.size(), c.options.seed)};
+    io::write_csv(c.out_path, columns, comments);
+  }
+  if (!c.truth_path.empty()) write_text_file(c.truth_path, truth);
+  std::cout << fmt::format("wrote {} ({} samples at {} Hz, {} plateaus){}\n", c.out_path,
+                           run.time_s.size(), run.sample_rate_hz, plan.size(),
+                           c.truth_path.empty() ? "" : " and the truth to " + c.truth_path);
+}
+
+}  // namespace
+
+std::function<void()> register_rate_table(CLI::App& app) {
+  auto c = std::make_shared<RateTableCommand>();
+  c->gyro.scale_factor_temp_coefs = {-8.0e-5, 3.0e-7};
+  c->gyro.nonlinearity_coefs = {4.0e-8, 1.5e-10};
+  c->gyro.asymmetry = 2.0e-5;
+  c->gyro.bias_lsb = 30.0;
+  c->gyro.bias_temp_coefs_lsb = {0.4, 0.004};
+  c->gyro.noise.N = 0.5;
+  c->gyro.noise.B = 0.05;
+  CLI::App* cmd = app.add_subcommand(
+      "rate-table",
+      "Generate a rate-table calibration run with known coefficients (the manual's eq. 10): "
+      "plateaus up and down +-FS at each temperature, columns time_s, rate_cmd_deg_s, "
+      "table_rate_deg_s, output_lsb, temperature_c");
+  cmd->add_option("--out", c->out_path, "the run: .csv or .mat")->required();
+  cmd->add_option("--truth", c->truth_path, "write the coefficients as JSON");
+  cmd->add_option("--full-scale", c->full_scale_deg_s, "largest rate [deg/s]")
+      ->capture_default_str();
+  cmd->add_option("--rates", c->rates_per_sign, "rates of each sign, FS k / RATES")
+      ->capture_default_str();
+  cmd->add_option("--temps", c->temperatures_c, "chamber temperatures [degC]")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--plateau", c->plateau_s, "each plateau's length [s]")->capture_default_str();
+  cmd->add_option("--settle", c->options.settle_s,
+                  "[s] the table's and the chamber's transition at each plateau's start")
+      ->capture_default_str();
+  cmd->add_option("--fs", c->options.sample_rate_hz, "sample rate [Hz]")->capture_default_str();
+  cmd->add_option("--seed", c->options.seed, "random seed")->capture_default_str();
+  cmd->add_option("--sf", c->gyro.scale_factor_lsb_per_deg_s, "scale factor S [LSB/(deg/s)]")
+      ->capture_default_str();
+  cmd->add_option("--sf-temp", c->gyro.scale_factor_temp_coefs,
+                  "s_1,s_2,...: S(T) = S (1 + sum s_k dT^k) [1/degC^k]")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--nonlinearity", c->gyro.nonlinearity_coefs,
+                  "a_1,a_2,...: f(w) = sum a_k w^k [1/(deg/s)^k]")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--asymmetry", c->gyro.asymmetry, "A = (S+ - S-) / S")->capture_default_str();
+  cmd->add_option("--bias", c->gyro.bias_lsb, "u0 at the reference temperature [LSB]")
+      ->capture_default_str();
+  cmd->add_option("--bias-temp", c->gyro.bias_temp_coefs_lsb,
+                  "b_1,b_2,...: u0(T) = u0 + sum b_k dT^k [LSB/degC^k]")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--reference-c", c->gyro.reference_c, "T_ref [degC]")->capture_default_str();
+  cmd->add_option("--N", c->gyro.noise.N, "white rate noise [deg/h/sqrt(Hz)]")
+      ->capture_default_str();
+  cmd->add_option("--B", c->gyro.noise.B, "flicker (bias instability) [deg/h]")
+      ->capture_default_str();
+  cmd->add_option("--K", c->gyro.noise.K, "rate random walk [deg/h/sqrt(s)]")
+      ->capture_default_str();
+  return [c] { run(*c); };
+}
+
+}  // namespace foglab::cli

@@ -1,0 +1,403 @@
+#include "foglab/model/calibration.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <limits>
+
+#include "foglab/core/error.h"
+
+namespace foglab::model {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::int64_t kMinPlateauSamples = 10;
+constexpr double kSameTemperatureC = 0.5;  // plateaus closer than this share a temperature
+
+// sum_k c_k x^k for k = 1 .. size.
+double power_series(std::span<const double> coefs, double x) {
+  double sum = 0.0, power = 1.0;
+  for (const double c : coefs) {
+    power *= x;
+    sum += c * power;
+  }
+  return sum;
+}
+
+double sign_of(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+// Where each coefficient lives in the parameter vector:
+// [S, s_1..s_ps, a_1..a_q, (A), u0, b_1..b_pb].
+struct Layout {
+  int ps = 0, q = 0, pb = 0;
+  bool asymmetry = false;
+  int s(int k) const { return 1 + k; }
+  int a(int k) const { return 1 + ps + k; }
+  int A() const { return 1 + ps + q; }
+  int u0() const { return 1 + ps + q + (asymmetry ? 1 : 0); }
+  int b(int k) const { return u0() + 1 + k; }
+  int size() const { return u0() + 1 + pb; }
+};
+
+struct Point {
+  double w, dT;
+};
+
+double model_output(const Eigen::VectorXd& p, const Layout& l, const Point& x) {
+  double scale = 1.0, dTk = 1.0;
+  for (int k = 0; k < l.ps; ++k) {
+    dTk *= x.dT;
+    scale += p(l.s(k)) * dTk;
+  }
+  scale *= p(0);
+  double f = 0.0, wk = 1.0;
+  for (int k = 0; k < l.q; ++k) {
+    wk *= x.w;
+    f += p(l.a(k)) * wk;
+  }
+  if (l.asymmetry) f += 0.5 * p(l.A()) * sign_of(x.w);
+  double bias = p(l.u0());
+  dTk = 1.0;
+  for (int k = 0; k < l.pb; ++k) {
+    dTk *= x.dT;
+    bias += p(l.b(k)) * dTk;
+  }
+  return scale * (1.0 + f) * x.w + bias;
+}
+
+Eigen::RowVectorXd model_gradient(const Eigen::VectorXd& p, const Layout& l, const Point& x) {
+  Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(l.size());
+  double relative = 1.0, dTk = 1.0;
+  for (int k = 0; k < l.ps; ++k) {
+    dTk *= x.dT;
+    relative += p(l.s(k)) * dTk;
+  }
+  double f = 0.0, wk = 1.0;
+  for (int k = 0; k < l.q; ++k) {
+    wk *= x.w;
+    f += p(l.a(k)) * wk;
+  }
+  if (l.asymmetry) f += 0.5 * p(l.A()) * sign_of(x.w);
+  const double scale = p(0) * relative;
+  g(0) = relative * (1.0 + f) * x.w;
+  dTk = 1.0;
+  for (int k = 0; k < l.ps; ++k) {
+    dTk *= x.dT;
+    g(l.s(k)) = p(0) * dTk * (1.0 + f) * x.w;
+  }
+  wk = x.w;
+  for (int k = 0; k < l.q; ++k) {
+    wk *= x.w;
+    g(l.a(k)) = scale * wk;
+  }
+  if (l.asymmetry) g(l.A()) = 0.5 * scale * std::abs(x.w);
+  g(l.u0()) = 1.0;
+  dTk = 1.0;
+  for (int k = 0; k < l.pb; ++k) {
+    dTk *= x.dT;
+    g(l.b(k)) = dTk;
+  }
+  return g;
+}
+
+// The distinct temperatures of the plateaus (sorted, merged within kSameTemperatureC).
+std::vector<double> distinct_temperatures(const std::vector<CalibrationPlateau>& plateaus) {
+  std::vector<double> t;
+  for (const auto& p : plateaus) t.push_back(p.temperature_c);
+  std::sort(t.begin(), t.end());
+  std::vector<double> out;
+  for (const double v : t) {
+    if (out.empty() || v - out.back() > kSameTemperatureC) out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
+                                              const CalibrationOptions& o,
+                                              std::vector<std::string>& notes) {
+  const auto n = static_cast<std::int64_t>(r.output_lsb.size());
+  const auto settle = static_cast<std::int64_t>(std::ceil(o.settle_s * r.sample_rate_hz));
+  std::vector<CalibrationPlateau> plateaus;
+  std::int64_t start = 0;
+  for (std::int64_t i = 1; i <= n; ++i) {
+    if (i < n && r.rate_command_deg_s[i] == r.rate_command_deg_s[start]) continue;
+    const std::int64_t first = start + settle;
+    const std::int64_t used = i - first;
+    if (used < kMinPlateauSamples) {
+      notes.push_back(fmt::format(
+          "the plateau at {} deg/s from sample {} ({} samples) is left "
+          "out: shorter than the settle time ({} s) plus {} samples",
+          r.rate_command_deg_s[start], start + 1, i - start, o.settle_s, kMinPlateauSamples));
+    } else {
+      CalibrationPlateau p;
+      p.rate_deg_s = r.rate_command_deg_s[start];
+      p.first_sample = first;
+      p.samples = used;
+      double sum = 0.0, temperature = 0.0;
+      for (std::int64_t k = first; k < i; ++k) {
+        sum += r.output_lsb[k];
+        if (!r.temperature_c.empty()) temperature += r.temperature_c[k];
+      }
+      p.output_mean_lsb = sum / static_cast<double>(used);
+      p.temperature_c =
+          r.temperature_c.empty() ? o.reference_c : temperature / static_cast<double>(used);
+      double squares = 0.0;
+      for (std::int64_t k = first; k < i; ++k) {
+        const double d = r.output_lsb[k] - p.output_mean_lsb;
+        squares += d * d;
+      }
+      p.output_sd_lsb = std::sqrt(squares / static_cast<double>(used - 1));
+      plateaus.push_back(p);
+    }
+    start = i;
+  }
+  return plateaus;
+}
+
+CalibratedValue with_interval(double value, double variance, double t95) {
+  const double sd = std::sqrt(std::max(variance, 0.0));
+  return {value, sd, value - t95 * sd, value + t95 * sd};
+}
+
+}  // namespace
+
+double calibrated_output_lsb(const Calibration& c, double rate_deg_s, double temperature_c) {
+  const double dT = temperature_c - c.reference_c;
+  std::vector<double> s, a, b;
+  for (const auto& v : c.scale_factor_temp) s.push_back(v.value);
+  for (const auto& v : c.nonlinearity) a.push_back(v.value);
+  for (const auto& v : c.bias_temp) b.push_back(v.value);
+  const double scale = c.scale_factor.value * (1.0 + power_series(s, dT));
+  double f = power_series(a, rate_deg_s);
+  if (std::isfinite(c.asymmetry.value)) f += 0.5 * c.asymmetry.value * sign_of(rate_deg_s);
+  return scale * (1.0 + f) * rate_deg_s + c.bias.value + power_series(b, dT);
+}
+
+double corrected_rate_deg_s(const Calibration& c, double output_lsb, double temperature_c) {
+  const double at_zero = calibrated_output_lsb(c, 0.0, temperature_c);
+  const double dT = temperature_c - c.reference_c;
+  std::vector<double> s;
+  for (const auto& v : c.scale_factor_temp) s.push_back(v.value);
+  const double scale = c.scale_factor.value * (1.0 + power_series(s, dT));
+  double w = (output_lsb - at_zero) / scale;
+  for (int step = 0; step < 8; ++step) {
+    const double slope = (calibrated_output_lsb(c, w, temperature_c) - at_zero) / (w != 0 ? w : 1);
+    if (w == 0.0 || slope == 0.0) break;
+    w = (output_lsb - at_zero) / slope;
+  }
+  return w;
+}
+
+Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
+  const std::size_t n = r.output_lsb.size();
+  if (r.rate_command_deg_s.size() != n ||
+      (!r.temperature_c.empty() && r.temperature_c.size() != n)) {
+    throw DataError(
+        fmt::format("calibrate: the columns differ in length ({} commanded rates, {} "
+                    "outputs, {} temperatures)",
+                    r.rate_command_deg_s.size(), n, r.temperature_c.size()));
+  }
+  if (!(r.sample_rate_hz > 0.0) || !std::isfinite(r.sample_rate_hz)) {
+    throw UsageError(
+        fmt::format("calibrate: the sample rate must be > 0 Hz, got {}", r.sample_rate_hz));
+  }
+  Calibration c;
+  c.reference_c = o.reference_c;
+  c.plateaus = find_plateaus(r, o, c.notes);
+  if (c.plateaus.empty()) {
+    throw DataError(
+        fmt::format("calibrate: every plateau is shorter than the settle time ({} s) "
+                    "plus {} samples: nothing to fit",
+                    o.settle_s, kMinPlateauSamples));
+  }
+  c.temperatures_c = distinct_temperatures(c.plateaus);
+  std::vector<double> rates;
+  bool positive = false, negative = false;
+  for (const auto& p : c.plateaus) {
+    rates.push_back(p.rate_deg_s);
+    positive = positive || p.rate_deg_s > 0.0;
+    negative = negative || p.rate_deg_s < 0.0;
+    c.full_scale_deg_s = std::max(c.full_scale_deg_s, std::abs(p.rate_deg_s));
+  }
+  std::sort(rates.begin(), rates.end());
+  rates.erase(std::unique(rates.begin(), rates.end()), rates.end());
+  if (c.full_scale_deg_s == 0.0) {
+    throw DataError("calibrate: no plateau at a non-zero rate: the scale factor cannot be found");
+  }
+
+  const int temperatures = static_cast<int>(c.temperatures_c.size());
+  const int auto_degree = std::min(2, temperatures - 1);
+  Layout l;
+  l.pb = o.bias_temperature_degree < 0 ? auto_degree
+                                       : std::min(o.bias_temperature_degree, temperatures - 1);
+  l.ps = o.scale_factor_temperature_degree < 0
+             ? auto_degree
+             : std::min(o.scale_factor_temperature_degree, temperatures - 1);
+  l.asymmetry = o.asymmetry && positive && negative;
+  if (o.asymmetry && !l.asymmetry) {
+    c.notes.push_back("no asymmetry fitted: the run has rates of one sign only");
+  }
+  // At one temperature the rates must outnumber the rate terms (S, a_k, A) and the bias.
+  l.q = std::max(0, o.nonlinearity_degree);
+  const int distinct_rates = static_cast<int>(rates.size());
+  while (l.q > 0 && distinct_rates < 2 + l.q + (l.asymmetry ? 1 : 0)) --l.q;
+  if (l.q < o.nonlinearity_degree) {
+    c.notes.push_back(
+        fmt::format("nonlinearity fitted to degree {} only: the run has {} "
+                    "distinct rates",
+                    l.q, distinct_rates));
+  }
+  const int points = static_cast<int>(c.plateaus.size());
+  const int parameters = l.size();
+  if (points <= parameters) {
+    throw DataError(
+        fmt::format("calibrate: {} plateaus for {} coefficients: the model needs "
+                    "more plateaus (more rates or temperatures) than coefficients",
+                    points, parameters));
+  }
+
+  std::vector<Point> x;
+  Eigen::VectorXd u(points);
+  for (int i = 0; i < points; ++i) {
+    x.push_back({c.plateaus[i].rate_deg_s, c.plateaus[i].temperature_c - o.reference_c});
+    u(i) = c.plateaus[i].output_mean_lsb;
+  }
+  // The linearised model (cross terms of nonlinearity and temperature dropped) for a start.
+  Eigen::MatrixXd design(points, parameters);
+  for (int i = 0; i < points; ++i) {
+    const double w = x[i].w, dT = x[i].dT;
+    design(i, 0) = w;
+    for (int k = 0; k < l.ps; ++k) design(i, l.s(k)) = w * std::pow(dT, k + 1);
+    for (int k = 0; k < l.q; ++k) design(i, l.a(k)) = std::pow(w, k + 2);
+    if (l.asymmetry) design(i, l.A()) = 0.5 * std::abs(w);
+    design(i, l.u0()) = 1.0;
+    for (int k = 0; k < l.pb; ++k) design(i, l.b(k)) = std::pow(dT, k + 1);
+  }
+  // Columns scaled to unit norm for conditioning.
+  Eigen::VectorXd norms = design.colwise().norm().transpose();
+  for (int j = 0; j < parameters; ++j) {
+    if (norms(j) == 0.0) {
+      throw DataError("calibrate: a coefficient of the model has no plateau that shows it");
+    }
+  }
+  const Eigen::MatrixXd scaled = design * norms.cwiseInverse().asDiagonal();
+  Eigen::VectorXd beta = scaled.colPivHouseholderQr().solve(u).cwiseQuotient(norms);
+  Eigen::VectorXd p = beta;
+  const double S = beta(0);
+  for (int k = 0; k < l.ps; ++k) p(l.s(k)) = beta(l.s(k)) / S;
+  for (int k = 0; k < l.q; ++k) p(l.a(k)) = beta(l.a(k)) / S;
+  if (l.asymmetry) p(l.A()) = beta(l.A()) / S;
+
+  // Gauss-Newton on the full model.
+  Eigen::MatrixXd J(points, parameters);
+  Eigen::VectorXd residual(points);
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    for (int i = 0; i < points; ++i) {
+      J.row(i) = model_gradient(p, l, x[i]);
+      residual(i) = u(i) - model_output(p, l, x[i]);
+    }
+    const Eigen::VectorXd jn = J.colwise().norm().transpose();
+    const Eigen::VectorXd step = (J * jn.cwiseInverse().asDiagonal())
+                                     .colPivHouseholderQr()
+                                     .solve(residual)
+                                     .cwiseQuotient(jn);
+    p += step;
+    if ((step.cwiseAbs().array() <= 1e-13 * (p.cwiseAbs().array() + 1e-300)).all()) break;
+  }
+  for (int i = 0; i < points; ++i) {
+    J.row(i) = model_gradient(p, l, x[i]);
+    residual(i) = u(i) - model_output(p, l, x[i]);
+    c.plateaus[i].residual_lsb = residual(i);
+  }
+  c.dof = points - parameters;
+  const double variance = residual.squaredNorm() / c.dof;
+  c.residual_rms_lsb = std::sqrt(residual.squaredNorm() / points);
+  const Eigen::VectorXd jn = J.colwise().norm().transpose();
+  const Eigen::MatrixXd js = J * jn.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd covariance = jn.cwiseInverse().asDiagonal() *
+                                     (js.transpose() * js).inverse() *
+                                     jn.cwiseInverse().asDiagonal() * variance;
+  const double t95 =
+      boost::math::quantile(boost::math::students_t(static_cast<double>(c.dof)), 0.975);
+  auto value = [&](int j) { return with_interval(p(j), covariance(j, j), t95); };
+  c.scale_factor = value(0);
+  for (int k = 0; k < l.ps; ++k) c.scale_factor_temp.push_back(value(l.s(k)));
+  for (int k = 0; k < l.q; ++k) c.nonlinearity.push_back(value(l.a(k)));
+  c.asymmetry = l.asymmetry ? value(l.A()) : CalibratedValue{kNaN, kNaN, kNaN, kNaN};
+  c.bias = value(l.u0());
+  for (int k = 0; k < l.pb; ++k) c.bias_temp.push_back(value(l.b(k)));
+  {
+    // u0 / S * 3600 by the delta method.
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(parameters);
+    g(l.u0()) = 3600.0 / p(0);
+    g(0) = -3600.0 * p(l.u0()) / (p(0) * p(0));
+    c.bias_deg_h = with_interval(3600.0 * p(l.u0()) / p(0), g.dot(covariance * g), t95);
+  }
+
+  // IEEE Std 952 nonlinearity: the fitted curve at T_ref against its straight line.
+  {
+    constexpr int kGrid = 20001;  // the continuous least-squares line to 1e-4
+    Eigen::MatrixXd line(kGrid, 2);
+    Eigen::VectorXd y(kGrid);
+    for (int j = 0; j < kGrid; ++j) {
+      const double w = c.full_scale_deg_s * (2.0 * j / (kGrid - 1) - 1.0);
+      line(j, 0) = 1.0;
+      line(j, 1) = w;
+      y(j) = calibrated_output_lsb(c, w, o.reference_c);
+    }
+    const Eigen::VectorXd fit = line.colPivHouseholderQr().solve(y);
+    const double worst = (y - line * fit).cwiseAbs().maxCoeff();
+    c.nonlinearity_ieee_ppm_fs = worst / std::abs(p(0) * c.full_scale_deg_s) * 1e6;
+  }
+  // The lab manual's: the plateaus' scale factors at the temperature nearest T_ref.
+  {
+    double nearest = c.temperatures_c.front();
+    for (const double t : c.temperatures_c) {
+      if (std::abs(t - o.reference_c) < std::abs(nearest - o.reference_c)) nearest = t;
+    }
+    std::vector<double> factors;
+    for (const auto& plateau : c.plateaus) {
+      if (plateau.rate_deg_s == 0.0 ||
+          std::abs(plateau.temperature_c - nearest) > kSameTemperatureC)
+        continue;
+      const double zero = calibrated_output_lsb(c, 0.0, plateau.temperature_c);
+      factors.push_back((plateau.output_mean_lsb - zero) / plateau.rate_deg_s);
+    }
+    if (factors.size() >= 2) {
+      const auto [lo, hi] = std::minmax_element(factors.begin(), factors.end());
+      double mean = 0.0;
+      for (const double f : factors) mean += f;
+      mean /= static_cast<double>(factors.size());
+      c.nonlinearity_lab1_percent = (*hi - *lo) / std::abs(mean) * 100.0;
+    } else {
+      c.nonlinearity_lab1_percent = kNaN;
+    }
+  }
+  // White noise from the samples' first differences (a slow wander barely enters them).
+  {
+    double squares = 0.0;
+    std::int64_t count = 0;
+    for (const auto& plateau : c.plateaus) {
+      for (std::int64_t k = plateau.first_sample + 1; k < plateau.first_sample + plateau.samples;
+           ++k) {
+        const double d = r.output_lsb[k] - r.output_lsb[k - 1];
+        squares += d * d;
+        ++count;
+      }
+    }
+    const double sigma_lsb = std::sqrt(squares / (2.0 * static_cast<double>(count)));
+    c.white_noise_deg_h_rt_hz = sigma_lsb / std::abs(p(0)) * 3600.0 / std::sqrt(r.sample_rate_hz);
+  }
+  const double per_lsb_deg_h = 3600.0 / std::abs(p(0));
+  c.budget.bias_deg_h = 0.5 * (c.bias.ci95_high - c.bias.ci95_low) * per_lsb_deg_h;
+  c.budget.scale_factor_deg_h = 0.5 * (c.scale_factor.ci95_high - c.scale_factor.ci95_low) /
+                                std::abs(p(0)) * c.full_scale_deg_s * 3600.0;
+  c.budget.nonlinearity_deg_h = residual.cwiseAbs().maxCoeff() * per_lsb_deg_h;
+  c.budget.noise_1s_deg_h = c.white_noise_deg_h_rt_hz;
+  return c;
+}
+
+}  // namespace foglab::model

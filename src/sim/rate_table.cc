@@ -1,0 +1,175 @@
+#include "foglab/sim/rate_table.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstddef>
+#include <string_view>
+
+#include "foglab/core/error.h"
+#include "foglab/sim/error_model.h"
+#include "foglab/sim/generator.h"
+
+namespace foglab::sim {
+namespace {
+
+// sum_k c_k x^k for k = 1 .. size (c_1 first).
+double power_series(std::span<const double> coefs, double x) {
+  double sum = 0.0, power = 1.0;
+  for (const double c : coefs) {
+    power *= x;
+    sum += c * power;
+  }
+  return sum;
+}
+
+void check_finite(std::string_view name, double value) {
+  if (!std::isfinite(value)) {
+    throw UsageError(fmt::format("rate table: {} must be finite, got {}", name, value));
+  }
+}
+
+void check_coefs(std::string_view name, std::span<const double> coefs) {
+  for (std::size_t k = 0; k < coefs.size(); ++k) {
+    check_finite(fmt::format("{}[{}]", name, k + 1), coefs[k]);
+  }
+}
+
+void validate(const RateTableGyro& gyro, std::span<const RatePlateau> plan,
+              const RateTableOptions& options) {
+  if (plan.empty()) throw UsageError("rate table: the plan has no plateau");
+  if (!(std::isfinite(options.settle_s) && options.settle_s >= 0.0)) {
+    throw UsageError(
+        fmt::format("rate table: settle_s must be >= 0 [s], got {}", options.settle_s));
+  }
+  for (std::size_t p = 0; p < plan.size(); ++p) {
+    check_finite(fmt::format("plateau {} rate_deg_s", p + 1), plan[p].rate_deg_s);
+    check_finite(fmt::format("plateau {} temperature_c", p + 1), plan[p].temperature_c);
+    if (!(std::isfinite(plan[p].duration_s) && plan[p].duration_s > options.settle_s)) {
+      throw UsageError(
+          fmt::format("rate table: plateau {} lasts {} s, not longer than the "
+                      "settle time ({} s): nothing of it could be used",
+                      p + 1, plan[p].duration_s, options.settle_s));
+    }
+  }
+  check_finite("scale_factor_lsb_per_deg_s", gyro.scale_factor_lsb_per_deg_s);
+  if (gyro.scale_factor_lsb_per_deg_s == 0.0) {
+    throw UsageError("rate table: the scale factor must not be 0 [LSB/(deg/s)]");
+  }
+  check_finite("asymmetry", gyro.asymmetry);
+  check_finite("bias_lsb", gyro.bias_lsb);
+  check_finite("reference_c", gyro.reference_c);
+  check_coefs("scale_factor_temp_coefs", gyro.scale_factor_temp_coefs);
+  check_coefs("nonlinearity_coefs", gyro.nonlinearity_coefs);
+  check_coefs("bias_temp_coefs_lsb", gyro.bias_temp_coefs_lsb);
+}
+
+}  // namespace
+
+double rate_table_output_lsb(const RateTableGyro& gyro, double rate_deg_s, double temperature_c) {
+  const double dt = temperature_c - gyro.reference_c;
+  const double scale =
+      gyro.scale_factor_lsb_per_deg_s * (1.0 + power_series(gyro.scale_factor_temp_coefs, dt));
+  const double sign = rate_deg_s > 0.0 ? 1.0 : (rate_deg_s < 0.0 ? -1.0 : 0.0);
+  const double f = power_series(gyro.nonlinearity_coefs, rate_deg_s) + 0.5 * gyro.asymmetry * sign;
+  return scale * (1.0 + f) * rate_deg_s + gyro.bias_lsb +
+         power_series(gyro.bias_temp_coefs_lsb, dt);
+}
+
+RateTableRecording generate_rate_table(const RateTableGyro& gyro, std::span<const RatePlateau> plan,
+                                       const RateTableOptions& options) {
+  validate(gyro, plan, options);
+  double total_s = 0.0;
+  for (const RatePlateau& p : plan) total_s += p.duration_s;
+
+  // The random part, rate-equivalent in deg/h: a static gyro's record (sim::generate()).
+  ErrorModel noise_only;
+  noise_only.noise = gyro.noise;
+  GeneratorOptions generator;
+  generator.sample_rate_hz = options.sample_rate_hz;
+  generator.duration_s = total_s;
+  generator.seed = options.seed;
+  const Recording noise = generate(noise_only, TemperatureProfile{}, generator);
+
+  RateTableRecording run;
+  run.sample_rate_hz = options.sample_rate_hz;
+  const std::size_t n = noise.rate_deg_h.size();
+  run.time_s = noise.time_s;
+  run.rate_command_deg_s.resize(n);
+  run.table_rate_deg_s.resize(n);
+  run.output_lsb.resize(n);
+  run.temperature_c.resize(n);
+
+  const double temperature_tc_s = options.settle_s / 5.0;
+  std::size_t p = 0;
+  double start_s = 0.0;
+  double previous_rate = 0.0;  // the table starts at rest
+  double previous_temperature = plan.front().temperature_c;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = noise.time_s[k];
+    while (p + 1 < plan.size() && t >= start_s + plan[p].duration_s) {
+      // The state at the plateau's end, where the next one starts from.
+      const double end = plan[p].duration_s;
+      previous_rate = plan[p].rate_deg_s;
+      previous_temperature =
+          temperature_tc_s > 0.0
+              ? plan[p].temperature_c + (previous_temperature - plan[p].temperature_c) *
+                                            std::exp(-end / temperature_tc_s)
+              : plan[p].temperature_c;
+      start_s += plan[p].duration_s;
+      ++p;
+    }
+    const RatePlateau& plateau = plan[p];
+    const double into = t - start_s;
+    const double rate =
+        into < options.settle_s
+            ? previous_rate + (plateau.rate_deg_s - previous_rate) * into / options.settle_s
+            : plateau.rate_deg_s;
+    const double temperature =
+        temperature_tc_s > 0.0
+            ? plateau.temperature_c + (previous_temperature - plateau.temperature_c) *
+                                          std::exp(-into / temperature_tc_s)
+            : plateau.temperature_c;
+    run.rate_command_deg_s[k] = plateau.rate_deg_s;
+    run.table_rate_deg_s[k] = rate;
+    run.temperature_c[k] = temperature;
+    run.output_lsb[k] = rate_table_output_lsb(gyro, rate, temperature) +
+                        gyro.scale_factor_lsb_per_deg_s * noise.rate_deg_h[k] / 3600.0;
+  }
+  return run;
+}
+
+std::vector<RatePlateau> standard_rate_table_plan(double full_scale_deg_s, int rates_per_sign,
+                                                  std::span<const double> temperatures_c,
+                                                  double plateau_s) {
+  if (!(std::isfinite(full_scale_deg_s) && full_scale_deg_s > 0.0)) {
+    throw UsageError(
+        fmt::format("rate table: the full scale must be > 0 [deg/s], got {}", full_scale_deg_s));
+  }
+  if (rates_per_sign < 1) {
+    throw UsageError(
+        fmt::format("rate table: at least 1 rate of each sign, got {}", rates_per_sign));
+  }
+  if (temperatures_c.empty()) throw UsageError("rate table: no temperature given");
+  std::vector<RatePlateau> plan;
+  for (const double temperature : temperatures_c) {
+    // Up, then down: a drift linear in time is then nearly orthogonal to every even function
+    // of the rate (the nonlinearity's w^2 term, the asymmetry), which one sweep up would
+    // alias. No two neighbouring plateaus share a rate: a plateau is a run of one commanded
+    // rate.
+    plan.push_back({0.0, plateau_s, temperature});
+    for (int k = 1; k <= rates_per_sign; ++k) {
+      const double rate = full_scale_deg_s * k / rates_per_sign;
+      plan.push_back({rate, plateau_s, temperature});
+      plan.push_back({-rate, plateau_s, temperature});
+    }
+    for (int k = rates_per_sign; k >= 1; --k) {
+      const double rate = full_scale_deg_s * k / rates_per_sign;
+      plan.push_back({rate, plateau_s, temperature});
+      plan.push_back({-rate, plateau_s, temperature});
+    }
+  }
+  return plan;
+}
+
+}  // namespace foglab::sim

@@ -1,0 +1,91 @@
+// `foglab rate-table` and `foglab calibrate`: a generated run calibrated through the CLI,
+// against the truth file the generator wrote; bad runs and bad options.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/cli.h"
+
+namespace foglab {
+namespace {
+
+using nlohmann::json;
+using test::quote;
+using test::run_foglab;
+
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+bool holds(const json& v, double truth) {
+  return v["ci95_low"].get<double>() <= truth && truth <= v["ci95_high"].get<double>();
+}
+
+TEST(CliCalibrate, AWhiteNoiseRunIsCalibratedWithinItsIntervals) {
+  // A MAT run at two temperatures (linear temperature terms), white noise only: every
+  // coefficient inside its 95 % interval, S within 10 ppm, the nonlinearity within 5 ppm of
+  // full scale.
+  const test::TempDir dir;
+  const std::string run = quote(dir / "run.mat"), truth = quote(dir / "truth.json");
+  const test::CliRun made =
+      run_foglab("rate-table --out " + run + " --truth " + truth +
+                 " --temps 10,40 --full-scale 200 --rates 4 --plateau 40 --N 0.3 --B 0 --seed 4"
+                 " --sf-temp -8e-5 --bias-temp 0.4");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const test::CliRun r = run_foglab("calibrate " + run + " --json -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json c = json::parse(r.out);
+  const json t = read_json(dir / "truth.json");
+  EXPECT_EQ(c["plateaus"].size(), 2u * 17u);
+  EXPECT_EQ(c["temperatures_c"].size(), 2u);
+  const double s = t["scale_factor_lsb_per_deg_s"];
+  EXPECT_TRUE(holds(c["scale_factor_lsb_per_deg_s"], s)) << c["scale_factor_lsb_per_deg_s"];
+  EXPECT_LT(std::abs(c["scale_factor_lsb_per_deg_s"]["value"].get<double>() / s - 1.0), 10e-6);
+  EXPECT_TRUE(holds(c["bias_lsb"], t["bias_lsb"])) << c["bias_lsb"];
+  // Two temperatures: linear polynomials.
+  ASSERT_EQ(c["scale_factor_temp_coefs_per_degc_k"].size(), 1u);
+  ASSERT_EQ(c["bias_temp_coefs_lsb_per_degc_k"].size(), 1u);
+  EXPECT_TRUE(holds(c["scale_factor_temp_coefs_per_degc_k"][0], -8e-5));
+  EXPECT_TRUE(holds(c["bias_temp_coefs_lsb_per_degc_k"][0], 0.4));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double a = t["nonlinearity_coefs_per_deg_s_k"][k];
+    const json& fit = c["nonlinearity_coefs_per_deg_s_k"][k];
+    EXPECT_TRUE(holds(fit, a)) << "a_" << k + 1 << " " << fit;
+    EXPECT_LT(std::abs(fit["value"].get<double>() - a) * std::pow(200.0, k + 1.0) * 1e6, 5.0);
+  }
+  EXPECT_TRUE(holds(c["asymmetry"], t["asymmetry"])) << c["asymmetry"];
+  EXPECT_NEAR(c["white_noise_deg_h_rt_hz"].get<double>(), 0.3, 0.015);
+  EXPECT_NE(c["corrected_rate_equation"].get<std::string>().find("dT = T - 25 degC"),
+            std::string::npos);
+}
+
+TEST(CliCalibrate, BadRunsAndOptionsAreRefusedAndWriteNothing) {
+  const test::TempDir dir;
+  const std::string run = quote(dir / "run.csv"), out = dir / "out.json";
+  ASSERT_EQ(run_foglab("rate-table --out " + run + " --temps 25 --rates 2 --plateau 20").exit_code,
+            0);
+  // No such column: named, exit 3 as for `analyze --channel`.
+  test::CliRun r = run_foglab("calibrate " + run + " --rate-column rate --json " + quote(out));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("no channel column 'rate'"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(out).good());
+  // Settling longer than every plateau: no plateau left, a data error naming why.
+  r = run_foglab("calibrate " + run + " --settle 30 --json " + quote(out));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("shorter than the settle time"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(out).good());
+  // The generator refuses a plateau no longer than its settle time, and an unknown output.
+  r = run_foglab("rate-table --out " + quote(dir / "x.csv") + " --plateau 5 --settle 5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("not longer than the settle time"), std::string::npos) << r.err;
+  r = run_foglab("rate-table --out " + quote(dir / "x.txt"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(std::ifstream(dir / "x.txt").good());
+}
+
+}  // namespace
+}  // namespace foglab
