@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
+#include "foglab/core/polynomial.h"
 
 namespace foglab::model {
 namespace {
@@ -16,16 +17,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::int64_t kMinPlateauSamples = 10;
 constexpr double kSameTemperatureC = 0.5;  // plateaus closer than this share a temperature
-
-// sum_k c_k x^k for k = 1 .. size.
-double power_series(std::span<const double> coefs, double x) {
-  double sum = 0.0, power = 1.0;
-  for (const double c : coefs) {
-    power *= x;
-    sum += c * power;
-  }
-  return sum;
-}
 
 double sign_of(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 

@@ -7,21 +7,12 @@
 #include <string_view>
 
 #include "foglab/core/error.h"
+#include "foglab/core/polynomial.h"
 #include "foglab/sim/error_model.h"
 #include "foglab/sim/generator.h"
 
 namespace foglab::sim {
 namespace {
-
-// sum_k c_k x^k for k = 1 .. size (c_1 first).
-double power_series(std::span<const double> coefs, double x) {
-  double sum = 0.0, power = 1.0;
-  for (const double c : coefs) {
-    power *= x;
-    sum += c * power;
-  }
-  return sum;
-}
 
 void check_finite(std::string_view name, double value) {
   if (!std::isfinite(value)) {
