@@ -112,16 +112,22 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
   const auto n = static_cast<std::int64_t>(r.output_lsb.size());
   const auto settle = static_cast<std::int64_t>(std::ceil(o.settle_s * r.sample_rate_hz));
   std::vector<CalibrationPlateau> plateaus;
+  constexpr std::int64_t kNamedShortPlateaus = 5;
+  std::int64_t left_out = 0;
   std::int64_t start = 0;
   for (std::int64_t i = 1; i <= n; ++i) {
     if (i < n && r.rate_command_deg_s[i] == r.rate_command_deg_s[start]) continue;
     const std::int64_t first = start + settle;
     const std::int64_t used = i - first;
     if (used < kMinPlateauSamples) {
-      notes.push_back(fmt::format(
-          "the plateau at {} deg/s from sample {} ({} samples) is left "
-          "out: shorter than the settle time ({} s) plus {} samples",
-          r.rate_command_deg_s[start], start + 1, i - start, o.settle_s, kMinPlateauSamples));
+      // A few by name; a commanded rate that changes every sample (a measured rate, not a
+      // command) would otherwise make a note a sample.
+      if (++left_out <= kNamedShortPlateaus) {
+        notes.push_back(fmt::format(
+            "the plateau at {} deg/s from sample {} ({} samples) is left out: shorter than the "
+            "settle time ({} s) plus {} samples",
+            r.rate_command_deg_s[start], start + 1, i - start, o.settle_s, kMinPlateauSamples));
+      }
     } else {
       CalibrationPlateau p;
       p.rate_deg_s = r.rate_command_deg_s[start];
@@ -144,6 +150,12 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
       plateaus.push_back(p);
     }
     start = i;
+  }
+  if (left_out > kNamedShortPlateaus) {
+    notes.push_back(
+        fmt::format("{} more plateaus left out, {} in all: is the rate column the "
+                    "commanded rate?",
+                    left_out - kNamedShortPlateaus, left_out));
   }
   return plateaus;
 }
@@ -199,10 +211,10 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   c.reference_c = o.reference_c;
   c.plateaus = find_plateaus(r, o, c.notes);
   if (c.plateaus.empty()) {
-    throw DataError(
-        fmt::format("calibrate: every plateau is shorter than the settle time ({} s) "
-                    "plus {} samples: nothing to fit",
-                    o.settle_s, kMinPlateauSamples));
+    throw DataError(fmt::format(
+        "calibrate: every plateau is shorter than the settle time ({} s) plus {} samples: "
+        "nothing to fit{}",
+        o.settle_s, kMinPlateauSamples, c.notes.empty() ? "" : " (" + c.notes.back() + ")"));
   }
   c.temperatures_c = distinct_temperatures(c.plateaus);
   std::vector<double> rates;

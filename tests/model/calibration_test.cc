@@ -185,6 +185,23 @@ TEST(Calibration, ShortPlateausAreLeftOutWithANote) {
   EXPECT_NEAR(c.scale_factor.value, 100.0, 1e-6);
 }
 
+TEST(Calibration, ARateThatChangesEverySampleGivesFewNotesAndAnError) {
+  // A measured rate (it never repeats) in place of the command: no plateau survives; five
+  // notes name some, one counts the rest, and the error says what is missing.
+  std::vector<double> rate, output;
+  for (int k = 0; k < 5000; ++k) {
+    rate.push_back(10.0 + 1e-3 * k);
+    output.push_back(1000.0 + k);
+  }
+  try {
+    calibrate({100.0, rate, output, {}});
+    FAIL() << "calibrated on no plateau";
+  } catch (const DataError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("every plateau is shorter than the settle time"));
+    EXPECT_THAT(e.what(), HasSubstr("4995 more plateaus left out, 5000 in all"));
+  }
+}
+
 TEST(Calibration, TooFewPlateausAndBadColumnsAreDataErrors) {
   const std::vector<double> command(1000, 10.0), output(1000, 1.0), temperature(1000, 25.0);
   try {
