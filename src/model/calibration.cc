@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "foglab/core/error.h"
-#include "foglab/core/polynomial.h"
+#include "foglab/core/output_model.h"
 
 namespace foglab::model {
 namespace {
@@ -17,8 +17,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::int64_t kMinPlateauSamples = 10;
 constexpr double kSameTemperatureC = 0.5;  // plateaus closer than this share a temperature
-
-double sign_of(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 
 // Where each coefficient lives in the parameter vector:
 // [S, s_1..s_ps, a_1..a_q, (A), u0, b_1..b_pb].
@@ -37,49 +35,30 @@ struct Point {
   double w, dT;
 };
 
-double model_output(const Eigen::VectorXd& p, const Layout& l, const Point& x) {
-  double scale = 1.0, dTk = 1.0;
-  for (int k = 0; k < l.ps; ++k) {
-    dTk *= x.dT;
-    scale += p(l.s(k)) * dTk;
-  }
-  scale *= p(0);
-  double f = 0.0, wk = 1.0;
-  for (int k = 0; k < l.q; ++k) {
-    wk *= x.w;
-    f += p(l.a(k)) * wk;
-  }
-  if (l.asymmetry) f += 0.5 * p(l.A()) * sign_of(x.w);
-  double bias = p(l.u0());
-  dTk = 1.0;
-  for (int k = 0; k < l.pb; ++k) {
-    dTk *= x.dT;
-    bias += p(l.b(k)) * dTk;
-  }
-  return scale * (1.0 + f) * x.w + bias;
+// Eq. (10)'s terms as they lie in the parameter vector p.
+OutputModelTerms terms_of(const Eigen::VectorXd& p, const Layout& l) {
+  const double* v = p.data();
+  return {p(0),
+          {v + l.s(0), static_cast<std::size_t>(l.ps)},
+          {v + l.a(0), static_cast<std::size_t>(l.q)},
+          l.asymmetry ? p(l.A()) : 0.0,
+          p(l.u0()),
+          {v + l.b(0), static_cast<std::size_t>(l.pb)}};
 }
 
+// The model's derivatives with respect to p at one point.
 Eigen::RowVectorXd model_gradient(const Eigen::VectorXd& p, const Layout& l, const Point& x) {
-  Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(l.size());
-  double relative = 1.0, dTk = 1.0;
-  for (int k = 0; k < l.ps; ++k) {
-    dTk *= x.dT;
-    relative += p(l.s(k)) * dTk;
-  }
-  double f = 0.0, wk = 1.0;
-  for (int k = 0; k < l.q; ++k) {
-    wk *= x.w;
-    f += p(l.a(k)) * wk;
-  }
-  if (l.asymmetry) f += 0.5 * p(l.A()) * sign_of(x.w);
+  const OutputModelTerms t = terms_of(p, l);
+  const double relative = t.relative_scale_factor(x.dT);
+  const double rate_part = (1.0 + t.nonlinearity_at(x.w)) * x.w;  // [1 + f(w)] w
   const double scale = p(0) * relative;
-  g(0) = relative * (1.0 + f) * x.w;
-  dTk = 1.0;
+  Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(l.size());
+  g(0) = relative * rate_part;
+  double dTk = 1.0, wk = x.w;
   for (int k = 0; k < l.ps; ++k) {
     dTk *= x.dT;
-    g(l.s(k)) = p(0) * dTk * (1.0 + f) * x.w;
+    g(l.s(k)) = p(0) * dTk * rate_part;
   }
-  wk = x.w;
   for (int k = 0; k < l.q; ++k) {
     wk *= x.w;
     g(l.a(k)) = scale * wk;
@@ -167,29 +146,40 @@ CalibratedValue with_interval(double value, double variance, double t95) {
 
 }  // namespace
 
-double calibrated_output_lsb(const Calibration& c, double rate_deg_s, double temperature_c) {
-  const double dT = temperature_c - c.reference_c;
+namespace {
+
+// The fitted coefficients' values, in the arrays OutputModelTerms views.
+struct FittedTerms {
   std::vector<double> s, a, b;
-  for (const auto& v : c.scale_factor_temp) s.push_back(v.value);
-  for (const auto& v : c.nonlinearity) a.push_back(v.value);
-  for (const auto& v : c.bias_temp) b.push_back(v.value);
-  const double scale = c.scale_factor.value * (1.0 + power_series(s, dT));
-  double f = power_series(a, rate_deg_s);
-  if (std::isfinite(c.asymmetry.value)) f += 0.5 * c.asymmetry.value * sign_of(rate_deg_s);
-  return scale * (1.0 + f) * rate_deg_s + c.bias.value + power_series(b, dT);
+  OutputModelTerms terms;
+  explicit FittedTerms(const Calibration& c) {
+    for (const auto& v : c.scale_factor_temp) s.push_back(v.value);
+    for (const auto& v : c.nonlinearity) a.push_back(v.value);
+    for (const auto& v : c.bias_temp) b.push_back(v.value);
+    terms = {c.scale_factor.value, s, a, std::isfinite(c.asymmetry.value) ? c.asymmetry.value : 0.0,
+             c.bias.value,         b};
+  }
+  FittedTerms(const FittedTerms&) = delete;
+  FittedTerms& operator=(const FittedTerms&) = delete;
+};
+
+}  // namespace
+
+double calibrated_output_lsb(const Calibration& c, double rate_deg_s, double temperature_c) {
+  return FittedTerms(c).terms.output(rate_deg_s, temperature_c - c.reference_c);
 }
 
 double corrected_rate_deg_s(const Calibration& c, double output_lsb, double temperature_c) {
-  const double at_zero = calibrated_output_lsb(c, 0.0, temperature_c);
+  const FittedTerms fitted(c);
+  const OutputModelTerms& t = fitted.terms;
   const double dT = temperature_c - c.reference_c;
-  std::vector<double> s;
-  for (const auto& v : c.scale_factor_temp) s.push_back(v.value);
-  const double scale = c.scale_factor.value * (1.0 + power_series(s, dT));
-  double w = (output_lsb - at_zero) / scale;
-  for (int step = 0; step < 8; ++step) {
-    const double slope = (calibrated_output_lsb(c, w, temperature_c) - at_zero) / (w != 0 ? w : 1);
-    if (w == 0.0 || slope == 0.0) break;
-    w = (output_lsb - at_zero) / slope;
+  const double net = output_lsb - t.bias_at(dT);  // S(T) [1 + f(w)] w
+  const double scale = t.scale_factor * t.relative_scale_factor(dT);
+  double w = net / scale;
+  for (int step = 0; step < 8 && w != 0.0; ++step) {
+    const double slope = scale * (1.0 + t.nonlinearity_at(w));  // net / w at this w
+    if (slope == 0.0) break;
+    w = net / slope;
   }
   return w;
 }
@@ -300,7 +290,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   for (int iteration = 0; iteration < 20; ++iteration) {
     for (int i = 0; i < points; ++i) {
       J.row(i) = model_gradient(p, l, x[i]);
-      residual(i) = u(i) - model_output(p, l, x[i]);
+      residual(i) = u(i) - terms_of(p, l).output(x[i].w, x[i].dT);
     }
     const Eigen::VectorXd jn = J.colwise().norm().transpose();
     const Eigen::VectorXd step = (J * jn.cwiseInverse().asDiagonal())
@@ -312,7 +302,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   }
   for (int i = 0; i < points; ++i) {
     J.row(i) = model_gradient(p, l, x[i]);
-    residual(i) = u(i) - model_output(p, l, x[i]);
+    residual(i) = u(i) - terms_of(p, l).output(x[i].w, x[i].dT);
     c.plateaus[i].residual_lsb = residual(i);
   }
   c.dof = points - parameters;
@@ -340,6 +330,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     c.bias_deg_h = with_interval(3600.0 * p(l.u0()) / p(0), g.dot(covariance * g), t95);
   }
 
+  const OutputModelTerms fitted = terms_of(p, l);
   // IEEE Std 952 nonlinearity: the fitted curve at T_ref against its straight line.
   {
     constexpr int kGrid = 20001;  // the continuous least-squares line to 1e-4
@@ -349,7 +340,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
       const double w = c.full_scale_deg_s * (2.0 * j / (kGrid - 1) - 1.0);
       line(j, 0) = 1.0;
       line(j, 1) = w;
-      y(j) = calibrated_output_lsb(c, w, o.reference_c);
+      y(j) = fitted.output(w, 0.0);
     }
     const Eigen::VectorXd fit = line.colPivHouseholderQr().solve(y);
     const double worst = (y - line * fit).cwiseAbs().maxCoeff();
@@ -366,7 +357,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
       if (plateau.rate_deg_s == 0.0 ||
           std::abs(plateau.temperature_c - nearest) > kSameTemperatureC)
         continue;
-      const double zero = calibrated_output_lsb(c, 0.0, plateau.temperature_c);
+      const double zero = fitted.bias_at(plateau.temperature_c - o.reference_c);
       factors.push_back((plateau.output_mean_lsb - zero) / plateau.rate_deg_s);
     }
     if (factors.size() >= 2) {

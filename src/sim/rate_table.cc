@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "foglab/core/error.h"
-#include "foglab/core/polynomial.h"
+#include "foglab/core/output_model.h"
 #include "foglab/sim/error_model.h"
 #include "foglab/sim/generator.h"
 
@@ -58,13 +58,13 @@ void validate(const RateTableGyro& gyro, std::span<const RatePlateau> plan,
 }  // namespace
 
 double rate_table_output_lsb(const RateTableGyro& gyro, double rate_deg_s, double temperature_c) {
-  const double dt = temperature_c - gyro.reference_c;
-  const double scale =
-      gyro.scale_factor_lsb_per_deg_s * (1.0 + power_series(gyro.scale_factor_temp_coefs, dt));
-  const double sign = rate_deg_s > 0.0 ? 1.0 : (rate_deg_s < 0.0 ? -1.0 : 0.0);
-  const double f = power_series(gyro.nonlinearity_coefs, rate_deg_s) + 0.5 * gyro.asymmetry * sign;
-  return scale * (1.0 + f) * rate_deg_s + gyro.bias_lsb +
-         power_series(gyro.bias_temp_coefs_lsb, dt);
+  const OutputModelTerms terms{gyro.scale_factor_lsb_per_deg_s,
+                               gyro.scale_factor_temp_coefs,
+                               gyro.nonlinearity_coefs,
+                               gyro.asymmetry,
+                               gyro.bias_lsb,
+                               gyro.bias_temp_coefs_lsb};
+  return terms.output(rate_deg_s, temperature_c - gyro.reference_c);
 }
 
 RateTableRecording generate_rate_table(const RateTableGyro& gyro, std::span<const RatePlateau> plan,

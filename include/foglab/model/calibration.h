@@ -1,7 +1,8 @@
 // foglab — scale-factor calibration on a rate table: the lab manual's output model (eq. 10,
 // section 2.1) fitted to a run's plateaus.
 //
-//   u(w, T) = S(T) [1 + f(w)] w + u0(T)        (the form sim/rate_table.h generates)
+//   u(w, T) = S(T) [1 + f(w)] w + u0(T)        (core/output_model.h, which sim/rate_table.h
+//                                               generates from)
 //   S(T)  = S (1 + sum_k s_k dT^k),  f(w) = sum_k a_k w^k + (A/2) sign(w),
 //   u0(T) = u0 + sum_k b_k dT^k,     dT = T - T_ref
 //

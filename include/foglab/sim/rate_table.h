@@ -1,6 +1,6 @@
 // foglab — the truth of a rate-table calibration: a gyro's output on a turntable.
 //
-// The lab manual's output model (its eq. 10, section 2.1):
+// The lab manual's output model (its eq. 10, section 2.1; core/output_model.h):
 //
 //   u(w, T) = S(T) [1 + f(w)] w + u0(T) + eta_u
 //
