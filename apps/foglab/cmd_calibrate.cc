@@ -12,6 +12,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "foglab/core/error.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/io/reader.h"
@@ -184,6 +185,12 @@ void run(const CalibrateCommand& c) {
   const RunPath inputs[] = {{"FILE", c.path}};
   const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
   check_outputs(inputs, outputs);
+  if (io::is_stream(c.path)) {
+    throw UsageError(fmt::format(
+        "{} is read once (standard input, a FIFO or a device), and calibrate reads three "
+        "columns from it; save the run to a file",
+        c.path == "-" ? "standard input" : "'" + c.path + "'"));
+  }
   const io::Series rate = read_column(c, c.rate_column);
   const io::Series output = read_column(c, c.output_column);
   const io::Series temperature =

@@ -73,6 +73,10 @@ TEST(CliCalibrate, BadRunsAndOptionsAreRefusedAndWriteNothing) {
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("no channel column 'rate'"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(out).good());
+  // Standard input is read once: refused before reading, as `analyze --temp` does.
+  r = run_foglab("calibrate -", "rate_cmd_deg_s,output_lsb\n1,2\n");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("standard input is read once"), std::string::npos) << r.err;
   // Settling longer than every plateau: no plateau left, a data error naming why.
   r = run_foglab("calibrate " + run + " --settle 30 --json " + quote(out));
   EXPECT_EQ(r.exit_code, 3) << r.err;
