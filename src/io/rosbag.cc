@@ -9,7 +9,6 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <limits.h>
 #include <malloc.h>
 #include <signal.h>
 #include <sys/mman.h>
@@ -91,10 +90,10 @@ const bag::Plugin* load_plugin() {
     ::dlclose(handle);
   }
   throw std::runtime_error(fmt::format(
-      "cannot read or write ROS bags: foglab's ROS bag plugin ({}) is missing ({}); it is built "
-      "with foglab (target foglab_rosbag) and installed in {}",
+      "cannot read or write ROS bags: foglab's ROS bag plugin ({}) cannot be loaded ({}); it "
+      "is built with foglab (target foglab_rosbag) and installed in {}",
       FOGLAB_ROSBAG_PLUGIN_NAME,
-      reasons.empty() ? "not found" : fmt::format("{}", fmt::join(reasons, "; ")),
+      reasons.empty() ? "not found" : fmt::to_string(fmt::join(reasons, "; ")),
       std::filesystem::path(FOGLAB_ROSBAG_PLUGIN_INSTALL_PATH).parent_path().string()));
 }
 

@@ -6,8 +6,10 @@
 // pluginlib, class_loader, ...), and the dynamic loader binding them cost every foglab command
 // about 15 ms at start, bags or not (issue 19: `foglab allan` on 2e7 samples takes 0.18 s).
 //
-// Both sides include this header and are built together; the plugin's table carries kAbi, a
-// digest of this header and of foglab/io/rosbag.h, and a table of any other digest is refused.
+// Both sides include this header and are built together; the plugin's table carries
+// kRosbagPluginAbi, foglab's version and a digest of the headers whose types cross between
+// them (this one, foglab/io/rosbag.h, core/error.h, core/gaps.h: src/CMakeLists.txt), and a
+// table of any other digest is refused.
 #pragma once
 
 #include <array>
