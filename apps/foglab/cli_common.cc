@@ -241,6 +241,12 @@ nlohmann::json noise_model_json(const NoiseModel& m) {
   return j;
 }
 
+nlohmann::json noise_units_json() {
+  nlohmann::json j = nlohmann::json::object();
+  for (const NoiseParameter& p : kNoiseParameters) j[std::string(p.name)] = p.unit;
+  return j;
+}
+
 nlohmann::json model_json(const sim::ErrorModel& m) {
   nlohmann::json j = noise_model_json(m.noise);
   j["bias"] = m.bias;
@@ -253,7 +259,7 @@ nlohmann::json model_units_json() {
   nlohmann::json j = {{"bias", "deg/h"},
                       {"input_rate", "deg/h"},
                       {"temp_coefs", "deg/h/degC^k, k = 1, 2, ... about temperature.reference_c"}};
-  for (const NoiseParameter& p : kNoiseParameters) j[std::string(p.name)] = p.unit;
+  j.update(noise_units_json());
   return j;
 }
 

@@ -104,6 +104,8 @@ nlohmann::json numbers(const std::vector<double>& values);
 nlohmann::json model_json(const sim::ErrorModel& model);
 /// N, B, K, R, Q, gm_sigma, gm_tc of a noise model (units: model_units_json()).
 nlohmann::json noise_model_json(const NoiseModel& model);
+/// {name: unit} of kNoiseParameters, the units of noise_model_json().
+nlohmann::json noise_units_json();
 /// The unit of every field of model_json().
 nlohmann::json model_units_json();
 

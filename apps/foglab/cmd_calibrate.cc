@@ -2,8 +2,10 @@
 // (model/calibration.h): scale factor, bias, their temperature polynomials, nonlinearity,
 // asymmetry, with 95 % intervals, and the corrected-rate equation (eq. 11).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -22,9 +24,12 @@ namespace foglab::cli {
 namespace {
 
 struct CalibrateCommand {
-  std::string path;
+  std::vector<std::string> paths;  // one run, or a triad's three mountings (x, y, z)
+  std::string path;                // paths joined, for messages and the JSON
+  bool triad = false;
   std::string rate_column = "rate_cmd_deg_s";
   std::string output_column = "output_lsb";
+  std::vector<std::string> triad_columns = {"output_x_lsb", "output_y_lsb", "output_z_lsb"};
   std::string temperature_column = "temperature_c";
   std::optional<double> sample_rate_hz;
   model::CalibrationOptions options;
@@ -32,11 +37,12 @@ struct CalibrateCommand {
   std::string csv_path;
 };
 
-io::Series read_column(const CalibrateCommand& c, const std::string& column) {
+io::Series read_column(const CalibrateCommand& c, const std::string& path,
+                       const std::string& column) {
   io::ReadOptions options;
   options.channel = column;
   options.sample_rate_hz = c.sample_rate_hz;
-  return io::read_series(c.path, options);
+  return io::read_series(path, options);
 }
 
 nlohmann::json value_json(const model::CalibratedValue& v) {
@@ -76,7 +82,8 @@ std::string corrected_rate_equation(const model::Calibration& r) {
       series_text(r.scale_factor_temp, "dT"), f, r.reference_c);
 }
 
-nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
+// One gyro's calibration (without the source and version).
+nlohmann::json calibration_json(const model::Calibration& r) {
   nlohmann::json plateaus = nlohmann::json::array();
   for (const auto& p : r.plateaus) {
     plateaus.push_back({{"rate_deg_s", p.rate_deg_s},
@@ -87,9 +94,7 @@ nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
                         {"temperature_c", p.temperature_c},
                         {"residual_lsb", p.residual_lsb}});
   }
-  return {{"source", {{"path", c.path}}},
-          {"settle_s", c.options.settle_s},
-          {"reference_c", r.reference_c},
+  return {{"reference_c", r.reference_c},
           {"full_scale_deg_s", r.full_scale_deg_s},
           {"temperatures_c", r.temperatures_c},
           {"scale_factor_lsb_per_deg_s", value_json(r.scale_factor)},
@@ -104,6 +109,10 @@ nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
           {"white_noise_deg_h_rt_hz", number(r.white_noise_deg_h_rt_hz)},
           {"residual_rms_lsb", number(r.residual_rms_lsb)},
           {"dof", r.dof},
+          {"weighting", r.noise_covariance ? "noise_covariance" : "alike"},
+          {"residual_noise", noise_model_json(r.noise)},
+          {"residual_noise_units", noise_units_json()},
+          {"dispersion", number(r.dispersion)},
           {"error_budget_at_full_scale_deg_h",
            {{"bias", number(r.budget.bias_deg_h)},
             {"scale_factor", number(r.budget.scale_factor_deg_h)},
@@ -111,7 +120,35 @@ nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
             {"noise_1s", number(r.budget.noise_1s_deg_h)}}},
           {"corrected_rate_equation", corrected_rate_equation(r)},
           {"plateaus", plateaus},
-          {"notes", r.notes},
+          {"notes", r.notes}};
+}
+
+nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
+  nlohmann::json j = {{"source", {{"path", c.path}}}, {"settle_s", c.options.settle_s}};
+  j.update(calibration_json(r));
+  j["foglab_version"] = std::string(version());
+  return j;
+}
+
+nlohmann::json to_json(const CalibrateCommand& c, const model::TriadCalibration& t) {
+  nlohmann::json axes = nlohmann::json::array();
+  nlohmann::json misalignment = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) {
+    axes.push_back(calibration_json(t.axes[i]));
+    nlohmann::json row = nlohmann::json::array();
+    for (int j = 0; j < 3; ++j) {
+      model::CalibratedValue m = t.misalignment_rad[i][j];
+      for (double* v : {&m.value, &m.sd, &m.ci95_low, &m.ci95_high}) *v *= 1e3;
+      row.push_back(i == j ? nlohmann::json(nullptr) : value_json(m));
+    }
+    misalignment.push_back(row);
+  }
+  return {{"source", {{"paths", c.paths}, {"table_axes", {"x", "y", "z"}}}},
+          {"settle_s", c.options.settle_s},
+          {"axes", axes},
+          {"misalignment_mrad", misalignment},
+          {"misalignment_meaning",
+           "[i][j]: gyro i's sensitivity to a rate about body axis j, M = I + m (small angles)"},
           {"foglab_version", std::string(version())}};
 }
 
@@ -127,11 +164,11 @@ std::string interval(const model::CalibratedValue& v, double scale = 1.0) {
                      digits, v.ci95_high * scale, digits);
 }
 
-std::string to_table(const CalibrateCommand& c, const model::Calibration& r) {
+std::string to_table(const std::string& what, const model::Calibration& r) {
   std::string out = fmt::format(
-      "rate-table calibration of '{}': {} plateaus, {} temperature(s), full scale {:g} deg/s, "
+      "rate-table calibration of {}: {} plateaus, {} temperature(s), full scale {:g} deg/s, "
       "T_ref {:g} degC ({} dof)\n",
-      c.path, r.plateaus.size(), r.temperatures_c.size(), r.full_scale_deg_s, r.reference_c, r.dof);
+      what, r.plateaus.size(), r.temperatures_c.size(), r.full_scale_deg_s, r.reference_c, r.dof);
   out += fmt::format("  scale factor S       {} LSB/(deg/s)\n", interval(r.scale_factor));
   for (std::size_t k = 0; k < r.scale_factor_temp.size(); ++k) {
     out += fmt::format("  S temperature s_{}   {} ppm/degC^{}\n", k + 1,
@@ -159,6 +196,15 @@ std::string to_table(const CalibrateCommand& c, const model::Calibration& r) {
       "  white noise N {:.4g} deg/h/sqrt(Hz) (ARW {:.4g} deg/sqrt(h)); plateau "
       "residuals {:.4g} LSB rms\n",
       r.white_noise_deg_h_rt_hz, r.white_noise_deg_h_rt_hz / 60.0, r.residual_rms_lsb);
+  if (r.noise_covariance) {
+    out += fmt::format(
+        "  plateaus weighted by the residual record's noise: N {:.4g} deg/h/sqrt(Hz), B {:.4g} "
+        "deg/h, K {:.4g} deg/h/sqrt(s), Gauss-Markov {:.4g} deg/h over {:.4g} s; chi2/dof "
+        "{:.3g}\n",
+        r.noise.N, r.noise.B, r.noise.K, r.noise.gm_sigma, r.noise.gm_tc, r.dispersion);
+  } else {
+    out += "  plateaus weighted alike (ordinary least squares)\n";
+  }
   out += fmt::format(
       "  error budget at full scale (eq. 13, 95 %): bias {:.4g}, scale factor {:.4g}, "
       "nonlinearity residual {:.4g}, noise over 1 s {:.4g} deg/h\n",
@@ -169,43 +215,122 @@ std::string to_table(const CalibrateCommand& c, const model::Calibration& r) {
   return out;
 }
 
-std::string to_csv(const model::Calibration& r) {
-  std::string out =
-      "rate_deg_s,first_sample,samples,output_mean_lsb,output_sd_lsb,temperature_c,"
-      "residual_lsb\n";
-  for (const auto& p : r.plateaus) {
-    out +=
-        fmt::format("{:.10g},{},{},{:.12g},{:.6g},{:.6g},{:.6g}\n", p.rate_deg_s, p.first_sample,
-                    p.samples, p.output_mean_lsb, p.output_sd_lsb, p.temperature_c, p.residual_lsb);
+std::string to_table(const CalibrateCommand& c, const model::Calibration& r) {
+  return to_table(fmt::format("'{}'", c.path), r);
+}
+
+std::string to_table(const CalibrateCommand& c, const model::TriadCalibration& t) {
+  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  std::string out;
+  for (int i = 0; i < 3; ++i) {
+    out += to_table(fmt::format("gyro {} ('{}')", kAxis[i], c.paths[i]), t.axes[i]);
+  }
+  out += "misalignment m_ij [mrad] (gyro i's sensitivity to a rate about axis j), 95 %:\n";
+  for (int i = 0; i < 3; ++i) {
+    out += fmt::format("  {}", kAxis[i]);
+    for (int j = 0; j < 3; ++j) {
+      out += i == j ? fmt::format("  {:>34}", "1 (scale factor)")
+                    : fmt::format("  {:>34}", interval(t.misalignment_rad[i][j], 1e3));
+    }
+    out += "\n";
   }
   return out;
 }
 
-void run(const CalibrateCommand& c) {
-  const RunPath inputs[] = {{"FILE", c.path}};
-  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
-  check_outputs(inputs, outputs);
-  if (io::is_stream(c.path)) {
-    throw UsageError(fmt::format(
-        "{} is read once (standard input, a FIFO or a device), and calibrate reads three "
-        "columns from it; save the run to a file",
-        c.path == "-" ? "standard input" : "'" + c.path + "'"));
+constexpr const char* kPlateauCsvHeader =
+    "rate_deg_s,first_sample,samples,output_mean_lsb,output_sd_lsb,temperature_c,residual_lsb";
+
+std::string plateau_rows(const model::Calibration& r, const std::string& prefix) {
+  std::string out;
+  for (const auto& p : r.plateaus) {
+    out += prefix + fmt::format("{:.10g},{},{},{:.12g},{:.6g},{:.6g},{:.6g}\n", p.rate_deg_s,
+                                p.first_sample, p.samples, p.output_mean_lsb, p.output_sd_lsb,
+                                p.temperature_c, p.residual_lsb);
   }
-  const io::Series rate = read_column(c, c.rate_column);
-  const io::Series output = read_column(c, c.output_column);
-  const io::Series temperature =
-      c.temperature_column.empty() ? io::Series{} : read_column(c, c.temperature_column);
-  progress(fmt::format("calibrating on {} samples at {} Hz", output.values.size(),
-                       output.sample_rate_hz));
-  const model::CalibrationRecord record{output.sample_rate_hz, rate.values, output.values,
-                                        temperature.values};
-  const model::Calibration result = model::calibrate(record, c.options);
-  // Render everything first, then write: a failure never leaves half the outputs.
+  return out;
+}
+
+std::string to_csv(const model::Calibration& r) {
+  return std::string(kPlateauCsvHeader) + "\n" + plateau_rows(r, "");
+}
+
+// A triad's plateaus: each gyro on its own mounting, then on the others (the cross-axis fits).
+std::string to_csv(const model::TriadCalibration& t) {
+  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  std::string out = std::string("gyro,table_axis,") + kPlateauCsvHeader + "\n";
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      out += plateau_rows(i == j ? t.axes[i] : t.cross[i][j],
+                          fmt::format("{},{},", kAxis[i], kAxis[j]));
+    }
+  }
+  return out;
+}
+
+// Renders everything first, then writes: a failure never leaves half the outputs.
+template <class Result>
+void write_outputs(const CalibrateCommand& c, const Result& result) {
   const std::string json = c.json_path.empty() ? "" : json_text(to_json(c, result));
   const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
   if (!c.json_path.empty()) write_text_file(c.json_path, json);
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
   if (c.json_path != "-" && c.csv_path != "-") std::cout << to_table(c, result);
+}
+
+void run(CalibrateCommand& c) {
+  if (c.paths.size() != (c.triad ? 3u : 1u)) {
+    throw UsageError(c.triad
+                         ? fmt::format("--triad needs the three mountings' files (the table "
+                                       "about x, y, z), got {}",
+                                       c.paths.size())
+                         : fmt::format("one FILE (three with --triad), got {}", c.paths.size()));
+  }
+  c.path = fmt::format("{}", fmt::join(c.paths, "', '"));
+  std::vector<RunPath> inputs;
+  for (const std::string& path : c.paths) inputs.push_back({"FILE", path});
+  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  check_outputs(inputs, outputs);
+  for (const std::string& path : c.paths) {
+    if (io::is_stream(path)) {
+      throw UsageError(fmt::format(
+          "{} is read once (standard input, a FIFO or a device), and calibrate reads several "
+          "columns from it; save the run to a file",
+          path == "-" ? "standard input" : "'" + path + "'"));
+    }
+  }
+  if (!c.triad) {
+    const io::Series rate = read_column(c, c.paths[0], c.rate_column);
+    const io::Series output = read_column(c, c.paths[0], c.output_column);
+    const io::Series temperature = c.temperature_column.empty()
+                                       ? io::Series{}
+                                       : read_column(c, c.paths[0], c.temperature_column);
+    progress(fmt::format("calibrating on {} samples at {} Hz", output.values.size(),
+                         output.sample_rate_hz));
+    write_outputs(
+        c, model::calibrate({output.sample_rate_hz, rate.values, output.values, temperature.values},
+                            c.options));
+    return;
+  }
+  // Each mounting's columns; the series own the samples the records view.
+  std::vector<io::Series> columns;
+  columns.reserve(15);
+  std::array<model::TriadRecord, 3> mountings;
+  for (int j = 0; j < 3; ++j) {
+    const std::string& path = c.paths[j];
+    const io::Series& rate = columns.emplace_back(read_column(c, path, c.rate_column));
+    mountings[j].sample_rate_hz = rate.sample_rate_hz;
+    mountings[j].rate_command_deg_s = rate.values;
+    for (int i = 0; i < 3; ++i) {
+      mountings[j].output_lsb[i] =
+          columns.emplace_back(read_column(c, path, c.triad_columns[i])).values;
+    }
+    if (!c.temperature_column.empty()) {
+      mountings[j].temperature_c =
+          columns.emplace_back(read_column(c, path, c.temperature_column)).values;
+    }
+  }
+  progress("calibrating the triad: three gyros on three mountings");
+  write_outputs(c, model::calibrate_triad(mountings, c.options));
 }
 
 }  // namespace
@@ -217,7 +342,17 @@ std::function<void()> register_calibrate(CLI::App& app) {
       "Fit the manual's output model (eq. 10) to a rate-table run: scale factor, bias, their "
       "temperature polynomials, nonlinearity and asymmetry with 95 % intervals, and the "
       "corrected-rate equation (eq. 11)");
-  cmd->add_option("FILE", c->path, "the run: CSV or MAT with a time column or f")->required();
+  cmd->add_option("FILE", c->paths,
+                  "the run: CSV or MAT with a time column or f; with --triad the three "
+                  "mountings, the table about x, y and z")
+      ->required()
+      ->expected(1, 3);
+  cmd->add_flag("--triad", c->triad,
+                "calibrate a triad: three files, three gyros each; adds the misalignment");
+  cmd->add_option("--triad-columns", c->triad_columns, "with --triad: the gyros' outputs [LSB]")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
   cmd->add_option("--rate-column", c->rate_column, "the commanded rate [deg/s]")
       ->capture_default_str();
   cmd->add_option("--output-column", c->output_column, "the gyro's output [LSB]")
@@ -235,6 +370,9 @@ std::function<void()> register_calibrate(CLI::App& app) {
                   "terms a_1 .. a_d of the nonlinearity f(w)")
       ->capture_default_str();
   cmd->add_flag("!--no-asymmetry", c->options.asymmetry, "do not fit the asymmetry");
+  cmd->add_flag("!--weigh-alike", c->options.noise_covariance,
+                "weigh every plateau alike (ordinary least squares) instead of by the plateau "
+                "means' covariance from the residual record's noise model");
   cmd->add_option("--json", c->json_path, "write JSON ('-' for stdout)");
   cmd->add_option("--csv", c->csv_path, "write the plateaus as CSV ('-' for stdout)");
   return [c] { run(*c); };

@@ -28,10 +28,38 @@ struct RateTableCommand {
   double plateau_s = 60.0;
   sim::RateTableOptions options;
   sim::RateTableGyro gyro;
+  bool triad = false;
+  /// [mrad] m_xy, m_xz, m_yx, m_yz, m_zx, m_zy (sim::RateTableTriad)
+  std::vector<double> misalignment_mrad = {0.8, -0.5, 0.3, 1.2, -0.9, 0.4};
+  /// With --triad: gyro k's S and u0 are S (1 + spread k) and u0 + 10 k LSB (k = 0, 1, 2), so
+  /// that a swapped axis shows.
+  double triad_spread = 0.01;
 };
 
-nlohmann::json truth_json(const RateTableCommand& c) {
-  const sim::RateTableGyro& g = c.gyro;
+// The triad `foglab rate-table --triad` generates (the struct's comment above).
+sim::RateTableTriad triad_of(const RateTableCommand& c) {
+  sim::RateTableTriad t;
+  for (int k = 0; k < 3; ++k) {
+    t.gyros[k] = c.gyro;
+    t.gyros[k].scale_factor_lsb_per_deg_s *= 1.0 + c.triad_spread * k;
+    t.gyros[k].bias_lsb += 10.0 * k;
+  }
+  int next = 0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (i != j) t.misalignment_rad[i][j] = c.misalignment_mrad[next++] * 1e-3;
+    }
+  }
+  return t;
+}
+
+// gyro.csv -> gyro-x.csv: the mounting about `axis`.
+std::string mounting_path(const std::string& path, const char* axis) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "-" + axis + p.extension().string())).string();
+}
+
+nlohmann::json gyro_json(const sim::RateTableGyro& g) {
   return {{"model",
            "u = S (1 + sum s_k dT^k) [1 + sum a_k w^k + (A/2) sign(w)] w + u0 + "
            "sum b_k dT^k + S eta / 3600, dT = T - T_ref"},
@@ -43,51 +71,122 @@ nlohmann::json truth_json(const RateTableCommand& c) {
           {"bias_temp_coefs_lsb_per_degc_k", g.bias_temp_coefs_lsb},
           {"reference_c", g.reference_c},
           {"noise",
-           {{"N_deg_h_rt_hz", g.noise.N}, {"B_deg_h", g.noise.B}, {"K_deg_h_rt_s", g.noise.K}}},
-          {"plan",
-           {{"full_scale_deg_s", c.full_scale_deg_s},
-            {"rates_per_sign", c.rates_per_sign},
-            {"temperatures_c", c.temperatures_c},
-            {"plateau_s", c.plateau_s},
-            {"settle_s", c.options.settle_s},
-            {"sample_rate_hz", c.options.sample_rate_hz},
-            {"seed", c.options.seed}}},
-          {"foglab_version", std::string(version())}};
+           {{"N_deg_h_rt_hz", g.noise.N}, {"B_deg_h", g.noise.B}, {"K_deg_h_rt_s", g.noise.K}}}};
+}
+
+nlohmann::json truth_json(const RateTableCommand& c) {
+  nlohmann::json j;
+  if (c.triad) {
+    const sim::RateTableTriad t = triad_of(c);
+    nlohmann::json gyros = nlohmann::json::array();
+    nlohmann::json m = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i) {
+      gyros.push_back(gyro_json(t.gyros[i]));
+      nlohmann::json row = nlohmann::json::array();
+      for (int k = 0; k < 3; ++k) {
+        row.push_back(i == k ? nlohmann::json(nullptr)
+                             : nlohmann::json(t.misalignment_rad[i][k] * 1e3));
+      }
+      m.push_back(row);
+    }
+    j = {{"gyros", gyros},
+         {"misalignment_mrad", m},
+         {"misalignment_meaning",
+          "[i][j]: gyro i's sensitivity to a rate about body axis j, M = I + m (small angles)"},
+         {"files",
+          {mounting_path(c.out_path, "x"), mounting_path(c.out_path, "y"),
+           mounting_path(c.out_path, "z")}}};
+  } else {
+    j = gyro_json(c.gyro);
+  }
+  j["plan"] = {{"full_scale_deg_s", c.full_scale_deg_s},
+               {"rates_per_sign", c.rates_per_sign},
+               {"temperatures_c", c.temperatures_c},
+               {"plateau_s", c.plateau_s},
+               {"settle_s", c.options.settle_s},
+               {"sample_rate_hz", c.options.sample_rate_hz},
+               {"seed", c.options.seed}};
+  j["foglab_version"] = std::string(version());
+  return j;
 }
 
 std::string extension_of(const std::string& path) {
   return std::filesystem::path(path).extension().string();
 }
 
+// Writes one file of columns as CSV or MAT (by its extension).
+void write_columns(const std::string& path, std::span<const io::NamedVector> columns,
+                   const std::string& comment) {
+  if (extension_of(path) == ".mat") {
+    io::write_mat(path, columns);
+  } else {
+    const std::string comments[] = {comment};
+    io::write_csv(path, columns, comments);
+  }
+}
+
 void run(const RateTableCommand& c) {
-  const RunPath outputs[] = {{"--out", c.out_path}, {"--truth", c.truth_path}};
-  check_outputs({}, outputs);
   const std::string ext = extension_of(c.out_path);
   if (ext != ".csv" && ext != ".mat") {
     throw UsageError(
         fmt::format("--out '{}': write a .csv or .mat file, not '{}'", c.out_path, ext));
   }
+  std::vector<RunPath> outputs = {{"--truth", c.truth_path}};
+  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  if (c.triad) {
+    if (c.misalignment_mrad.size() != 6) {
+      throw UsageError(
+          fmt::format("--misalignment: six angles m_xy,m_xz,m_yx,m_yz,m_zx,m_zy [mrad], got {}",
+                      c.misalignment_mrad.size()));
+    }
+    for (const char* axis : kAxis) outputs.push_back({"--out", mounting_path(c.out_path, axis)});
+  } else {
+    outputs.push_back({"--out", c.out_path});
+  }
+  check_outputs({}, outputs);
   const std::vector<sim::RatePlateau> plan = sim::standard_rate_table_plan(
       c.full_scale_deg_s, c.rates_per_sign, c.temperatures_c, c.plateau_s);
-  progress(
-      fmt::format("generating a rate-table run: {} plateaus of {} s", plan.size(), c.plateau_s));
-  const sim::RateTableRecording run = sim::generate_rate_table(c.gyro, plan, c.options);
-  const io::NamedVector columns[] = {{"time_s", run.time_s},
-                                     {"rate_cmd_deg_s", run.rate_command_deg_s},
-                                     {"table_rate_deg_s", run.table_rate_deg_s},
-                                     {"output_lsb", run.output_lsb},
-                                     {"temperature_c", run.temperature_c}};
+  progress(fmt::format("generating a rate-table run{}: {} plateaus of {} s",
+                       c.triad ? " of a triad on three mountings" : "", plan.size(), c.plateau_s));
   const std::string truth = c.truth_path.empty() ? "" : json_text(truth_json(c));
-  if (extension_of(c.out_path) == ".mat") {
-    io::write_mat(c.out_path, columns);
+  const std::string comment = fmt::format("foglab {} rate-table run: {} plateaus, seed {}",
+                                          version(), plan.size(), c.options.seed);
+  std::size_t samples = 0;
+  double sample_rate_hz = 0.0;
+  std::string written;
+  if (c.triad) {
+    const auto runs = sim::generate_rate_table_triad(triad_of(c), plan, c.options);
+    for (const sim::TriadRecording& r : runs) {
+      const io::NamedVector columns[] = {{"time_s", r.motion.time_s},
+                                         {"rate_cmd_deg_s", r.motion.rate_command_deg_s},
+                                         {"table_rate_deg_s", r.motion.table_rate_deg_s},
+                                         {"output_x_lsb", r.output_lsb[0]},
+                                         {"output_y_lsb", r.output_lsb[1]},
+                                         {"output_z_lsb", r.output_lsb[2]},
+                                         {"temperature_c", r.motion.temperature_c}};
+      const std::string path = mounting_path(c.out_path, kAxis[r.table_axis]);
+      write_columns(
+          path, columns,
+          fmt::format("{}; the table about the triad's {} axis", comment, kAxis[r.table_axis]));
+      written += (written.empty() ? "" : ", ") + path;
+    }
+    samples = runs[0].motion.time_s.size();
+    sample_rate_hz = runs[0].motion.sample_rate_hz;
   } else {
-    const std::string comments[] = {fmt::format("foglab {} rate-table run: {} plateaus, seed {}",
-                                                version(), plan.size(), c.options.seed)};
-    io::write_csv(c.out_path, columns, comments);
+    const sim::RateTableRecording run = sim::generate_rate_table(c.gyro, plan, c.options);
+    const io::NamedVector columns[] = {{"time_s", run.time_s},
+                                       {"rate_cmd_deg_s", run.rate_command_deg_s},
+                                       {"table_rate_deg_s", run.table_rate_deg_s},
+                                       {"output_lsb", run.output_lsb},
+                                       {"temperature_c", run.temperature_c}};
+    write_columns(c.out_path, columns, comment);
+    written = c.out_path;
+    samples = run.time_s.size();
+    sample_rate_hz = run.sample_rate_hz;
   }
   if (!c.truth_path.empty()) write_text_file(c.truth_path, truth);
-  std::cout << fmt::format("wrote {} ({} samples at {} Hz, {} plateaus){}\n", c.out_path,
-                           run.time_s.size(), run.sample_rate_hz, plan.size(),
+  std::cout << fmt::format("wrote {} ({} samples at {} Hz, {} plateaus{}){}\n", written, samples,
+                           sample_rate_hz, plan.size(), c.triad ? " each" : "",
                            c.truth_path.empty() ? "" : " and the truth to " + c.truth_path);
 }
 
@@ -140,6 +239,15 @@ std::function<void()> register_rate_table(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--reference-c", c->gyro.reference_c, "T_ref [degC]")->capture_default_str();
+  cmd->add_flag("--triad", c->triad,
+                "a triad of three gyros (x, y, z), on three mountings: writes OUT-x, OUT-y, "
+                "OUT-z (the table about x, y, z) with columns output_x_lsb, output_y_lsb, "
+                "output_z_lsb; gyro k's S is S (1 + 0.01 k) and u0 is u0 + 10 k LSB");
+  cmd->add_option("--misalignment", c->misalignment_mrad,
+                  "with --triad: m_xy,m_xz,m_yx,m_yz,m_zx,m_zy [mrad], m_ij gyro i's "
+                  "sensitivity to a rate about axis j")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--N", c->gyro.noise.N, "white rate noise [deg/h/sqrt(Hz)]")
       ->capture_default_str();
   cmd->add_option("--B", c->gyro.noise.B, "flicker (bias instability) [deg/h]")

@@ -7,9 +7,13 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "foglab/core/error.h"
 #include "foglab/core/output_model.h"
+#include "foglab/model/noise_fit.h"
+#include "foglab/stats/allan.h"
 
 namespace foglab::model {
 namespace {
@@ -23,6 +27,7 @@ constexpr double kSameTemperatureC = 0.5;  // plateaus closer than this share a 
 struct Layout {
   int ps = 0, q = 0, pb = 0;
   bool asymmetry = false;
+  std::span<const double> known_s;  // S(T)'s polynomial when it is not fitted (ps = 0)
   int s(int k) const { return 1 + k; }
   int a(int k) const { return 1 + ps + k; }
   int A() const { return 1 + ps + q; }
@@ -38,12 +43,13 @@ struct Point {
 // Eq. (10)'s terms as they lie in the parameter vector p.
 OutputModelTerms terms_of(const Eigen::VectorXd& p, const Layout& l) {
   const double* v = p.data();
-  return {p(0),
-          {v + l.s(0), static_cast<std::size_t>(l.ps)},
-          {v + l.a(0), static_cast<std::size_t>(l.q)},
-          l.asymmetry ? p(l.A()) : 0.0,
-          p(l.u0()),
-          {v + l.b(0), static_cast<std::size_t>(l.pb)}};
+  return {
+      p(0),
+      l.ps > 0 ? std::span<const double>{v + l.s(0), static_cast<std::size_t>(l.ps)} : l.known_s,
+      {v + l.a(0), static_cast<std::size_t>(l.q)},
+      l.asymmetry ? p(l.A()) : 0.0,
+      p(l.u0()),
+      {v + l.b(0), static_cast<std::size_t>(l.pb)}};
 }
 
 // The model's derivatives with respect to p at one point.
@@ -139,6 +145,174 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
   return plateaus;
 }
 
+// One Gauss-Newton solve of the model to the plateau means u, in the metric W^T W (W = the
+// identity: ordinary least squares; W = L^-1 with V = L L^T: generalised least squares).
+void gauss_newton(Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
+                  const Eigen::VectorXd& u, const Eigen::MatrixXd& whiten) {
+  const int points = static_cast<int>(x.size());
+  Eigen::MatrixXd J(points, l.size());
+  Eigen::VectorXd residual(points);
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const OutputModelTerms t = terms_of(p, l);
+    for (int i = 0; i < points; ++i) {
+      J.row(i) = model_gradient(p, l, x[i]);
+      residual(i) = u(i) - t.output(x[i].w, x[i].dT);
+    }
+    const Eigen::MatrixXd wj = whiten * J;
+    const Eigen::VectorXd jn = wj.colwise().norm().transpose();
+    const Eigen::VectorXd step = (wj * jn.cwiseInverse().asDiagonal())
+                                     .colPivHouseholderQr()
+                                     .solve(whiten * residual)
+                                     .cwiseQuotient(jn);
+    p += step;
+    if ((step.cwiseAbs().array() <= 1e-13 * (p.cwiseAbs().array() + 1e-300)).all()) break;
+  }
+}
+
+// The covariance of the plateau means, from the noise model identified on the run's own
+// residual record (core/noise_model.h), for generalised least squares.
+struct PlateauCovariance {
+  Eigen::MatrixXd cov_lsb2;             // the plateau means' (generalised) covariance [LSB^2]
+  Eigen::MatrixXd stationary_cov_lsb2;  // its white, Gauss-Markov and quantisation part
+  Eigen::MatrixXd whiten;               // L^-1 of V = cov + common 1 1^T = L L^T [1/LSB]
+  NoiseModel noise;                     // [deg/h units] identified on the residual record
+};
+
+// The samples the plateaus use, less the fitted model, joined into one rate record [deg/h]
+// (the settle times between them left out, not marked as gaps: a gap-aware Allan deviation
+// would stop at the plateau's length, below the taus where a wander shows; the settle times
+// are a twelfth of a run and shorten its time axis by as much); its Allan deviation and the
+// noise model fitted to it (model/noise_fit.h) give the covariance of any two plateau means
+// by Greenhall's structure function of the angle (core/noise_model.h), at their true times:
+//
+//   cov(m_i, m_j) = -1/2 sum_{x in {a_i, b_i}} sum_{y in {a_j, b_j}} s_x s_y D(|x - y|) / (L_i L_j)
+//
+// with [a, b] a plateau's window, L = b - a, s = +1 at b and -1 at a. The flicker and random-
+// walk terms' D hold an arbitrary constant level (their variance has no finite value); it is
+// common to all plateaus and absorbed by the bias u0: every other coefficient's estimate and
+// covariance are the same whatever it is (a constant added to V to make it positive definite
+// changes nothing but u0's variance). For them the bias is therefore the run's own level:
+// u0's error is taken against the mean of the random part over the samples used, a
+// combination of plateau means whose weights sum to zero, which the structure function does
+// determine; the level's spread from run to run is the bias instability (B, K), reported as
+// such. The stationary terms (white, Gauss-Markov, quantisation) have a mean, and their part
+// of the run's level is added to u0's variance: u0 is the gyro's bias less the wander alone.
+std::optional<PlateauCovariance> plateau_covariance(const CalibrationRecord& r,
+                                                    const std::vector<CalibrationPlateau>& plateaus,
+                                                    const OutputModelTerms& fitted,
+                                                    double rate_unit_lsb_per_deg_s,
+                                                    double reference_c,
+                                                    std::vector<std::string>& notes) {
+  const double deg_h_per_lsb = 3600.0 / rate_unit_lsb_per_deg_s;
+  std::vector<double> residual_deg_h;
+  for (const CalibrationPlateau& plateau : plateaus) {
+    for (std::int64_t k = plateau.first_sample; k < plateau.first_sample + plateau.samples; ++k) {
+      const double dT = r.temperature_c.empty() ? 0.0 : r.temperature_c[k] - reference_c;
+      residual_deg_h.push_back((r.output_lsb[k] - fitted.output(plateau.rate_deg_s, dT)) *
+                               deg_h_per_lsb);
+    }
+  }
+  NoiseFitResult fit;
+  stats::AllanResult allan;
+  try {
+    allan = stats::allan_deviation_in_place(residual_deg_h, r.sample_rate_hz, InputKind::rate,
+                                            stats::AllanOptions{});
+    fit = fit_noise_model(allan);
+  } catch (const std::exception& e) {  // UsageError or DataError: too short for the statistic
+    notes.push_back(fmt::format(
+        "the plateaus are weighted alike: no noise model could be fitted to the residual "
+        "record ({})",
+        e.what()));
+    return std::nullopt;
+  }
+  if (fit.status == FitStatus::degenerate) {
+    notes.push_back(fmt::format(
+        "the plateaus are weighted alike: no noise model could be fitted to the residual "
+        "record ({})",
+        fit.message));
+    return std::nullopt;
+  }
+
+  PlateauCovariance v;
+  v.noise = fit.model;
+  // The wander terms, flicker and random walk, correlate the plateaus of a temperature block
+  // and are what the bias's temperature terms can mistake for a law. One record of an hour
+  // or two shows them poorly under the white noise: the fit leaves one out as not worth its
+  // parameter, or takes the rise at the last taus for a ramp (a deterministic trend, no
+  // correlation at all). For the covariance a wander taken too small costs the intervals
+  // their honesty, one taken too large only some width: each enters one standard error above
+  // its estimate (the estimate plus a 1.96th of its 95 % interval's upper half when resolved;
+  // a 1.645th of the one-sided 95 % bound when left out: the 84 % bound of either), and the
+  // ramp not at all. (At the 95 % bounds, 99-100 % of the intervals held the truth and were
+  // twice as wide as they need be; at the estimates alone, 91-92 %: docs/validation.md.)
+  v.noise.R = 0.0;
+  const auto plausible = [](const ParameterEstimate& e) {
+    const double bound = e.status == TermStatus::absent ? e.upper_95 / 1.645
+                                                        : e.value + (e.ci95_high - e.value) / 1.96;
+    return std::isfinite(bound) ? std::max(bound, 0.0) : 0.0;
+  };
+  // Neither may exceed what the record's own Allan deviation allows at any tau (its 95 %
+  // upper end there): a bound of a term left out can be absurd on a short record.
+  double cap_b = std::numeric_limits<double>::infinity(), cap_k = cap_b;
+  for (std::size_t i = 0; i < allan.tau_s.size(); ++i) {
+    const double high = allan.ci95_high[i];
+    if (!std::isfinite(high)) continue;
+    cap_b =
+        std::min(cap_b, high / std::sqrt(unit_allan_variance(NoiseTerm::flicker, allan.tau_s[i])));
+    cap_k = std::min(cap_k,
+                     high / std::sqrt(unit_allan_variance(NoiseTerm::random_walk, allan.tau_s[i])));
+  }
+  v.noise.B = std::min(std::max(v.noise.B, plausible(fit.B)), cap_b);
+  v.noise.K = std::min(std::max(v.noise.K, plausible(fit.K)), cap_k);
+  const NoiseTermSet terms = v.noise.terms();
+  const auto n = static_cast<int>(plateaus.size());
+  const auto window = [&](int i) {
+    const double a = static_cast<double>(plateaus[i].first_sample) / r.sample_rate_hz;
+    return std::pair{a, a + static_cast<double>(plateaus[i].samples) / r.sample_rate_hz};
+  };
+  const double lsb2_per_deg_h2 = 1.0 / (deg_h_per_lsb * deg_h_per_lsb);
+  // The covariance of the plateau means under the terms of `set` [LSB^2].
+  const auto covariance_of = [&](NoiseTermSet set) {
+    const auto structure = [&](double lag_s) {
+      double d = 0.0;
+      for (const NoiseTerm term : kNoiseTerms) {
+        if (set.contains(term)) d += angle_structure_function(v.noise, term, lag_s);
+      }
+      return d;
+    };
+    Eigen::MatrixXd cov(n, n);
+    for (int i = 0; i < n; ++i) {
+      const auto [ai, bi] = window(i);
+      for (int j = 0; j <= i; ++j) {
+        const auto [aj, bj] = window(j);
+        const double sum = structure(std::abs(bi - bj)) - structure(std::abs(bi - aj)) -
+                           structure(std::abs(ai - bj)) + structure(std::abs(ai - aj));
+        cov(i, j) = cov(j, i) = -0.5 * sum / ((bi - ai) * (bj - aj)) * lsb2_per_deg_h2;
+      }
+    }
+    return cov;
+  };
+  Eigen::MatrixXd cov = covariance_of(terms);
+  NoiseTermSet stationary;  // the terms with a mean
+  for (const NoiseTerm term :
+       {NoiseTerm::white, NoiseTerm::gauss_markov, NoiseTerm::quantisation}) {
+    if (terms.contains(term)) stationary = stationary.with(term);
+  }
+  v.stationary_cov_lsb2 = covariance_of(stationary);
+  double common = 10.0 * cov.cwiseAbs().maxCoeff();
+  for (int attempt = 0; attempt < 4; ++attempt, common *= 100.0) {
+    const Eigen::LLT<Eigen::MatrixXd> llt(cov.array() + common);
+    if (llt.info() != Eigen::Success) continue;
+    v.whiten = llt.matrixL().solve(Eigen::MatrixXd::Identity(n, n));
+    v.cov_lsb2 = std::move(cov);
+    return v;
+  }
+  notes.push_back(
+      "the plateaus are weighted alike: the noise model's covariance of the plateau means is "
+      "not positive definite");
+  return std::nullopt;
+}
+
 CalibratedValue with_interval(double value, double variance, double t95) {
   const double sd = std::sqrt(std::max(variance, 0.0));
   return {value, sd, value - t95 * sd, value + t95 * sd};
@@ -229,6 +403,10 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   l.ps = o.scale_factor_temperature_degree < 0
              ? auto_degree
              : std::min(o.scale_factor_temperature_degree, temperatures - 1);
+  if (!o.known_scale_factor_temp.empty()) {
+    l.ps = 0;
+    l.known_s = o.known_scale_factor_temp;
+  }
   l.asymmetry = o.asymmetry && positive && negative;
   if (o.asymmetry && !l.asymmetry) {
     c.notes.push_back("no asymmetry fitted: the run has rates of one sign only");
@@ -262,7 +440,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   Eigen::MatrixXd design(points, parameters);
   for (int i = 0; i < points; ++i) {
     const double w = x[i].w, dT = x[i].dT;
-    design(i, 0) = w;
+    design(i, 0) = w * (1.0 + power_series(l.known_s, dT));
     for (int k = 0; k < l.ps; ++k) design(i, l.s(k)) = w * std::pow(dT, k + 1);
     for (int k = 0; k < l.q; ++k) design(i, l.a(k)) = std::pow(w, k + 2);
     if (l.asymmetry) design(i, l.A()) = 0.5 * std::abs(w);
@@ -284,40 +462,75 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   for (int k = 0; k < l.q; ++k) p(l.a(k)) = beta(l.a(k)) / S;
   if (l.asymmetry) p(l.A()) = beta(l.A()) / S;
 
-  // Gauss-Newton on the full model.
+  // Gauss-Newton on the full model: first with every plateau alike, then with the plateau
+  // means' covariance from the noise identified on the residual record.
+  const auto model_at = [&](const Eigen::VectorXd& q, int i) {
+    return terms_of(q, l).output(x[i].w, x[i].dT);
+  };
+  const auto rate_unit = [&](const Eigen::VectorXd& q) {  // [LSB/(deg/s)]
+    return o.rate_unit_lsb_per_deg_s > 0.0 ? o.rate_unit_lsb_per_deg_s : std::abs(q(0));
+  };
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(points, points);
+  gauss_newton(p, l, x, u, identity);
+  c.noise_covariance = o.noise_covariance;
+  Eigen::MatrixXd whiten = identity;  // W with W^T W = V^-1 (identity: ordinary least squares)
+  Eigen::MatrixXd plateau_cov;        // the plateau means' covariance (empty: white, alike)
+  Eigen::MatrixXd stationary_cov;     // its part from the terms with a mean
+  if (o.noise_covariance) {
+    const std::optional<PlateauCovariance> v =
+        plateau_covariance(r, c.plateaus, terms_of(p, l), rate_unit(p), o.reference_c, c.notes);
+    if (v) {
+      whiten = v->whiten;
+      plateau_cov = std::move(v->cov_lsb2);
+      stationary_cov = std::move(v->stationary_cov_lsb2);
+      c.noise = v->noise;
+      gauss_newton(p, l, x, u, whiten);
+    } else {
+      c.noise_covariance = false;
+    }
+  }
   Eigen::MatrixXd J(points, parameters);
   Eigen::VectorXd residual(points);
-  for (int iteration = 0; iteration < 20; ++iteration) {
-    for (int i = 0; i < points; ++i) {
-      J.row(i) = model_gradient(p, l, x[i]);
-      residual(i) = u(i) - terms_of(p, l).output(x[i].w, x[i].dT);
-    }
-    const Eigen::VectorXd jn = J.colwise().norm().transpose();
-    const Eigen::VectorXd step = (J * jn.cwiseInverse().asDiagonal())
-                                     .colPivHouseholderQr()
-                                     .solve(residual)
-                                     .cwiseQuotient(jn);
-    p += step;
-    if ((step.cwiseAbs().array() <= 1e-13 * (p.cwiseAbs().array() + 1e-300)).all()) break;
-  }
   for (int i = 0; i < points; ++i) {
     J.row(i) = model_gradient(p, l, x[i]);
-    residual(i) = u(i) - terms_of(p, l).output(x[i].w, x[i].dT);
+    residual(i) = u(i) - model_at(p, i);
     c.plateaus[i].residual_lsb = residual(i);
   }
   c.dof = points - parameters;
-  const double variance = residual.squaredNorm() / c.dof;
   c.residual_rms_lsb = std::sqrt(residual.squaredNorm() / points);
-  const Eigen::VectorXd jn = J.colwise().norm().transpose();
-  const Eigen::MatrixXd js = J * jn.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd covariance = jn.cwiseInverse().asDiagonal() *
-                                     (js.transpose() * js).inverse() *
-                                     jn.cwiseInverse().asDiagonal() * variance;
+  const Eigen::MatrixXd wj = whiten * J;
+  const Eigen::VectorXd wr = whiten * residual;
+  const Eigen::VectorXd jn = wj.colwise().norm().transpose();
+  const Eigen::MatrixXd js = wj * jn.cwiseInverse().asDiagonal();
+  Eigen::MatrixXd covariance = jn.cwiseInverse().asDiagonal() * (js.transpose() * js).inverse() *
+                               jn.cwiseInverse().asDiagonal();
+  // The residuals' spread against the covariance's: ordinary least squares takes the variance
+  // from them; the noise model's covariance is widened when they say it is too narrow (never
+  // narrowed).
+  const double chi2_per_dof = wr.squaredNorm() / c.dof;
+  c.dispersion = c.noise_covariance ? std::max(1.0, chi2_per_dof) : chi2_per_dof;
+  if (plateau_cov.size() > 0) {
+    // u0's error against the run's level (plateau_covariance()): its estimator's weights on
+    // the plateau means (row u0 of (A^T A)^-1 A^T W, A = W J) less the samples' share of each
+    // in the level; plus the stationary terms' part of the level.
+    const Eigen::RowVectorXd weights = covariance.row(l.u0()) * wj.transpose() * whiten;
+    double used = 0.0;
+    for (const auto& plateau : c.plateaus) used += static_cast<double>(plateau.samples);
+    Eigen::VectorXd share(points);
+    for (int i = 0; i < points; ++i) {
+      share(i) = static_cast<double>(c.plateaus[i].samples) / used;
+    }
+    const Eigen::VectorXd contrast = weights.transpose() - share;
+    covariance(l.u0(), l.u0()) =
+        contrast.dot(plateau_cov * contrast) + share.dot(stationary_cov * share);
+  }
+  covariance *= c.dispersion;
   const double t95 =
       boost::math::quantile(boost::math::students_t(static_cast<double>(c.dof)), 0.975);
   auto value = [&](int j) { return with_interval(p(j), covariance(j, j), t95); };
   c.scale_factor = value(0);
   for (int k = 0; k < l.ps; ++k) c.scale_factor_temp.push_back(value(l.s(k)));
+  for (const double known : l.known_s) c.scale_factor_temp.push_back({known, 0.0, known, known});
   for (int k = 0; k < l.q; ++k) c.nonlinearity.push_back(value(l.a(k)));
   c.asymmetry = l.asymmetry ? value(l.A()) : CalibratedValue{kNaN, kNaN, kNaN, kNaN};
   c.bias = value(l.u0());
@@ -383,15 +596,62 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
       }
     }
     const double sigma_lsb = std::sqrt(squares / (2.0 * static_cast<double>(count)));
-    c.white_noise_deg_h_rt_hz = sigma_lsb / std::abs(p(0)) * 3600.0 / std::sqrt(r.sample_rate_hz);
+    c.white_noise_deg_h_rt_hz = sigma_lsb / rate_unit(p) * 3600.0 / std::sqrt(r.sample_rate_hz);
   }
-  const double per_lsb_deg_h = 3600.0 / std::abs(p(0));
+  const double per_lsb_deg_h = 3600.0 / rate_unit(p);
   c.budget.bias_deg_h = 0.5 * (c.bias.ci95_high - c.bias.ci95_low) * per_lsb_deg_h;
   c.budget.scale_factor_deg_h = 0.5 * (c.scale_factor.ci95_high - c.scale_factor.ci95_low) /
                                 std::abs(p(0)) * c.full_scale_deg_s * 3600.0;
   c.budget.nonlinearity_deg_h = residual.cwiseAbs().maxCoeff() * per_lsb_deg_h;
   c.budget.noise_1s_deg_h = c.white_noise_deg_h_rt_hz;
   return c;
+}
+
+TriadCalibration calibrate_triad(std::span<const TriadRecord, 3> mountings,
+                                 const CalibrationOptions& options) {
+  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  const auto fit = [&](int gyro, int mounting, const CalibrationOptions& o) {
+    const TriadRecord& m = mountings[mounting];
+    try {
+      return calibrate(
+          {m.sample_rate_hz, m.rate_command_deg_s, m.output_lsb[gyro], m.temperature_c}, o);
+    } catch (const DataError& e) {
+      throw DataError(fmt::format("calibrate: gyro {} on the mounting about {}: {}", kAxis[gyro],
+                                  kAxis[mounting], e.what()));
+    }
+  };
+  TriadCalibration t;
+  for (int i = 0; i < 3; ++i) t.axes[i] = fit(i, i, options);
+  for (int i = 0; i < 3; ++i) {
+    const Calibration& own = t.axes[i];
+    CalibrationOptions cross = options;
+    cross.nonlinearity_degree = 0;  // the cross-axis rate is m w, a thousandth of w
+    cross.asymmetry = false;
+    cross.known_scale_factor_temp.clear();
+    for (const CalibratedValue& s : own.scale_factor_temp) {
+      cross.known_scale_factor_temp.push_back(s.value);
+    }
+    // A zero polynomial still marks S(T) as known: no temperature term of the small cross
+    // scale factor is fitted.
+    if (cross.known_scale_factor_temp.empty()) cross.known_scale_factor_temp.push_back(0.0);
+    cross.rate_unit_lsb_per_deg_s = std::abs(own.scale_factor.value);
+    for (int j = 0; j < 3; ++j) {
+      if (j == i) {
+        t.misalignment_rad[i][j] = {kNaN, kNaN, kNaN, kNaN};
+        continue;
+      }
+      t.cross[i][j] = fit(i, j, cross);
+      const CalibratedValue& sij = t.cross[i][j].scale_factor;
+      const double m = sij.value / own.scale_factor.value;
+      // Delta method: var m = var S_ij / S_i^2 + m^2 var S_i / S_i^2 (independent runs).
+      const double var = (sij.sd * sij.sd + m * m * own.scale_factor.sd * own.scale_factor.sd) /
+                         (own.scale_factor.value * own.scale_factor.value);
+      const double t95 = boost::math::quantile(
+          boost::math::students_t(static_cast<double>(t.cross[i][j].dof)), 0.975);
+      t.misalignment_rad[i][j] = with_interval(m, var, t95);
+    }
+  }
+  return t;
 }
 
 }  // namespace foglab::model

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <string_view>
@@ -67,37 +68,23 @@ double rate_table_output_lsb(const RateTableGyro& gyro, double rate_deg_s, doubl
   return terms.output(rate_deg_s, temperature_c - gyro.reference_c);
 }
 
-RateTableRecording generate_rate_table(const RateTableGyro& gyro, std::span<const RatePlateau> plan,
-                                       const RateTableOptions& options) {
-  validate(gyro, plan, options);
-  double total_s = 0.0;
-  for (const RatePlateau& p : plan) total_s += p.duration_s;
+namespace {
 
-  // The random part, rate-equivalent in deg/h: a static gyro's record (sim::generate()).
-  ErrorModel noise_only;
-  noise_only.noise = gyro.noise;
-  GeneratorOptions generator;
-  generator.sample_rate_hz = options.sample_rate_hz;
-  generator.duration_s = total_s;
-  generator.seed = options.seed;
-  const Recording noise = generate(noise_only, TemperatureProfile{}, generator);
-
-  RateTableRecording run;
-  run.sample_rate_hz = options.sample_rate_hz;
-  const std::size_t n = noise.rate_deg_h.size();
-  run.time_s = noise.time_s;
+// The table's motion and the chamber's temperature over the plan (header), at the noise
+// record's times: fills every column of `run` but the output.
+void table_motion(std::span<const RatePlateau> plan, const RateTableOptions& options,
+                  RateTableRecording& run) {
+  const std::size_t n = run.time_s.size();
   run.rate_command_deg_s.resize(n);
   run.table_rate_deg_s.resize(n);
-  run.output_lsb.resize(n);
   run.temperature_c.resize(n);
-
   const double temperature_tc_s = options.settle_s / 5.0;
   std::size_t p = 0;
   double start_s = 0.0;
   double previous_rate = 0.0;  // the table starts at rest
   double previous_temperature = plan.front().temperature_c;
   for (std::size_t k = 0; k < n; ++k) {
-    const double t = noise.time_s[k];
+    const double t = run.time_s[k];
     while (p + 1 < plan.size() && t >= start_s + plan[p].duration_s) {
       // The state at the plateau's end, where the next one starts from.
       const double end = plan[p].duration_s;
@@ -112,22 +99,96 @@ RateTableRecording generate_rate_table(const RateTableGyro& gyro, std::span<cons
     }
     const RatePlateau& plateau = plan[p];
     const double into = t - start_s;
-    const double rate =
+    run.rate_command_deg_s[k] = plateau.rate_deg_s;
+    run.table_rate_deg_s[k] =
         into < options.settle_s
             ? previous_rate + (plateau.rate_deg_s - previous_rate) * into / options.settle_s
             : plateau.rate_deg_s;
-    const double temperature =
+    run.temperature_c[k] =
         temperature_tc_s > 0.0
             ? plateau.temperature_c + (previous_temperature - plateau.temperature_c) *
                                           std::exp(-into / temperature_tc_s)
             : plateau.temperature_c;
-    run.rate_command_deg_s[k] = plateau.rate_deg_s;
-    run.table_rate_deg_s[k] = rate;
-    run.temperature_c[k] = temperature;
-    run.output_lsb[k] = rate_table_output_lsb(gyro, rate, temperature) +
-                        gyro.scale_factor_lsb_per_deg_s * noise.rate_deg_h[k] / 3600.0;
   }
+}
+
+double total_duration_s(std::span<const RatePlateau> plan) {
+  double total_s = 0.0;
+  for (const RatePlateau& p : plan) total_s += p.duration_s;
+  return total_s;
+}
+
+// The random part of one gyro, rate-equivalent in deg/h: a static gyro's record
+// (sim::generate()) on noise stream `stream`.
+Recording gyro_noise(const RateTableGyro& gyro, double duration_s, const RateTableOptions& options,
+                     std::uint64_t stream) {
+  ErrorModel noise_only;
+  noise_only.noise = gyro.noise;
+  GeneratorOptions generator;
+  generator.sample_rate_hz = options.sample_rate_hz;
+  generator.duration_s = duration_s;
+  generator.seed = options.seed;
+  generator.stream = stream;
+  return generate(noise_only, TemperatureProfile{}, generator);
+}
+
+// Eq. (10) with the noise: the gyro's output when the rate about its input axis is
+// `sensed` times the table's.
+std::vector<double> gyro_output(const RateTableGyro& gyro, const RateTableRecording& motion,
+                                double sensed, const Recording& noise) {
+  std::vector<double> out(motion.time_s.size());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    out[k] =
+        rate_table_output_lsb(gyro, sensed * motion.table_rate_deg_s[k], motion.temperature_c[k]) +
+        gyro.scale_factor_lsb_per_deg_s * noise.rate_deg_h[k] / 3600.0;
+  }
+  return out;
+}
+
+}  // namespace
+
+RateTableRecording generate_rate_table(const RateTableGyro& gyro, std::span<const RatePlateau> plan,
+                                       const RateTableOptions& options) {
+  validate(gyro, plan, options);
+  const Recording noise = gyro_noise(gyro, total_duration_s(plan), options, 0);
+  RateTableRecording run;
+  run.sample_rate_hz = options.sample_rate_hz;
+  run.time_s = noise.time_s;
+  table_motion(plan, options, run);
+  run.output_lsb = gyro_output(gyro, run, 1.0, noise);
   return run;
+}
+
+std::array<TriadRecording, 3> generate_rate_table_triad(const RateTableTriad& triad,
+                                                        std::span<const RatePlateau> plan,
+                                                        const RateTableOptions& options) {
+  for (int i = 0; i < 3; ++i) {
+    validate(triad.gyros[i], plan, options);
+    for (int j = 0; j < 3; ++j) {
+      if (i != j) {
+        check_finite(fmt::format("misalignment_rad[{}][{}]", i, j), triad.misalignment_rad[i][j]);
+      }
+    }
+  }
+  const double duration_s = total_duration_s(plan);
+  std::array<TriadRecording, 3> runs;
+  for (int axis = 0; axis < 3; ++axis) {
+    TriadRecording& r = runs[axis];
+    r.table_axis = axis;
+    for (int i = 0; i < 3; ++i) {
+      // Independent noise for each gyro in each mounting.
+      const Recording noise = gyro_noise(triad.gyros[i], duration_s, options,
+                                         1 + static_cast<std::uint64_t>(3 * axis + i));
+      if (i == 0) {
+        r.motion.sample_rate_hz = options.sample_rate_hz;
+        r.motion.time_s = noise.time_s;
+        table_motion(plan, options, r.motion);
+      }
+      const double sensed = i == axis ? 1.0 : triad.misalignment_rad[i][axis];
+      r.output_lsb[i] = gyro_output(triad.gyros[i], r.motion, sensed, noise);
+    }
+  }
+  return runs;
 }
 
 std::vector<RatePlateau> standard_rate_table_plan(double full_scale_deg_s, int rates_per_sign,

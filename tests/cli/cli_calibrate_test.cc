@@ -63,6 +63,48 @@ TEST(CliCalibrate, AWhiteNoiseRunIsCalibratedWithinItsIntervals) {
             std::string::npos);
 }
 
+TEST(CliCalibrate, ATriadOnThreeMountingsGivesItsMisalignment) {
+  // rate-table --triad writes RUN-x, RUN-y, RUN-z; calibrate --triad reads them back: the
+  // misalignment matrix within 0.05 mrad of the truth file's, every gyro its own S.
+  const test::TempDir dir;
+  const std::string truth = quote(dir / "truth.json");
+  const test::CliRun made =
+      run_foglab("rate-table --triad --out " + quote(dir / "run.csv") + " --truth " + truth +
+                 " --temps 25 --rates 3 --plateau 20 --seed 3");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string files =
+      quote(dir / "run-x.csv") + " " + quote(dir / "run-y.csv") + " " + quote(dir / "run-z.csv");
+  const test::CliRun r = run_foglab("calibrate --triad " + files + " --json -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json c = json::parse(r.out);
+  const json t = read_json(dir / "truth.json");
+  ASSERT_EQ(c["axes"].size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const double s = t["gyros"][i]["scale_factor_lsb_per_deg_s"];
+    EXPECT_LT(std::abs(c["axes"][i]["scale_factor_lsb_per_deg_s"]["value"].get<double>() / s - 1.0),
+              10e-6)
+        << "gyro " << i;
+    EXPECT_TRUE(c["misalignment_mrad"][i][i].is_null());
+    for (int j = 0; j < 3; ++j) {
+      if (i == j) continue;
+      EXPECT_NEAR(c["misalignment_mrad"][i][j]["value"].get<double>(),
+                  t["misalignment_mrad"][i][j].get<double>(), 0.05)
+          << "m_" << i << j;
+    }
+  }
+  // Weighted alike on request, and said so.
+  const test::CliRun alike =
+      run_foglab("calibrate " + quote(dir / "run-x.csv") +
+                 " --triad-columns a,b,c --output-column output_x_lsb --weigh-alike --json -");
+  ASSERT_EQ(alike.exit_code, 0) << alike.err;
+  EXPECT_EQ(json::parse(alike.out)["weighting"], "alike");
+  // --triad needs three files; two are a usage error.
+  const test::CliRun two =
+      run_foglab("calibrate --triad " + quote(dir / "run-x.csv") + " " + quote(dir / "run-y.csv"));
+  EXPECT_EQ(two.exit_code, 2) << two.err;
+  EXPECT_NE(two.err.find("--triad needs the three mountings' files"), std::string::npos) << two.err;
+}
+
 TEST(CliCalibrate, BadRunsAndOptionsAreRefusedAndWriteNothing) {
   const test::TempDir dir;
   const std::string run = quote(dir / "run.csv"), out = dir / "out.json";

@@ -8,10 +8,19 @@
 //
 // Each plateau (a run of samples with one commanded rate, its first settle_s left out) gives
 // one point: the mean output and the mean temperature at its rate. The model is fitted to
-// those points by least squares (Gauss-Newton from the linearised model), with every plateau
-// weighted alike: a plateau's mean carries the white noise and the slow bias wander alike, and
-// the residuals measure both. The covariance is the residual variance times (J^T J)^-1, the
-// intervals Student's t with the residual degrees of freedom.
+// those points by least squares (Gauss-Newton from the linearised model) in two passes:
+//   1. every plateau weighted alike (ordinary least squares);
+//   2. the samples less that fit, joined into one rate record, give their Allan deviation
+//      and the noise model fitted to it (model/noise_fit.h), the wander terms (flicker,
+//      random walk) taken one standard error above their estimates; the model gives the
+//      covariance V of the plateau means (Greenhall's structure function,
+//      core/noise_model.h), and the fit is repeated with weights V^-1 (generalised least
+//      squares). A slow bias wander correlates the plateaus of one temperature block;
+//      weighting them alike would take it for a temperature law and state intervals too
+//      narrow for it.
+// The covariance is (J^T V^-1 J)^-1 times max(1, chi^2 / dof) of the residuals (V = the
+// identity and the residual variance when no noise model could be fitted: a note says so);
+// the intervals are Student's t with the residual degrees of freedom.
 //
 // Nonlinearity, two definitions:
 //   * IEEE Std 952-1997 (scale-factor nonlinearity): the largest deviation of the fitted
@@ -23,10 +32,13 @@
 // The inverse (eq. 11), for correcting an output: w = (u - u0(T)) / (S(T) [1 + f(w)]).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "foglab/core/noise_model.h"
 
 namespace foglab::model {
 
@@ -47,6 +59,16 @@ struct CalibrationOptions {
   int scale_factor_temperature_degree = -1;
   int nonlinearity_degree = 2;  ///< terms a_1 .. a_d of f(w)
   bool asymmetry = true;        ///< fit A (needs positive and negative rates)
+  /// Weight the plateaus by their means' covariance from the noise model identified on the
+  /// run's residual record (generalised least squares; header); false: all alike (ordinary
+  /// least squares, the residual variance taken as white).
+  bool noise_covariance = true;
+  /// When not empty, S(T)'s polynomial is these s_1, s_2, ... [1/degC^k], known, not fitted:
+  /// a triad's cross-axis fit takes the gyro's own (calibrate_triad()).
+  std::vector<double> known_scale_factor_temp;
+  /// [LSB/(deg/s)] what turns the output into a rate for the noise model and N; 0: the fitted
+  /// S (a cross-axis fit's S is the misalignment's small share of it).
+  double rate_unit_lsb_per_deg_s = 0.0;
 };
 
 /// One plateau's point.
@@ -94,6 +116,13 @@ struct Calibration {
   double white_noise_deg_h_rt_hz = 0.0;    ///< N [deg/h/sqrt(Hz)] from the plateaus' samples
   double residual_rms_lsb = 0.0;           ///< [LSB] of the plateau residuals
   int dof = 0;                             ///< residual degrees of freedom
+  /// The plateaus were weighted by the noise model's covariance (generalised least squares);
+  /// false: alike (ordinary least squares), see `notes` for why when it was asked for.
+  bool noise_covariance = false;
+  NoiseModel noise;  ///< identified on the residual record [deg/h units]; zero without it
+  /// The residuals' chi-square per degree of freedom in the fit's metric; the covariance is
+  /// multiplied by it (by max(1, it) with the noise model's covariance).
+  double dispersion = 1.0;
   CalibrationBudget budget;
   std::vector<std::string> notes;
 };
@@ -102,6 +131,33 @@ struct Calibration {
 /// a plateau shorter than the settle time plus 10 samples is left out with a note, no
 /// positive and negative rates for the asymmetry, mismatched columns) naming what is missing.
 Calibration calibrate(const CalibrationRecord& record, const CalibrationOptions& options = {});
+
+/// One mounting of a triad on the rate table (sim/rate_table.h, RateTableTriad): the table
+/// turned about body axis `table_axis`, the three gyros recorded side by side.
+struct TriadRecord {
+  double sample_rate_hz = 0.0;
+  std::span<const double> rate_command_deg_s;         ///< [deg/s]
+  std::array<std::span<const double>, 3> output_lsb;  ///< [LSB] gyros x, y, z
+  std::span<const double> temperature_c;              ///< [degC]; empty: unknown
+};
+
+/// A triad's calibration: each gyro's eq. (10) from the mounting about its own axis, and the
+/// misalignment M = I + m of its input axes from the others: gyro i's output on the mounting
+/// about axis j (j != i) is u0_i(T) + S_i(T) m_ij w, fitted with S_i(T)'s temperature law
+/// known from gyro i's own fit; m_ij = the fitted cross-axis scale factor / S_i [rad], its
+/// variance by the delta method from both.
+struct TriadCalibration {
+  std::array<Calibration, 3> axes;
+  /// m_ij [rad]: gyro i's sensitivity to a rate about body axis j; the diagonal is NaN.
+  std::array<std::array<CalibratedValue, 3>, 3> misalignment_rad;
+  /// The cross-axis fits, [i][j] for gyro i on the mounting about j (the diagonal unused).
+  std::array<std::array<Calibration, 3>, 3> cross;
+};
+
+/// Calibrates a triad from its three mountings, `mountings[j]` with the table about axis j.
+/// Throws as calibrate(), naming the gyro and the mounting.
+TriadCalibration calibrate_triad(std::span<const TriadRecord, 3> mountings,
+                                 const CalibrationOptions& options = {});
 
 /// The model's output at rate w and temperature T [LSB].
 double calibrated_output_lsb(const Calibration& c, double rate_deg_s, double temperature_c);

@@ -24,6 +24,7 @@
 // new one from the plateau's start. An estimator has to leave those seconds out.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -75,6 +76,30 @@ struct RateTableRecording {
 /// time, non-finite coefficients or a negative noise intensity.
 RateTableRecording generate_rate_table(const RateTableGyro& gyro, std::span<const RatePlateau> plan,
                                        const RateTableOptions& options);
+
+/// A triad: three gyros whose input axes are nearly the body's x, y and z. Gyro i senses the
+/// rate sum_j M_ij W_j of the body rate W, with M = I + m: m_ij (i != j) [rad] is gyro i's
+/// sensitivity to a rate about body axis j, the small-angle misalignment of its input axis
+/// (the diagonal of m is not used: a gyro's own scale factor holds it).
+struct RateTableTriad {
+  std::array<RateTableGyro, 3> gyros;
+  std::array<std::array<double, 3>, 3> misalignment_rad{};  ///< m_ij [rad]
+};
+
+/// One mounting of a triad on the table: the table turns about body axis `table_axis`
+/// (0 x, 1 y, 2 z).
+struct TriadRecording {
+  int table_axis = 0;
+  RateTableRecording motion;  ///< time, commanded and table rate, temperature (no output_lsb)
+  std::array<std::vector<double>, 3> output_lsb;  ///< [LSB] gyros x, y, z
+};
+
+/// Runs `plan` three times, the table about x, then y, then z; each gyro in each mounting has
+/// its own noise (streams 1..9 of the seed). Throws as generate_rate_table(), and for a
+/// non-finite misalignment.
+std::array<TriadRecording, 3> generate_rate_table_triad(const RateTableTriad& triad,
+                                                        std::span<const RatePlateau> plan,
+                                                        const RateTableOptions& options);
 
 /// The usual plan, at each temperature: a zero-rate plateau, the rates +-full_scale k /
 /// rates_per_sign for k = 1 .. rates_per_sign (alternating in sign, up from the smallest),
