@@ -103,6 +103,7 @@ nlohmann::json calibration_json(const model::Calibration& r) {
           {"bias_deg_h", value_json(r.bias_deg_h)},
           {"bias_temp_coefs_lsb_per_degc_k", values_json(r.bias_temp)},
           {"nonlinearity_coefs_per_deg_s_k", values_json(r.nonlinearity)},
+          {"nonlinearity_degree", r.nonlinearity_degree},
           {"asymmetry", value_json(r.asymmetry)},
           {"nonlinearity_ieee_ppm_fs", number(r.nonlinearity_ieee_ppm_fs)},
           {"nonlinearity_lab1_percent", number(r.nonlinearity_lab1_percent)},
@@ -367,7 +368,8 @@ std::function<void()> register_calibrate(CLI::App& app) {
                   "T_ref of the temperature polynomials [degC]")
       ->capture_default_str();
   cmd->add_option("--nonlinearity-degree", c->options.nonlinearity_degree,
-                  "terms a_1 .. a_d of the nonlinearity f(w)")
+                  "terms a_1 .. a_d of the nonlinearity f(w); -1: the highest term kept only "
+                  "while the plateaus show it (t above its 99.5 % point), up to 5")
       ->capture_default_str();
   cmd->add_flag("!--no-asymmetry", c->options.asymmetry, "do not fit the asymmetry");
   cmd->add_flag("!--weigh-alike", c->options.noise_covariance,

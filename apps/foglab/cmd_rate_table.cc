@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
 #include "foglab/io/writer.h"
+#include "foglab/sim/optics.h"
 #include "foglab/sim/rate_table.h"
 
 namespace foglab::cli {
@@ -29,6 +31,8 @@ struct RateTableCommand {
   sim::RateTableOptions options;
   sim::RateTableGyro gyro;
   bool triad = false;
+  int optics_variant = 0;  // > 0: the lab-1 optics of that Table 4 variant as the gyro
+  bool full_scale_given = false, temperatures_given = false;
   /// [mrad] m_xy, m_xz, m_yx, m_yz, m_zx, m_zy (sim::RateTableTriad)
   std::vector<double> misalignment_mrad = {0.8, -0.5, 0.3, 1.2, -0.9, 0.4};
   /// With --triad: gyro k's S and u0 are S (1 + spread k) and u0 + 10 k LSB (k = 0, 1, 2), so
@@ -74,9 +78,34 @@ nlohmann::json gyro_json(const sim::RateTableGyro& g) {
            {{"N_deg_h_rt_hz", g.noise.N}, {"B_deg_h", g.noise.B}, {"K_deg_h_rt_s", g.noise.K}}}};
 }
 
+// The gyro `rate-table` generates: the options' eq. (10), or the lab-1 optics.
+sim::RateTableGyro gyro_of(const RateTableCommand& c) {
+  if (c.optics_variant == 0) return c.gyro;
+  sim::RateTableGyro g = sim::optics_rate_table_gyro(sim::lab1_coil(c.optics_variant));
+  g.noise = c.gyro.noise;
+  g.reference_c = c.gyro.reference_c;
+  return g;
+}
+
 nlohmann::json truth_json(const RateTableCommand& c) {
   nlohmann::json j;
-  if (c.triad) {
+  if (c.optics_variant > 0) {
+    const sim::Coil coil = sim::lab1_coil(c.optics_variant);
+    const sim::RateTableGyro g = gyro_of(c);
+    sim::SweepOptions analytic;
+    analytic.method = sim::SweepMethod::analytic;
+    const double range_rad_s = c.full_scale_deg_s * std::numbers::pi / 180.0;
+    j = gyro_json(g);
+    j["model"] =
+        "u = S r(w) + S eta / 3600, S r(w) the lab-1 open loop's steady state (square "
+        "modulation at f_m) [a.u.]";
+    j["optics"] = {{"variant", c.optics_variant},
+                   {"omega_pi2_deg_s", sim::coil_numbers(coil).omega_pi2_deg_s},
+                   {"sagnac_scale_factor_s", sim::coil_numbers(coil).scale_factor_s},
+                   {"output_unit", "a.u. (the detector's arbitrary unit; the files' 'lsb')"},
+                   {"lab1_sweep_nonlinearity_percent",
+                    sim::sweep_open_loop(coil, range_rad_s, {}, analytic).nonlinearity_percent}};
+  } else if (c.triad) {
     const sim::RateTableTriad t = triad_of(c);
     nlohmann::json gyros = nlohmann::json::array();
     nlohmann::json m = nlohmann::json::array();
@@ -125,7 +154,15 @@ void write_columns(const std::string& path, std::span<const io::NamedVector> col
   }
 }
 
-void run(const RateTableCommand& c) {
+void run(RateTableCommand& c) {
+  if (c.optics_variant > 0) {
+    if (c.triad) throw UsageError("--optics and --triad: one gyro of optics only");
+    // The lab's sweep: +-Omega_pi/2 in steps of a fifth, at one temperature.
+    if (!c.full_scale_given) {
+      c.full_scale_deg_s = sim::coil_numbers(sim::lab1_coil(c.optics_variant)).omega_pi2_deg_s;
+    }
+    if (!c.temperatures_given) c.temperatures_c = {c.gyro.reference_c};
+  }
   const std::string ext = extension_of(c.out_path);
   if (ext != ".csv" && ext != ".mat") {
     throw UsageError(
@@ -173,7 +210,7 @@ void run(const RateTableCommand& c) {
     samples = runs[0].motion.time_s.size();
     sample_rate_hz = runs[0].motion.sample_rate_hz;
   } else {
-    const sim::RateTableRecording run = sim::generate_rate_table(c.gyro, plan, c.options);
+    const sim::RateTableRecording run = sim::generate_rate_table(gyro_of(c), plan, c.options);
     const io::NamedVector columns[] = {{"time_s", run.time_s},
                                        {"rate_cmd_deg_s", run.rate_command_deg_s},
                                        {"table_rate_deg_s", run.table_rate_deg_s},
@@ -208,13 +245,17 @@ std::function<void()> register_rate_table(CLI::App& app) {
       "table_rate_deg_s, output_lsb, temperature_c");
   cmd->add_option("--out", c->out_path, "the run: .csv or .mat")->required();
   cmd->add_option("--truth", c->truth_path, "write the coefficients as JSON");
-  cmd->add_option("--full-scale", c->full_scale_deg_s, "largest rate [deg/s]")
-      ->capture_default_str();
+  cmd->add_option("--full-scale", c->full_scale_deg_s,
+                  "largest rate [deg/s] (with --optics: Omega_pi/2)")
+      ->capture_default_str()
+      ->each([c](const std::string&) { c->full_scale_given = true; });
   cmd->add_option("--rates", c->rates_per_sign, "rates of each sign, FS k / RATES")
       ->capture_default_str();
-  cmd->add_option("--temps", c->temperatures_c, "chamber temperatures [degC]")
+  cmd->add_option("--temps", c->temperatures_c,
+                  "chamber temperatures [degC] (with --optics: the reference temperature)")
       ->delimiter(',')
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([c](const std::string&) { c->temperatures_given = true; });
   cmd->add_option("--plateau", c->plateau_s, "each plateau's length [s]")->capture_default_str();
   cmd->add_option("--settle", c->options.settle_s,
                   "[s] the table's and the chamber's transition at each plateau's start")
@@ -243,6 +284,11 @@ std::function<void()> register_rate_table(CLI::App& app) {
                 "a triad of three gyros (x, y, z), on three mountings: writes OUT-x, OUT-y, "
                 "OUT-z (the table about x, y, z) with columns output_x_lsb, output_y_lsb, "
                 "output_z_lsb; gyro k's S is S (1 + 0.01 k) and u0 is u0 + 10 k LSB");
+  cmd->add_option("--optics", c->optics_variant,
+                  "the lab-1 optics of Table 4 variant 1-6 as the gyro (open loop, square "
+                  "modulation): output in the detector's a.u., rates +-Omega_pi/2 k/RATES at "
+                  "one temperature; the eq. (10) coefficients are not used")
+      ->check(CLI::Range(1, 6));
   cmd->add_option("--misalignment", c->misalignment_mrad,
                   "with --triad: m_xy,m_xz,m_yx,m_yz,m_zx,m_zy [mrad], m_ij gyro i's "
                   "sensitivity to a rate about axis j")

@@ -21,6 +21,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::int64_t kMinPlateauSamples = 10;
 constexpr double kSameTemperatureC = 0.5;  // plateaus closer than this share a temperature
+constexpr int kMaxNonlinearityDegree = 5;  // the automatic choice's highest
 
 // Where each coefficient lives in the parameter vector:
 // [S, s_1..s_ps, a_1..a_q, (A), u0, b_1..b_pb].
@@ -167,6 +168,58 @@ void gauss_newton(Eigen::VectorXd& p, const Layout& l, const std::vector<Point>&
     p += step;
     if ((step.cwiseAbs().array() <= 1e-13 * (p.cwiseAbs().array() + 1e-300)).all()) break;
   }
+}
+
+// Start values: the linearised model (cross terms of nonlinearity and temperature dropped)
+// by linear least squares. Throws DataError when a coefficient has no plateau that shows it.
+Eigen::VectorXd start_values(const Layout& l, const std::vector<Point>& x,
+                             const Eigen::VectorXd& u) {
+  const int points = static_cast<int>(x.size());
+  const int parameters = l.size();
+  Eigen::MatrixXd design(points, parameters);
+  for (int i = 0; i < points; ++i) {
+    const double w = x[i].w, dT = x[i].dT;
+    design(i, 0) = w * (1.0 + power_series(l.known_s, dT));
+    for (int k = 0; k < l.ps; ++k) design(i, l.s(k)) = w * std::pow(dT, k + 1);
+    for (int k = 0; k < l.q; ++k) design(i, l.a(k)) = std::pow(w, k + 2);
+    if (l.asymmetry) design(i, l.A()) = 0.5 * std::abs(w);
+    design(i, l.u0()) = 1.0;
+    for (int k = 0; k < l.pb; ++k) design(i, l.b(k)) = std::pow(dT, k + 1);
+  }
+  // Columns scaled to unit norm for conditioning.
+  const Eigen::VectorXd norms = design.colwise().norm().transpose();
+  for (int j = 0; j < parameters; ++j) {
+    if (norms(j) == 0.0) {
+      throw DataError("calibrate: a coefficient of the model has no plateau that shows it");
+    }
+  }
+  const Eigen::MatrixXd scaled = design * norms.cwiseInverse().asDiagonal();
+  const Eigen::VectorXd beta = scaled.colPivHouseholderQr().solve(u).cwiseQuotient(norms);
+  Eigen::VectorXd p = beta;
+  const double S = beta(0);
+  for (int k = 0; k < l.ps; ++k) p(l.s(k)) = beta(l.s(k)) / S;
+  for (int k = 0; k < l.q; ++k) p(l.a(k)) = beta(l.a(k)) / S;
+  if (l.asymmetry) p(l.A()) = beta(l.A()) / S;
+  return p;
+}
+
+// The ordinary least-squares t value of coefficient j at the fit p: |p_j| over its standard
+// error, the residual variance times (J^T J)^-1.
+double ols_t_value(const Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
+                   const Eigen::VectorXd& u, int j) {
+  const int points = static_cast<int>(x.size());
+  Eigen::MatrixXd J(points, l.size());
+  Eigen::VectorXd residual(points);
+  const OutputModelTerms t = terms_of(p, l);
+  for (int i = 0; i < points; ++i) {
+    J.row(i) = model_gradient(p, l, x[i]);
+    residual(i) = u(i) - t.output(x[i].w, x[i].dT);
+  }
+  const Eigen::VectorXd jn = J.colwise().norm().transpose();
+  const Eigen::MatrixXd js = J * jn.cwiseInverse().asDiagonal();
+  const double variance = residual.squaredNorm() / (points - l.size());
+  const double sd = std::sqrt((js.transpose() * js).inverse()(j, j) * variance) / jn(j);
+  return std::abs(p(j)) / sd;
 }
 
 // The covariance of the plateau means, from the noise model identified on the run's own
@@ -412,16 +465,40 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     c.notes.push_back("no asymmetry fitted: the run has rates of one sign only");
   }
   // At one temperature the rates must outnumber the rate terms (S, a_k, A) and the bias.
-  l.q = std::max(0, o.nonlinearity_degree);
   const int distinct_rates = static_cast<int>(rates.size());
-  while (l.q > 0 && distinct_rates < 2 + l.q + (l.asymmetry ? 1 : 0)) --l.q;
-  if (l.q < o.nonlinearity_degree) {
-    c.notes.push_back(
-        fmt::format("nonlinearity fitted to degree {} only: the run has {} "
-                    "distinct rates",
-                    l.q, distinct_rates));
-  }
+  const int rate_limit = std::max(0, distinct_rates - 2 - (l.asymmetry ? 1 : 0));
   const int points = static_cast<int>(c.plateaus.size());
+  std::vector<Point> x;
+  Eigen::VectorXd u(points);
+  for (int i = 0; i < points; ++i) {
+    x.push_back({c.plateaus[i].rate_deg_s, c.plateaus[i].temperature_c - o.reference_c});
+    u(i) = c.plateaus[i].output_mean_lsb;
+  }
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(points, points);
+  if (o.nonlinearity_degree >= 0) {
+    l.q = std::min(o.nonlinearity_degree, rate_limit);
+    if (l.q < o.nonlinearity_degree) {
+      c.notes.push_back(
+          fmt::format("nonlinearity fitted to degree {} only: the run has {} "
+                      "distinct rates",
+                      l.q, distinct_rates));
+    }
+  } else {
+    // Chosen from the data: from the highest degree the run allows (at most
+    // kMaxNonlinearityDegree, two residual degrees of freedom kept), the highest term is
+    // dropped while its t value stays below the 99.5 % point (a term is kept only when the
+    // plateaus show it beyond doubt; weighted alike here, the noise model comes after).
+    l.q = std::min(kMaxNonlinearityDegree, rate_limit);
+    while (l.q > 0 && points < l.size() + 2) --l.q;
+    for (; l.q > 0; --l.q) {
+      Eigen::VectorXd trial = start_values(l, x, u);
+      gauss_newton(trial, l, x, u, identity);
+      const double t99 = boost::math::quantile(
+          boost::math::students_t(static_cast<double>(points - l.size())), 0.995);
+      if (ols_t_value(trial, l, x, u, l.a(l.q - 1)) >= t99) break;
+    }
+  }
+  c.nonlinearity_degree = l.q;
   const int parameters = l.size();
   if (points <= parameters) {
     throw DataError(
@@ -429,38 +506,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
                     "more plateaus (more rates or temperatures) than coefficients",
                     points, parameters));
   }
-
-  std::vector<Point> x;
-  Eigen::VectorXd u(points);
-  for (int i = 0; i < points; ++i) {
-    x.push_back({c.plateaus[i].rate_deg_s, c.plateaus[i].temperature_c - o.reference_c});
-    u(i) = c.plateaus[i].output_mean_lsb;
-  }
-  // The linearised model (cross terms of nonlinearity and temperature dropped) for a start.
-  Eigen::MatrixXd design(points, parameters);
-  for (int i = 0; i < points; ++i) {
-    const double w = x[i].w, dT = x[i].dT;
-    design(i, 0) = w * (1.0 + power_series(l.known_s, dT));
-    for (int k = 0; k < l.ps; ++k) design(i, l.s(k)) = w * std::pow(dT, k + 1);
-    for (int k = 0; k < l.q; ++k) design(i, l.a(k)) = std::pow(w, k + 2);
-    if (l.asymmetry) design(i, l.A()) = 0.5 * std::abs(w);
-    design(i, l.u0()) = 1.0;
-    for (int k = 0; k < l.pb; ++k) design(i, l.b(k)) = std::pow(dT, k + 1);
-  }
-  // Columns scaled to unit norm for conditioning.
-  Eigen::VectorXd norms = design.colwise().norm().transpose();
-  for (int j = 0; j < parameters; ++j) {
-    if (norms(j) == 0.0) {
-      throw DataError("calibrate: a coefficient of the model has no plateau that shows it");
-    }
-  }
-  const Eigen::MatrixXd scaled = design * norms.cwiseInverse().asDiagonal();
-  Eigen::VectorXd beta = scaled.colPivHouseholderQr().solve(u).cwiseQuotient(norms);
-  Eigen::VectorXd p = beta;
-  const double S = beta(0);
-  for (int k = 0; k < l.ps; ++k) p(l.s(k)) = beta(l.s(k)) / S;
-  for (int k = 0; k < l.q; ++k) p(l.a(k)) = beta(l.a(k)) / S;
-  if (l.asymmetry) p(l.A()) = beta(l.A()) / S;
+  Eigen::VectorXd p = start_values(l, x, u);
 
   // Gauss-Newton on the full model: first with every plateau alike, then with the plateau
   // means' covariance from the noise identified on the residual record.
@@ -470,7 +516,6 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   const auto rate_unit = [&](const Eigen::VectorXd& q) {  // [LSB/(deg/s)]
     return o.rate_unit_lsb_per_deg_s > 0.0 ? o.rate_unit_lsb_per_deg_s : std::abs(q(0));
   };
-  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(points, points);
   gauss_newton(p, l, x, u, identity);
   c.noise_covariance = o.noise_covariance;
   Eigen::MatrixXd whiten = identity;  // W with W^T W = V^-1 (identity: ordinary least squares)
@@ -565,12 +610,24 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     for (const double t : c.temperatures_c) {
       if (std::abs(t - o.reference_c) < std::abs(nearest - o.reference_c)) nearest = t;
     }
+    // The bias as the lab measures it, the output at rest: the zero-rate plateaus' mean there
+    // (the fitted u0(T) when the run has none).
+    double at_rest = 0.0, at_rest_samples = 0.0;
+    for (const auto& plateau : c.plateaus) {
+      if (plateau.rate_deg_s == 0.0 &&
+          std::abs(plateau.temperature_c - nearest) <= kSameTemperatureC) {
+        at_rest += plateau.output_mean_lsb * static_cast<double>(plateau.samples);
+        at_rest_samples += static_cast<double>(plateau.samples);
+      }
+    }
     std::vector<double> factors;
     for (const auto& plateau : c.plateaus) {
       if (plateau.rate_deg_s == 0.0 ||
           std::abs(plateau.temperature_c - nearest) > kSameTemperatureC)
         continue;
-      const double zero = fitted.bias_at(plateau.temperature_c - o.reference_c);
+      const double zero = at_rest_samples > 0.0
+                              ? at_rest / at_rest_samples
+                              : fitted.bias_at(plateau.temperature_c - o.reference_c);
       factors.push_back((plateau.output_mean_lsb - zero) / plateau.rate_deg_s);
     }
     if (factors.size() >= 2) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <string_view>
 
 #include "foglab/core/error.h"
@@ -65,7 +66,28 @@ double rate_table_output_lsb(const RateTableGyro& gyro, double rate_deg_s, doubl
                                gyro.asymmetry,
                                gyro.bias_lsb,
                                gyro.bias_temp_coefs_lsb};
-  return terms.output(rate_deg_s, temperature_c - gyro.reference_c);
+  const double dT = temperature_c - gyro.reference_c;
+  if (gyro.rate_response) {
+    return terms.scale_factor * terms.relative_scale_factor(dT) * gyro.rate_response(rate_deg_s) +
+           terms.bias_at(dT);
+  }
+  return terms.output(rate_deg_s, dT);
+}
+
+RateTableGyro optics_rate_table_gyro(const Coil& coil, const OpticsOptions& options) {
+  constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+  // The small-rate slope from a rate a millionth of the range, where sin is linear to 1e-13.
+  const double small_deg_s = 1e-6 * coil_numbers(coil).omega_pi2_deg_s;
+  const double slope = steady_state_output(coil, small_deg_s * kRadPerDeg, options) / small_deg_s;
+  if (!(std::isfinite(slope) && slope != 0.0)) {
+    throw UsageError("rate table: the optics' output does not rise with the rate");
+  }
+  RateTableGyro gyro;
+  gyro.scale_factor_lsb_per_deg_s = slope;
+  gyro.rate_response = [coil, options, slope](double rate_deg_s) {
+    return steady_state_output(coil, rate_deg_s * kRadPerDeg, options) / slope;
+  };
+  return gyro;
 }
 
 namespace {

@@ -105,6 +105,27 @@ TEST(CliCalibrate, ATriadOnThreeMountingsGivesItsMisalignment) {
   EXPECT_NE(two.err.find("--triad needs the three mountings' files"), std::string::npos) << two.err;
 }
 
+TEST(CliCalibrate, TheLabOneOpticsRunGivesTheSweepsNonlinearity) {
+  // rate-table --optics: the lab-1 optics of a Table 4 variant on the lab's ten rates; the
+  // truth file carries lab 1's sweep figure, which calibrate must reproduce.
+  const test::TempDir dir;
+  const std::string run = quote(dir / "optics.csv"), truth = quote(dir / "truth.json");
+  const test::CliRun made =
+      run_foglab("rate-table --optics 2 --plateau 20 --out " + run + " --truth " + truth);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const json t = read_json(dir / "truth.json");
+  const double omega_pi2 = t["optics"]["omega_pi2_deg_s"];
+  const test::CliRun r = run_foglab("calibrate " + run + " --json -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json c = json::parse(r.out);
+  EXPECT_NEAR(c["full_scale_deg_s"].get<double>(), omega_pi2, 1e-9 * omega_pi2);
+  EXPECT_EQ(c["temperatures_c"].size(), 1u);
+  EXPECT_NEAR(c["nonlinearity_lab1_percent"].get<double>(),
+              t["optics"]["lab1_sweep_nonlinearity_percent"].get<double>(), 0.01);
+  // --optics and --triad do not go together.
+  EXPECT_EQ(run_foglab("rate-table --optics 2 --triad --out " + quote(dir / "x.csv")).exit_code, 2);
+}
+
 TEST(CliCalibrate, BadRunsAndOptionsAreRefusedAndWriteNothing) {
   const test::TempDir dir;
   const std::string run = quote(dir / "run.csv"), out = dir / "out.json";

@@ -6,12 +6,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/sim/optics.h"
 #include "foglab/sim/rate_table.h"
 
 namespace foglab::model {
@@ -226,6 +229,47 @@ TEST(Calibration, ATriadsMisalignmentIsRecovered) {
     }
   }
   EXPECT_GE(coverage.inside, 5) << coverage.inside << " of 6 intervals hold the truth";
+}
+
+// The lab-1 optics as the gyro (sim::optics_rate_table_gyro()): on the lab's ten rates (a
+// fifth of the range apart, here half of Omega_pi/2 and all of it) calibrate's lab-1 figure
+// is the one lab 1's sweep computes, and its IEEE Std 952 figure, from the fitted polynomial
+// of the degree the data chose, is the optics curve's own within 1 %.
+TEST(Calibration, TheLabOneOpticsAsTheGyroGivesLabOnesNonlinearity) {
+  const sim::Coil coil = sim::lab1_coil(3);
+  const double omega_pi2_deg_s = sim::coil_numbers(coil).omega_pi2_deg_s;
+  sim::RateTableGyro g = sim::optics_rate_table_gyro(coil);
+  g.noise.N = 0.5;  // deg/h/sqrt(Hz): a thousandth of a percent on the smallest rate's mean
+  sim::SweepOptions analytic;
+  analytic.method = sim::SweepMethod::analytic;
+  for (const double range_deg_s : {0.5 * omega_pi2_deg_s, omega_pi2_deg_s}) {
+    SCOPED_TRACE("range " + std::to_string(range_deg_s) + " deg/s");
+    const auto plan =
+        sim::standard_rate_table_plan(range_deg_s, 5, std::vector<double>{25.0}, 20.0);
+    const sim::RateTableRecording r = sim::generate_rate_table(g, plan, {});
+    const Calibration c =
+        calibrate({r.sample_rate_hz, r.rate_command_deg_s, r.output_lsb, r.temperature_c});
+    const double lab1 =
+        sim::sweep_open_loop(coil, range_deg_s * std::numbers::pi / 180.0, {}, analytic)
+            .nonlinearity_percent;
+    EXPECT_NEAR(c.nonlinearity_lab1_percent, lab1, 0.01);
+    // The optics curve's IEEE figure: its largest deviation from its least-squares line over
+    // [-FS, FS], per full-scale output.
+    constexpr int kGrid = 20001;
+    Eigen::MatrixXd line(kGrid, 2);
+    Eigen::VectorXd y(kGrid);
+    for (int j = 0; j < kGrid; ++j) {
+      const double w = range_deg_s * (2.0 * j / (kGrid - 1) - 1.0);
+      line(j, 0) = 1.0;
+      line(j, 1) = w;
+      y(j) = sim::rate_table_output_lsb(g, w, 25.0);
+    }
+    const Eigen::VectorXd fit = line.colPivHouseholderQr().solve(y);
+    const double ieee_ppm =
+        (y - line * fit).cwiseAbs().maxCoeff() / (g.scale_factor_lsb_per_deg_s * range_deg_s) * 1e6;
+    EXPECT_NEAR(c.nonlinearity_ieee_ppm_fs, ieee_ppm, 0.01 * ieee_ppm);
+    EXPECT_GE(c.nonlinearity_degree, 2);  // sin(K w) / w - 1 is even: a_2 at least
+  }
 }
 
 // The two nonlinearity figures of a gyro with no noise and a known curve.

@@ -28,7 +28,8 @@
 //     continuous fit, on a fine uniform grid), as a fraction of the full-scale output S FS
 //     [ppm of full scale];
 //   * the lab manual (lab 1, its step 3.5): (largest - smallest) / mean of the plateaus' scale
-//     factors (u - u0(T)) / w at the temperature nearest T_ref [%].
+//     factors (u - u_rest) / w at the temperature nearest T_ref [%], u_rest the zero-rate
+//     plateaus' mean output there (the fitted u0(T) when the run has none).
 // The inverse (eq. 11), for correcting an output: w = (u - u0(T)) / (S(T) [1 + f(w)]).
 #pragma once
 
@@ -57,8 +58,10 @@ struct CalibrationOptions {
   /// as the distinct temperatures allow (one less than their number), at most 2.
   int bias_temperature_degree = -1;
   int scale_factor_temperature_degree = -1;
-  int nonlinearity_degree = 2;  ///< terms a_1 .. a_d of f(w)
-  bool asymmetry = true;        ///< fit A (needs positive and negative rates)
+  /// Terms a_1 .. a_d of f(w); -1: chosen from the data (calibrate(): the highest term kept
+  /// only while the plateaus show it, t above the 99.5 % point, up to degree 5).
+  int nonlinearity_degree = -1;
+  bool asymmetry = true;  ///< fit A (needs positive and negative rates)
   /// Weight the plateaus by their means' covariance from the noise model identified on the
   /// run's residual record (generalised least squares; header); false: all alike (ordinary
   /// least squares, the residual variance taken as white).
@@ -109,6 +112,7 @@ struct Calibration {
   CalibratedValue bias;                            ///< u0 [LSB] at T_ref
   std::vector<CalibratedValue> bias_temp;          ///< b_k [LSB/degC^k]
   std::vector<CalibratedValue> nonlinearity;       ///< a_k [1/(deg/s)^k]
+  int nonlinearity_degree = 0;                     ///< d of a_1 .. a_d, as fitted
   CalibratedValue asymmetry;                       ///< A; NaN when not fitted
   CalibratedValue bias_deg_h;                      ///< u0 / S as a rate [deg/h]
   double nonlinearity_ieee_ppm_fs = 0.0;           ///< [ppm of full scale] IEEE Std 952 (header)

@@ -26,11 +26,13 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "foglab/core/noise_model.h"
+#include "foglab/sim/optics.h"
 
 namespace foglab::sim {
 
@@ -51,7 +53,20 @@ struct RateTableGyro {
   std::vector<double> bias_temp_coefs_lsb;      ///< b_1, b_2, ... [LSB/degC^k]
   NoiseModel noise;                             ///< the random part, rate-equivalent [deg/h]
   double reference_c = 25.0;                    ///< T_ref [degC]
+  /// When set, the rate part [1 + f(w)] w of eq. (10) is this function of w [deg/s] instead
+  /// of the polynomial and the asymmetry (which are then unused): a response no polynomial
+  /// of low degree is, such as the lab-1 optics' (optics_rate_table_gyro()).
+  std::function<double(double)> rate_response;
 };
+
+/// The lab-1 optics model as the gyro on the table (the issue's "the optics model of lab 1
+/// can also serve as the gyro"): the open loop's analytic steady-state output at the table's
+/// rate (sim/optics.h, steady_state_output(): square modulation 2 gamma sin(K_s w), sine
+/// 2 gamma J1(phi_m) sin(K_s w)), in the detector's arbitrary units as its "LSB". S is the
+/// small-rate slope [a.u. per deg/s]; rate_response is the output over S, so that
+/// S rate_response(w) is the optics' output; no temperature terms, no bias, no noise (set
+/// `noise` for it). Its nonlinearity is the one lab 1 measures with its ten-rate sweep.
+RateTableGyro optics_rate_table_gyro(const Coil& coil, const OpticsOptions& options = {});
 
 /// The deterministic part of eq. (10): the output at table rate w and temperature T [LSB].
 double rate_table_output_lsb(const RateTableGyro& gyro, double rate_deg_s, double temperature_c);
