@@ -14,7 +14,11 @@
 # line, lab2's default and --no-answers runs (the generated variant and the
 # lab's files stay), eight of the nine ADIS16405 channels (imu1_x stays), and
 # two of AllanTheory's 2^20-sample loops over all eleven statistics (their
-# kernels run under ASan in the kernel, gap and Stable32 tests).
+# kernels run under ASan in the kernel, gap and Stable32 tests), two of
+# Systematic's three scatter studies (the white-noise one stays), the Allan
+# covariance's Monte Carlo, and calibrate's two coverage studies over seeds
+# (the CLI tests run its generalised least squares, triads and optics once
+# each).
 # Needs clang-14, libclang-rt-14-dev, libomp-14-dev (install-deps.sh --tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."

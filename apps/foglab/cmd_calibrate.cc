@@ -19,6 +19,7 @@
 #include "foglab/core/version.h"
 #include "foglab/io/reader.h"
 #include "foglab/model/calibration.h"
+#include "foglab/report/calibration.h"
 
 namespace foglab::cli {
 namespace {
@@ -35,7 +36,17 @@ struct CalibrateCommand {
   model::CalibrationOptions options;
   std::string json_path;
   std::string csv_path;
+  std::string report_path;
+  std::string markdown_path;
 };
+
+report::CalibrationReport make_report(const CalibrateCommand& c, const model::Calibration& r) {
+  return report::make_calibration_report(r, c.path);
+}
+
+report::CalibrationReport make_report(const CalibrateCommand& c, const model::TriadCalibration& t) {
+  return report::make_triad_report(t, c.path, c.paths);
+}
 
 io::Series read_column(const CalibrateCommand& c, const std::string& path,
                        const std::string& column) {
@@ -56,30 +67,6 @@ nlohmann::json values_json(const std::vector<model::CalibratedValue>& values) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& v : values) out.push_back(value_json(v));
   return out;
-}
-
-// " +c1 X +c2 X^2 ..." of a power series with coefficients c_1, c_2, ...
-std::string series_text(const std::vector<model::CalibratedValue>& coefs, const char* x,
-                        double scale = 1.0) {
-  std::string out;
-  for (std::size_t k = 0; k < coefs.size(); ++k) {
-    out += fmt::format(" {:+.7g} {}{}", coefs[k].value * scale, x,
-                       k == 0 ? "" : fmt::format("^{}", k + 1));
-  }
-  return out;
-}
-
-// Eq. (11) with the fitted coefficients, as text.
-std::string corrected_rate_equation(const model::Calibration& r) {
-  std::string f = series_text(r.nonlinearity, "w");
-  if (std::isfinite(r.asymmetry.value)) {
-    f += fmt::format(" {:+.7g} sign(w)", 0.5 * r.asymmetry.value);
-  }
-  return fmt::format(
-      "w [deg/s] = (u - ({:.9g}{})) / ({:.10g} (1{}) (1{})),  dT = T - {:g} degC "
-      "(the nonlinearity's w: one or two fixed-point steps)",
-      r.bias.value, series_text(r.bias_temp, "dT"), r.scale_factor.value,
-      series_text(r.scale_factor_temp, "dT"), f, r.reference_c);
 }
 
 // One gyro's calibration (without the source and version).
@@ -119,7 +106,7 @@ nlohmann::json calibration_json(const model::Calibration& r) {
             {"scale_factor", number(r.budget.scale_factor_deg_h)},
             {"nonlinearity", number(r.budget.nonlinearity_deg_h)},
             {"noise_1s", number(r.budget.noise_1s_deg_h)}}},
-          {"corrected_rate_equation", corrected_rate_equation(r)},
+          {"corrected_rate_equation", report::corrected_rate_equation(r)},
           {"plateaus", plateaus},
           {"notes", r.notes}};
 }
@@ -153,41 +140,30 @@ nlohmann::json to_json(const CalibrateCommand& c, const model::TriadCalibration&
           {"foglab_version", std::string(version())}};
 }
 
-std::string interval(const model::CalibratedValue& v, double scale = 1.0) {
-  // Digits enough to show the interval's width.
-  const double width = std::abs(v.ci95_high - v.ci95_low) * scale;
-  const double size = std::abs(v.value * scale);
-  const int digits =
-      width > 0.0 && size > 0.0
-          ? std::clamp(static_cast<int>(std::ceil(std::log10(size / width))) + 2, 4, 12)
-          : 7;
-  return fmt::format("{:.{}g} [{:.{}g}, {:.{}g}]", v.value * scale, digits, v.ci95_low * scale,
-                     digits, v.ci95_high * scale, digits);
-}
-
 std::string to_table(const std::string& what, const model::Calibration& r) {
   std::string out = fmt::format(
       "rate-table calibration of {}: {} plateaus, {} temperature(s), full scale {:g} deg/s, "
       "T_ref {:g} degC ({} dof)\n",
       what, r.plateaus.size(), r.temperatures_c.size(), r.full_scale_deg_s, r.reference_c, r.dof);
-  out += fmt::format("  scale factor S       {} LSB/(deg/s)\n", interval(r.scale_factor));
+  out +=
+      fmt::format("  scale factor S       {} LSB/(deg/s)\n", report::interval_text(r.scale_factor));
   for (std::size_t k = 0; k < r.scale_factor_temp.size(); ++k) {
     out += fmt::format("  S temperature s_{}   {} ppm/degC^{}\n", k + 1,
-                       interval(r.scale_factor_temp[k], 1e6), k + 1);
+                       report::interval_text(r.scale_factor_temp[k], 1e6), k + 1);
   }
-  out += fmt::format("  bias u0              {} LSB = {} deg/h\n", interval(r.bias),
-                     interval(r.bias_deg_h));
+  out += fmt::format("  bias u0              {} LSB = {} deg/h\n", report::interval_text(r.bias),
+                     report::interval_text(r.bias_deg_h));
   for (std::size_t k = 0; k < r.bias_temp.size(); ++k) {
-    out += fmt::format("  bias temperature b_{} {} LSB/degC^{}\n", k + 1, interval(r.bias_temp[k]),
-                       k + 1);
+    out += fmt::format("  bias temperature b_{} {} LSB/degC^{}\n", k + 1,
+                       report::interval_text(r.bias_temp[k]), k + 1);
   }
   for (std::size_t k = 0; k < r.nonlinearity.size(); ++k) {
     const double fs = std::pow(r.full_scale_deg_s, static_cast<double>(k + 1)) * 1e6;
     out += fmt::format("  nonlinearity a_{}     {} ppm of full scale\n", k + 1,
-                       interval(r.nonlinearity[k], fs));
+                       report::interval_text(r.nonlinearity[k], fs));
   }
   if (std::isfinite(r.asymmetry.value)) {
-    out += fmt::format("  asymmetry A          {} ppm\n", interval(r.asymmetry, 1e6));
+    out += fmt::format("  asymmetry A          {} ppm\n", report::interval_text(r.asymmetry, 1e6));
   }
   out += fmt::format(
       "  nonlinearity: {:.4g} ppm of full scale (IEEE Std 952), {:.4g} % (the lab manual's "
@@ -211,7 +187,7 @@ std::string to_table(const std::string& what, const model::Calibration& r) {
       "nonlinearity residual {:.4g}, noise over 1 s {:.4g} deg/h\n",
       r.budget.bias_deg_h, r.budget.scale_factor_deg_h, r.budget.nonlinearity_deg_h,
       r.budget.noise_1s_deg_h);
-  out += "  corrected rate (eq. 11): " + corrected_rate_equation(r) + "\n";
+  out += "  corrected rate (eq. 11): " + report::corrected_rate_equation(r) + "\n";
   for (const std::string& note : r.notes) out += "note: " + note + "\n";
   return out;
 }
@@ -231,7 +207,7 @@ std::string to_table(const CalibrateCommand& c, const model::TriadCalibration& t
     out += fmt::format("  {}", kAxis[i]);
     for (int j = 0; j < 3; ++j) {
       out += i == j ? fmt::format("  {:>34}", "1 (scale factor)")
-                    : fmt::format("  {:>34}", interval(t.misalignment_rad[i][j], 1e3));
+                    : fmt::format("  {:>34}", report::interval_text(t.misalignment_rad[i][j], 1e3));
     }
     out += "\n";
   }
@@ -273,9 +249,19 @@ template <class Result>
 void write_outputs(const CalibrateCommand& c, const Result& result) {
   const std::string json = c.json_path.empty() ? "" : json_text(to_json(c, result));
   const std::string csv = c.csv_path.empty() ? "" : to_csv(result);
+  report::CalibrationReport rep;
+  if (!c.report_path.empty() || !c.markdown_path.empty()) {
+    progress("drawing the report's plots");
+    rep = make_report(c, result);
+    if (rep.plots_skipped && !c.report_path.empty()) note(rep.plots_note);
+  }
   if (!c.json_path.empty()) write_text_file(c.json_path, json);
   if (!c.csv_path.empty()) write_text_file(c.csv_path, csv);
-  if (c.json_path != "-" && c.csv_path != "-") std::cout << to_table(c, result);
+  if (!c.report_path.empty()) write_text_file(c.report_path, rep.html);
+  if (!c.markdown_path.empty()) write_text_file(c.markdown_path, rep.markdown);
+  if (c.json_path != "-" && c.csv_path != "-" && c.markdown_path != "-") {
+    std::cout << to_table(c, result);
+  }
 }
 
 void run(CalibrateCommand& c) {
@@ -289,7 +275,10 @@ void run(CalibrateCommand& c) {
   c.path = fmt::format("{}", fmt::join(c.paths, "', '"));
   std::vector<RunPath> inputs;
   for (const std::string& path : c.paths) inputs.push_back({"FILE", path});
-  const RunPath outputs[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
+  const RunPath outputs[] = {{"--json", c.json_path},
+                             {"--csv", c.csv_path},
+                             {"--report", c.report_path},
+                             {"--markdown", c.markdown_path}};
   check_outputs(inputs, outputs);
   for (const std::string& path : c.paths) {
     if (io::is_stream(path)) {
@@ -377,6 +366,11 @@ std::function<void()> register_calibrate(CLI::App& app) {
                 "means' covariance from the residual record's noise model");
   cmd->add_option("--json", c->json_path, "write JSON ('-' for stdout)");
   cmd->add_option("--csv", c->csv_path, "write the plateaus as CSV ('-' for stdout)");
+  cmd->add_option("--report", c->report_path,
+                  "write a self-contained HTML report (gnuplot SVG plots: output, scale factor "
+                  "and residuals against rate, residuals against temperature)");
+  cmd->add_option("--markdown", c->markdown_path,
+                  "write the report's numbers and tables as Markdown ('-' for stdout)");
   return [c] { run(*c); };
 }
 

@@ -281,11 +281,7 @@ std::string fleet_html(const FleetReport& fleet, const ReportOptions& options) {
   if (drawn.skipped) h += "<p class=\"warn\">" + html_escape(drawn.note) + "</p>\n";
   for (const Figure& f : drawn.figures) {
     if (drawn.skipped) break;
-    h +=
-        "<figure>\n" +
-        (f.svg ? *f.svg
-               : "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) + "</p>") +
-        "\n<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
+    h += figure_html(f);
   }
 
   h += "<h2>Units that stand out</h2>\n";

@@ -364,11 +364,7 @@ std::string imu_html(std::span<const ImuAxis> axes, std::span<const Report> axis
     h += "<p class=\"warn\">" + html_escape(drawn.note) + "</p>\n";
   } else {
     for (const Figure& f : drawn.figures) {
-      h += "<figure>\n" +
-           (f.svg ? *f.svg
-                  : "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) +
-                        "</p>") +
-           "\n<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
+      h += figure_html(f);
     }
   }
   return html_document(axis_reports, title, h);

@@ -439,12 +439,7 @@ std::string to_html(const std::vector<Block>& bs, const std::vector<Figure>& fig
       case Block::Kind::heading:
         h += "<h2>" + html_escape(b.text) + "</h2>\n";
         for (const std::size_t i : b.figures) {
-          const Figure& f = figures.at(i);
-          h += "<figure>\n";
-          h += f.svg ? *f.svg + "\n"
-                     : "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) +
-                           "</p>\n";
-          h += "<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
+          h += figure_html(figures.at(i));
         }
         break;
       case Block::Kind::paragraph:

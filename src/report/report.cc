@@ -124,6 +124,14 @@ std::string class_sentence(const model::AnalysisResult& r) {
 std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }
 std::string th(std::string_view text) { return "<th>" + html_escape(text) + "</th>"; }
 
+std::string figure_html(const Figure& f) {
+  return "<figure>\n" +
+         (f.svg
+              ? *f.svg
+              : "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) + "</p>") +
+         "\n<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
+}
+
 const char* const kCss =
     R"(body{font-family:system-ui,-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
 h1{font-size:1.6em;border-bottom:2px solid #0072b2;padding-bottom:.2em}
@@ -549,15 +557,7 @@ Report make_report(const model::AnalysisResult& result, const ReportInput& input
   if (rep.plots_skipped) {
     h += "<p class=\"warn\">" + html_escape(rep.plots_note) + "</p>\n";
   } else {
-    for (const Figure& f : rep.figures) {
-      h += "<figure>\n";
-      if (f.svg) {
-        h += *f.svg + "\n";
-      } else {
-        h += "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) + "</p>\n";
-      }
-      h += "<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
-    }
+    for (const Figure& f : rep.figures) h += figure_html(f);
   }
   h += html_tables(result, input);
   h += "</section>\n";

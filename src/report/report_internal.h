@@ -52,6 +52,10 @@ std::string record_title(const ReportInput& input);
 std::string td(std::string_view text);
 std::string th(std::string_view text);
 
+/// A figure as HTML: <figure> with its SVG, or a warning saying why it was skipped, and its
+/// caption.
+std::string figure_html(const Figure& figure);
+
 /// The report pages' style sheet.
 extern const char* const kCss;
 

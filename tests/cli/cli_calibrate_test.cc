@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -92,6 +93,26 @@ TEST(CliCalibrate, ATriadOnThreeMountingsGivesItsMisalignment) {
           << "m_" << i << j;
     }
   }
+  // The report: the misalignment matrix, then a section per gyro with its four plots.
+  const std::string page = dir / "triad.html", md = dir / "triad.md";
+  const test::CliRun rep = run_foglab("calibrate --triad " + files + " --report " + quote(page) +
+                                      " --markdown " + quote(md));
+  ASSERT_EQ(rep.exit_code, 0) << rep.err;
+  std::ifstream html_in(page), md_in(md);
+  const std::string html((std::istreambuf_iterator<char>(html_in)), {});
+  const std::string markdown((std::istreambuf_iterator<char>(md_in)), {});
+  EXPECT_NE(html.find("<h2>Misalignment</h2>"), std::string::npos);
+  for (const char* axis : {"Gyro x", "Gyro y", "Gyro z"}) {
+    EXPECT_NE(html.find(axis), std::string::npos) << axis;
+    EXPECT_NE(markdown.find(std::string("## ") + axis), std::string::npos) << axis;
+  }
+  std::size_t figures = 0;
+  for (std::size_t at = html.find("<figure>"); at != std::string::npos;
+       at = html.find("<figure>", at + 1)) {
+    ++figures;
+  }
+  EXPECT_EQ(figures, 12u);
+  EXPECT_NE(markdown.find("| gyro | x | y | z |"), std::string::npos);
   // Weighted alike on request, and said so.
   const test::CliRun alike =
       run_foglab("calibrate " + quote(dir / "run-x.csv") +
