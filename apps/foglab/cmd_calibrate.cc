@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -353,6 +354,16 @@ std::function<void()> register_calibrate(CLI::App& app) {
   cmd->add_option("--fs", c->sample_rate_hz, "sample rate [Hz] (else from the file)");
   cmd->add_option("--settle", c->options.settle_s, "left out at each plateau's start [s]")
       ->capture_default_str();
+  cmd->add_option("--plateaus", c->options.plateaus,
+                  "where the plateaus are found: 'command' (runs of one value of the rate "
+                  "column) or 'output' (where the output stays level; each plateau's rate the "
+                  "rate column's mean over it: for a measured table rate)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, model::PlateauSource>{
+              {"command", model::PlateauSource::commanded_rate},
+              {"output", model::PlateauSource::output}},
+          CLI::ignore_case))
+      ->default_str("command");
   cmd->add_option("--reference-c", c->options.reference_c,
                   "T_ref of the temperature polynomials [degC]")
       ->capture_default_str();

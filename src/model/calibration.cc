@@ -92,9 +92,100 @@ std::vector<double> distinct_temperatures(const std::vector<CalibrationPlateau>&
   return out;
 }
 
+// One plateau's point over samples [first, end): the output's mean and standard deviation,
+// the temperature's and the rate column's means.
+CalibrationPlateau plateau_over(const CalibrationRecord& r, const CalibrationOptions& o,
+                                std::int64_t first, std::int64_t end) {
+  CalibrationPlateau p;
+  p.first_sample = first;
+  p.samples = end - first;
+  const auto used = static_cast<double>(p.samples);
+  double sum = 0.0, temperature = 0.0, rate = 0.0;
+  for (std::int64_t k = first; k < end; ++k) {
+    sum += r.output_lsb[k];
+    rate += r.rate_command_deg_s[k];
+    if (!r.temperature_c.empty()) temperature += r.temperature_c[k];
+  }
+  p.rate_deg_s = rate / used;
+  p.output_mean_lsb = sum / used;
+  p.temperature_c = r.temperature_c.empty() ? o.reference_c : temperature / used;
+  double squares = 0.0;
+  for (std::int64_t k = first; k < end; ++k) {
+    const double d = r.output_lsb[k] - p.output_mean_lsb;
+    squares += d * d;
+  }
+  p.output_sd_lsb = std::sqrt(squares / (used - 1.0));
+  return p;
+}
+
+// PlateauSource::output: the output's 1 s block means; a step between neighbours larger than
+// kStepThreshold robust standard deviations of all steps (1.4826 MAD: the plateaus' own steps
+// are most of them) ends a plateau, and the blocks in a transition (a run of large steps)
+// belong to none. A plateau is a run of at least two quiet blocks; its first settle_s are left
+// out as with a commanded rate (the output settles with the table, the temperature after it).
+std::vector<CalibrationPlateau> plateaus_from_output(const CalibrationRecord& r,
+                                                     const CalibrationOptions& o,
+                                                     std::vector<std::string>& notes) {
+  constexpr double kStepThreshold = 8.0;
+  const auto n = static_cast<std::int64_t>(r.output_lsb.size());
+  const auto block = std::max<std::int64_t>(1, std::llround(r.sample_rate_hz));
+  const std::int64_t blocks = n / block;
+  std::vector<double> means(static_cast<std::size_t>(blocks));
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    double sum = 0.0;
+    for (std::int64_t k = b * block; k < (b + 1) * block; ++k) sum += r.output_lsb[k];
+    means[b] = sum / static_cast<double>(block);
+  }
+  std::vector<double> steps;
+  for (std::int64_t b = 1; b < blocks; ++b) steps.push_back(std::abs(means[b] - means[b - 1]));
+  if (steps.size() < 3) return {};
+  std::vector<double> sorted = steps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  // |step| of a normal step: its median is 0.6745 sd.
+  const double sd = sorted[sorted.size() / 2] / 0.6745;
+  const double threshold = kStepThreshold * sd;
+  // Block b is quiet when the steps into and out of it are small.
+  const auto quiet = [&](std::int64_t b) {
+    return (b == 0 || steps[b - 1] <= threshold) && (b + 1 >= blocks || steps[b] <= threshold);
+  };
+  const auto settle = static_cast<std::int64_t>(std::ceil(o.settle_s * r.sample_rate_hz));
+  std::vector<CalibrationPlateau> plateaus;
+  std::int64_t left_out = 0;
+  for (std::int64_t b = 0; b < blocks;) {
+    if (!quiet(b)) {
+      ++b;
+      continue;
+    }
+    std::int64_t e = b;
+    while (e < blocks && quiet(e) && (e == b || steps[e - 1] <= threshold)) ++e;
+    // Blocks [b, e) are one level; the samples from b's start (its first sample after a
+    // transition) to e's.
+    const std::int64_t first = b * block + (b == 0 ? 0 : settle);
+    const std::int64_t end = e == blocks ? n : e * block;
+    if (e - b >= 2 && end - first >= kMinPlateauSamples) {
+      plateaus.push_back(plateau_over(r, o, first, end));
+    } else {
+      ++left_out;
+    }
+    b = e;
+  }
+  if (left_out > 0) {
+    notes.push_back(fmt::format(
+        "{} level stretches of the output left out: shorter than two 1 s blocks, or than the "
+        "settle time ({} s) plus {} samples",
+        left_out, o.settle_s, kMinPlateauSamples));
+  }
+  notes.push_back(fmt::format(
+      "plateaus found from the output: {} where it stays level (1 s means stepping less than "
+      "{:.3g} LSB), each plateau's rate the rate column's mean over it",
+      plateaus.size(), threshold));
+  return plateaus;
+}
+
 std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
                                               const CalibrationOptions& o,
                                               std::vector<std::string>& notes) {
+  if (o.plateaus == PlateauSource::output) return plateaus_from_output(r, o, notes);
   const auto n = static_cast<std::int64_t>(r.output_lsb.size());
   const auto settle = static_cast<std::int64_t>(std::ceil(o.settle_s * r.sample_rate_hz));
   std::vector<CalibrationPlateau> plateaus;
@@ -115,32 +206,14 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
             r.rate_command_deg_s[start], start + 1, i - start, o.settle_s, kMinPlateauSamples));
       }
     } else {
-      CalibrationPlateau p;
-      p.rate_deg_s = r.rate_command_deg_s[start];
-      p.first_sample = first;
-      p.samples = used;
-      double sum = 0.0, temperature = 0.0;
-      for (std::int64_t k = first; k < i; ++k) {
-        sum += r.output_lsb[k];
-        if (!r.temperature_c.empty()) temperature += r.temperature_c[k];
-      }
-      p.output_mean_lsb = sum / static_cast<double>(used);
-      p.temperature_c =
-          r.temperature_c.empty() ? o.reference_c : temperature / static_cast<double>(used);
-      double squares = 0.0;
-      for (std::int64_t k = first; k < i; ++k) {
-        const double d = r.output_lsb[k] - p.output_mean_lsb;
-        squares += d * d;
-      }
-      p.output_sd_lsb = std::sqrt(squares / static_cast<double>(used - 1));
-      plateaus.push_back(p);
+      plateaus.push_back(plateau_over(r, o, first, i));
     }
     start = i;
   }
   if (left_out > kNamedShortPlateaus) {
     notes.push_back(
         fmt::format("{} more plateaus left out, {} in all: is the rate column the "
-                    "commanded rate?",
+                    "commanded rate? (a measured rate: find the plateaus from the output)",
                     left_out - kNamedShortPlateaus, left_out));
   }
   return plateaus;

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -270,6 +271,36 @@ TEST(Calibration, TheLabOneOpticsAsTheGyroGivesLabOnesNonlinearity) {
     EXPECT_NEAR(c.nonlinearity_ieee_ppm_fs, ieee_ppm, 0.01 * ieee_ppm);
     EXPECT_GE(c.nonlinearity_degree, 2);  // sin(K w) / w - 1 is even: a_2 at least
   }
+}
+
+// The plateaus found from the output (PlateauSource::output) where the rate column is a
+// measured rate: the table's actual rate, which ramps through every settle time, read by an
+// encoder with 0.001 deg/s of white noise, so that no two samples are equal. The commanded-
+// rate rule finds no plateau; the output's levels give all 63, each rate the column's mean,
+// and the fit meets the accuracy goals as before.
+TEST(Calibration, PlateausAreFoundFromTheOutputWhenTheRateIsMeasured) {
+  const sim::RateTableGyro g = tactical_gyro();
+  const auto plan =
+      sim::standard_rate_table_plan(kFullScale, 5, std::vector<double>{-20.0, 25.0, 60.0}, 60.0);
+  sim::RateTableOptions options;
+  options.seed = 3;
+  const sim::RateTableRecording r = sim::generate_rate_table(g, plan, options);
+  std::vector<double> encoder = r.table_rate_deg_s;
+  std::mt19937_64 random(17);
+  std::normal_distribution<double> reading_noise(0.0, 1e-3);
+  for (double& w : encoder) w += reading_noise(random);
+  const CalibrationRecord measured{r.sample_rate_hz, encoder, r.output_lsb, r.temperature_c};
+  EXPECT_THROW(calibrate(measured), DataError);
+  CalibrationOptions from_output;
+  from_output.plateaus = PlateauSource::output;
+  const Calibration c = calibrate(measured, from_output);
+  ASSERT_EQ(c.plateaus.size(), 63u);
+  for (std::size_t i = 0; i < c.plateaus.size(); ++i) {
+    EXPECT_NEAR(c.plateaus[i].rate_deg_s, plan[i].rate_deg_s, 1e-4) << "plateau " << i;
+  }
+  EXPECT_LT(std::abs(c.scale_factor.value / g.scale_factor_lsb_per_deg_s - 1.0), 10e-6);
+  EXPECT_TRUE(holds(c.scale_factor, g.scale_factor_lsb_per_deg_s));
+  EXPECT_LT(std::abs(c.asymmetry.value - g.asymmetry) * 1e6, 5.0);
 }
 
 // The two nonlinearity figures of a gyro with no noise and a known curve.

@@ -51,7 +51,17 @@ struct CalibrationRecord {
   std::span<const double> temperature_c;       ///< [degC]; empty: one unknown temperature
 };
 
+/// Where the plateaus are found.
+enum class PlateauSource {
+  commanded_rate,  ///< runs of one value of the rate column (the commanded rate)
+  /// Runs where the output stays level (steps between 1 s block means below 8 robust standard
+  /// deviations of those steps): for a rate column that is a measured rate (an encoder's),
+  /// never constant; each plateau's rate is then the rate column's mean over it.
+  output,
+};
+
 struct CalibrationOptions {
+  PlateauSource plateaus = PlateauSource::commanded_rate;
   double settle_s = 5.0;      ///< [s] left out at each plateau's start
   double reference_c = 25.0;  ///< [degC] T_ref of the temperature polynomials
   /// Degrees of the temperature polynomials of the bias and the scale factor; -1: as many
