@@ -39,14 +39,21 @@ struct CalibrateCommand {
   std::string csv_path;
   std::string report_path;
   std::string markdown_path;
+  std::string language = "en";
 };
 
+report::ReportOptions report_options(const CalibrateCommand& c) {
+  report::ReportOptions options;
+  options.language = report::language_from_string(c.language);
+  return options;
+}
+
 report::CalibrationReport make_report(const CalibrateCommand& c, const model::Calibration& r) {
-  return report::make_calibration_report(r, c.path);
+  return report::make_calibration_report(r, c.path, report_options(c));
 }
 
 report::CalibrationReport make_report(const CalibrateCommand& c, const model::TriadCalibration& t) {
-  return report::make_triad_report(t, c.path, c.paths);
+  return report::make_triad_report(t, c.path, c.paths, report_options(c));
 }
 
 io::Series read_column(const CalibrateCommand& c, const std::string& path,
@@ -382,6 +389,10 @@ std::function<void()> register_calibrate(CLI::App& app) {
                   "and residuals against rate, residuals against temperature)");
   cmd->add_option("--markdown", c->markdown_path,
                   "write the report's numbers and tables as Markdown ('-' for stdout)");
+  cmd->add_option("--lang", c->language,
+                  "the report's language: en, or ru (the lab manual's terms and units)")
+      ->check(CLI::IsMember({"en", "ru"}, CLI::ignore_case))
+      ->capture_default_str();
   return [c] { run(*c); };
 }
 

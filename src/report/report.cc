@@ -124,11 +124,11 @@ std::string class_sentence(const model::AnalysisResult& r) {
 std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }
 std::string th(std::string_view text) { return "<th>" + html_escape(text) + "</th>"; }
 
-std::string figure_html(const Figure& f) {
+std::string figure_html(const Figure& f, Language language) {
   return "<figure>\n" +
-         (f.svg
-              ? *f.svg
-              : "<p class=\"warn\">" + html_escape("This plot was skipped: " + f.error) + "</p>") +
+         (f.svg ? *f.svg
+                : "<p class=\"warn\">" + html_escape(say(language, Text::plot_skipped, f.error)) +
+                      "</p>") +
          "\n<figcaption>" + html_escape(f.caption) + "</figcaption>\n</figure>\n";
 }
 
@@ -189,7 +189,7 @@ RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector
       f.error = skip_reason;
     }
     out.skipped = true;
-    out.note = "The plots were skipped: " + skip_reason + ".";
+    out.note = say(options.language, Text::plots_skipped, skip_reason);
   }
   return out;
 }
@@ -573,8 +573,10 @@ std::string section_id(std::size_t k) { return fmt::format("recording-{}", k + 1
 }  // namespace
 
 std::string html_document(std::span<const Report> reports, std::string_view title,
-                          std::string_view preface_html) {
-  std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+                          std::string_view preface_html, Language language) {
+  std::string h =
+      fmt::format("<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n",
+                  html_lang(language));
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   h += "<title>" + html_escape(title) + "</title>\n<style>\n" + kCss + "\n</style>\n</head>\n";
   h += "<body>\n<h1>" + html_escape(title) + "</h1>\n";
@@ -590,11 +592,7 @@ std::string html_document(std::span<const Report> reports, std::string_view titl
   for (std::size_t k = 0; k < reports.size(); ++k) {
     h += fmt::format("<div id=\"{}\">\n", section_id(k)) + reports[k].html_section + "</div>\n";
   }
-  h += fmt::format(
-      "<footer>Written by foglab {}. Units: rate deg/h, time s, temperature degC; noise "
-      "parameters as in IEEE Std 952 (N deg/h/sqrt(Hz), B deg/h, K deg/h/sqrt(s), R deg/h/s, "
-      "Q deg/h*s); an accelerometer's in m/s^2 in place of deg/h.</footer>\n",
-      html_escape(version()));
+  h += "<footer>" + html_escape(say(language, Text::footer, version())) + "</footer>\n";
   h += "</body>\n</html>\n";
   return h;
 }

@@ -2,15 +2,24 @@
 // the lab-2 report (lab2.cc). Not installed.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "foglab/model/analysis.h"
 #include "foglab/report/report.h"
 
 namespace foglab::report::detail {
+
+/// text() with its fmt placeholders filled.
+template <class... Args>
+std::string say(Language language, Text key, Args&&... args) {
+  return fmt::format(fmt::runtime(text(language, key)), std::forward<Args>(args)...);
+}
 
 // Colours (colour-blind-safe Okabe-Ito palette).
 inline constexpr const char* kBlue = "#0072b2";
@@ -54,7 +63,7 @@ std::string th(std::string_view text);
 
 /// A figure as HTML: <figure> with its SVG, or a warning saying why it was skipped, and its
 /// caption.
-std::string figure_html(const Figure& figure);
+std::string figure_html(const Figure& figure, Language language = Language::en);
 
 /// The report pages' style sheet.
 extern const char* const kCss;

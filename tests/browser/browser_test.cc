@@ -134,5 +134,20 @@ TEST(BrowserTest, Lab1ReportPlotsRenderInChromium) {
   EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 8);
 }
 
+TEST(BrowserTest, RussianCalibrationReportRendersInChromium) {
+  // `calibrate --lang ru` (issue 20): the Russian page lays out its four plots (Cyrillic
+  // titles and axis labels in the SVGs) as the English one does.
+  ASSERT_TRUE(have_chromium())
+      << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
+  test::TempDir dir;
+  const std::string run = test::quote(dir / "run.csv");
+  ASSERT_EQ(test::run_foglab("rate-table --out " + run + " --temps 0,40 --plateau 20").exit_code,
+            0);
+  const test::CliRun r =
+      test::run_foglab("calibrate " + run + " --lang ru --report " + test::quote(dir / "ru.html"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(expect_rendered_figures(dir / "ru.html", dir.path()), 4);
+}
+
 }  // namespace
 }  // namespace foglab

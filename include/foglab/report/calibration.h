@@ -7,7 +7,8 @@
 //      S(T) [1 + f(w)] at each temperature: the nonlinearity made visible;
 //   3. the plateau residuals against rate;
 //   4. the plateau residuals against temperature.
-// A triad's report holds one section per gyro after the misalignment matrix.
+// A triad's report holds one section per gyro after the misalignment matrix. The text is
+// ReportOptions::language's catalogue (report/language.h).
 #pragma once
 
 #include <string>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "foglab/model/calibration.h"
+#include "foglab/report/language.h"
 #include "foglab/report/report.h"
 
 namespace foglab::report {
@@ -43,9 +45,11 @@ CalibrationReport make_triad_report(const model::TriadCalibration& triad, std::s
 std::string interval_text(const model::CalibratedValue& value, double scale = 1.0);
 
 /// Eq. (11) with the fitted coefficients, as one line of text.
-std::string corrected_rate_equation(const model::Calibration& calibration);
+std::string corrected_rate_equation(const model::Calibration& calibration,
+                                    Language language = Language::en);
 
 /// The plot descriptions alone (no gnuplot run), in the figures' order.
-std::vector<Plot> calibration_plots(const model::Calibration& calibration);
+std::vector<Plot> calibration_plots(const model::Calibration& calibration,
+                                    Language language = Language::en);
 
 }  // namespace foglab::report

@@ -45,6 +45,7 @@
 
 #include "foglab/core/units.h"
 #include "foglab/model/analysis.h"
+#include "foglab/report/language.h"
 #include "foglab/report/plot.h"
 
 namespace foglab::report {
@@ -82,7 +83,7 @@ struct ReportInput {
   /// in_sensor_units()), gives the velocity random walk in place of the
   /// angle random walk, and no Table 1 class (a table of gyroscopes).
   Sensor sensor = Sensor::gyroscope;
-  RecordPreview preview;             ///< from preview_record() of the raw record
+  RecordPreview preview;  ///< from preview_record() of the raw record
   /// [deg/h] the constant bias removed when there is no temperature (the
   /// analysis does not keep it).
   std::optional<double> record_mean_deg_h;
@@ -95,6 +96,8 @@ struct ReportOptions {
   std::string id_prefix = "r";     ///< SVG id prefix (distinct per report inlined in one page)
   std::size_t bias_points = 200;   ///< block means in the bias-temperature plot
   std::string rostopic = "/imu0";  ///< for imu.yaml
+  /// The text's language (report/language.h); reports not yet converted ignore it.
+  Language language = Language::en;
 };
 
 /// One figure: its SVG, or why it is missing.
@@ -129,7 +132,7 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
 /// top points to when there are several; `preface_html` goes between that
 /// list and the sections (lab 2: its summary tables).
 std::string html_document(std::span<const Report> reports, std::string_view title,
-                          std::string_view preface_html = {});
+                          std::string_view preface_html = {}, Language language = Language::en);
 std::string html_document(const Report& report);
 
 /// The Markdown summary alone.

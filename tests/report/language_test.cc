@@ -1,0 +1,86 @@
+// The reports' languages (report/language.h): both catalogues whole and alike in their
+// placeholders, and a Russian report with no English left in it (issue 20): every word of
+// Latin letters in the page's text and its plots' text is a symbol, a standard's name or the
+// program's.
+#include "foglab/report/language.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "foglab/core/error.h"
+#include "foglab/model/calibration.h"
+#include "foglab/report/calibration.h"
+#include "foglab/sim/rate_table.h"
+
+namespace foglab::report {
+namespace {
+
+int placeholders(std::string_view text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '{'));
+}
+
+TEST(Language, BothCataloguesHoldEveryTextWithTheSamePlaceholders) {
+  for (int k = 0; k < static_cast<int>(Text::count_); ++k) {
+    const auto key = static_cast<Text>(k);
+    const std::string_view en = text(Language::en, key), ru = text(Language::ru, key);
+    EXPECT_FALSE(en.empty()) << "key " << k;
+    EXPECT_FALSE(ru.empty()) << "key " << k;
+    EXPECT_EQ(placeholders(en), placeholders(ru)) << "key " << k << ": " << en << " | " << ru;
+    // Every Russian text but a symbol or a pure format says something in Cyrillic.
+    const bool cyrillic =
+        ru.find("\xD0") != std::string_view::npos || ru.find("\xD1") != std::string_view::npos;
+    const bool needs_words = ru.size() > 12;
+    if (needs_words) EXPECT_TRUE(cyrillic) << "key " << k << ": " << ru;
+  }
+  EXPECT_EQ(language_from_string("RU"), Language::ru);
+  EXPECT_THROW(language_from_string("de"), UsageError);
+}
+
+// The text a reader sees: the page without its style sheet and markup, the SVGs' <text>.
+std::string visible_text(std::string page) {
+  page = std::regex_replace(page, std::regex("<style>[\\s\\S]*?</style>"), " ");
+  page = std::regex_replace(page, std::regex("<desc>[\\s\\S]*?</desc>"), " ");
+  page = std::regex_replace(page, std::regex("<title>[\\s\\S]*?</title>"), " ");
+  page = std::regex_replace(page, std::regex("<[^>]*>"), " ");
+  return page;
+}
+
+TEST(Language, ARussianCalibrationReportHasNoEnglishLeft) {
+  sim::RateTableGyro g;
+  g.scale_factor_temp_coefs = {-8e-5};
+  g.nonlinearity_coefs = {4e-8, 1.5e-10};
+  g.asymmetry = 2e-5;
+  g.noise.N = 0.5;
+  const std::vector<double> temperatures = {0.0, 40.0};
+  const auto plan = sim::standard_rate_table_plan(300.0, 4, temperatures, 20.0);
+  const sim::RateTableRecording r = sim::generate_rate_table(g, plan, {});
+  const model::Calibration c =
+      model::calibrate({r.sample_rate_hz, r.rate_command_deg_s, r.output_lsb, r.temperature_c});
+  ASSERT_TRUE(c.notes.empty());  // notes come from the model, in English (not yet translated)
+  ReportOptions options;
+  options.language = Language::ru;
+  const CalibrationReport rep = make_calibration_report(c, "stend.csv", options);
+  // Latin words allowed: symbols of the model, the standard's and the program's names, the
+  // file's, and gnuplot's own words (none when plots are drawn).
+  const std::set<std::string> allowed = {"IEEE", "Std", "foglab", "sign", "sqrt", "stend", "csv"};
+  for (const std::string* text : {&rep.html, &rep.markdown}) {
+    const std::string visible = visible_text(*text);
+    const std::regex word("[A-Za-z]{3,}");
+    for (auto it = std::sregex_iterator(visible.begin(), visible.end(), word);
+         it != std::sregex_iterator(); ++it) {
+      EXPECT_TRUE(allowed.count(it->str()))
+          << "English left: '" << it->str() << "' in ..."
+          << visible.substr(std::max<std::ptrdiff_t>(0, it->position() - 60), 120);
+    }
+  }
+  EXPECT_NE(rep.html.find("<html lang=\"ru\">"), std::string::npos);
+  EXPECT_NE(rep.html.find("смещение нуля"), std::string::npos);
+  EXPECT_NE(rep.html.find("масштабный коэффициент"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace foglab::report
