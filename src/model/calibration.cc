@@ -158,9 +158,9 @@ std::vector<CalibrationPlateau> plateaus_from_output(const CalibrationRecord& r,
     }
     std::int64_t e = b;
     while (e < blocks && quiet(e) && (e == b || steps[e - 1] <= threshold)) ++e;
-    // Blocks [b, e) are one level; the samples from b's start (its first sample after a
-    // transition) to e's.
-    const std::int64_t first = b * block + (b == 0 ? 0 : settle);
+    // Blocks [b, e) are one level: its samples from b's start plus the settle time (the
+    // temperature settles after the output) to e's start.
+    const std::int64_t first = b * block + settle;
     const std::int64_t end = e == blocks ? n : e * block;
     if (e - b >= 2 && end - first >= kMinPlateauSamples) {
       plateaus.push_back(plateau_over(r, o, first, end));
@@ -276,10 +276,13 @@ Eigen::VectorXd start_values(const Layout& l, const std::vector<Point>& x,
   return p;
 }
 
-// The ordinary least-squares t value of coefficient j at the fit p: |p_j| over its standard
-// error, the residual variance times (J^T J)^-1.
-double ols_t_value(const Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
-                   const Eigen::VectorXd& u, int j) {
+// The t value of coefficient j at the fit p in the metric W^T W: |p_j| over its standard
+// error, from (J^T W^T W J)^-1 times the residuals' chi-square per degree of freedom (W the
+// identity: ordinary least squares) or times max(1, it) (W from a noise model's covariance,
+// as calibrate() states its intervals).
+double t_value(const Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
+               const Eigen::VectorXd& u, int j, const Eigen::MatrixXd& whiten,
+               bool noise_covariance) {
   const int points = static_cast<int>(x.size());
   Eigen::MatrixXd J(points, l.size());
   Eigen::VectorXd residual(points);
@@ -288,10 +291,12 @@ double ols_t_value(const Eigen::VectorXd& p, const Layout& l, const std::vector<
     J.row(i) = model_gradient(p, l, x[i]);
     residual(i) = u(i) - t.output(x[i].w, x[i].dT);
   }
-  const Eigen::VectorXd jn = J.colwise().norm().transpose();
-  const Eigen::MatrixXd js = J * jn.cwiseInverse().asDiagonal();
-  const double variance = residual.squaredNorm() / (points - l.size());
-  const double sd = std::sqrt((js.transpose() * js).inverse()(j, j) * variance) / jn(j);
+  const Eigen::MatrixXd wj = whiten * J;
+  const Eigen::VectorXd jn = wj.colwise().norm().transpose();
+  const Eigen::MatrixXd js = wj * jn.cwiseInverse().asDiagonal();
+  const double chi2_per_dof = (whiten * residual).squaredNorm() / (points - l.size());
+  const double scale = noise_covariance ? std::max(1.0, chi2_per_dof) : chi2_per_dof;
+  const double sd = std::sqrt((js.transpose() * js).inverse()(j, j) * scale) / jn(j);
   return std::abs(p(j)) / sd;
 }
 
@@ -306,8 +311,8 @@ struct PlateauCovariance {
 
 // The samples the plateaus use, less the fitted model, joined into one rate record [deg/h]
 // (the settle times between them left out, not marked as gaps: a gap-aware Allan deviation
-// would stop at the plateau's length, below the taus where a wander shows; the settle times
-// are a twelfth of a run and shorten its time axis by as much); its Allan deviation and the
+// would stop at the plateau's length, below the taus where a wander shows; the settle times,
+// 5 s of 60 by default, shorten its time axis by as much); its Allan deviation and the
 // noise model fitted to it (model/noise_fit.h) give the covariance of any two plateau means
 // by Greenhall's structure function of the angle (core/noise_model.h), at their true times:
 //
@@ -548,6 +553,9 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     u(i) = c.plateaus[i].output_mean_lsb;
   }
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(points, points);
+  const auto rate_unit = [&](const Eigen::VectorXd& q) {  // [LSB/(deg/s)]
+    return o.rate_unit_lsb_per_deg_s > 0.0 ? o.rate_unit_lsb_per_deg_s : std::abs(q(0));
+  };
   if (o.nonlinearity_degree >= 0) {
     l.q = std::min(o.nonlinearity_degree, rate_limit);
     if (l.q < o.nonlinearity_degree) {
@@ -560,15 +568,31 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     // Chosen from the data: from the highest degree the run allows (at most
     // kMaxNonlinearityDegree, two residual degrees of freedom kept), the highest term is
     // dropped while its t value stays below the 99.5 % point (a term is kept only when the
-    // plateaus show it beyond doubt; weighted alike here, the noise model comes after).
+    // plateaus show it beyond doubt). The t values are weighted as the intervals are: by the
+    // plateau means' covariance from the highest degree's residual record (the wander hardly
+    // depends on the degree); weighted alike, a wander's correlated errors passed for a
+    // spurious a_3 on 1 run in 20.
     l.q = std::min(kMaxNonlinearityDegree, rate_limit);
     while (l.q > 0 && points < l.size() + 2) --l.q;
+    Eigen::MatrixXd choice_whiten = identity;
+    bool choice_noise = false;
+    if (o.noise_covariance && l.q > 0) {
+      Eigen::VectorXd highest = start_values(l, x, u);
+      gauss_newton(highest, l, x, u, identity);
+      std::vector<std::string> unused_notes;  // the final fit's pass says them
+      if (const auto v = plateau_covariance(r, c.plateaus, terms_of(highest, l), rate_unit(highest),
+                                            o.reference_c, unused_notes)) {
+        choice_whiten = v->whiten;
+        choice_noise = true;
+      }
+    }
     for (; l.q > 0; --l.q) {
       Eigen::VectorXd trial = start_values(l, x, u);
       gauss_newton(trial, l, x, u, identity);
+      if (choice_noise) gauss_newton(trial, l, x, u, choice_whiten);
       const double t99 = boost::math::quantile(
           boost::math::students_t(static_cast<double>(points - l.size())), 0.995);
-      if (ols_t_value(trial, l, x, u, l.a(l.q - 1)) >= t99) break;
+      if (t_value(trial, l, x, u, l.a(l.q - 1), choice_whiten, choice_noise) >= t99) break;
     }
   }
   c.nonlinearity_degree = l.q;
@@ -585,9 +609,6 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   // means' covariance from the noise identified on the residual record.
   const auto model_at = [&](const Eigen::VectorXd& q, int i) {
     return terms_of(q, l).output(x[i].w, x[i].dT);
-  };
-  const auto rate_unit = [&](const Eigen::VectorXd& q) {  // [LSB/(deg/s)]
-    return o.rate_unit_lsb_per_deg_s > 0.0 ? o.rate_unit_lsb_per_deg_s : std::abs(q(0));
   };
   gauss_newton(p, l, x, u, identity);
   c.noise_covariance = o.noise_covariance;

@@ -92,7 +92,10 @@ struct Coverage {
     for (std::size_t k = 0; k < 2; ++k) {
       count(c.scale_factor_temp[k], g.scale_factor_temp_coefs[k]);
       count(c.bias_temp[k], g.bias_temp_coefs_lsb[k]);
-      count(c.nonlinearity[k], g.nonlinearity_coefs[k]);
+    }
+    // Every fitted a_k, those beyond the truth's degree against 0.
+    for (std::size_t k = 0; k < c.nonlinearity.size(); ++k) {
+      count(c.nonlinearity[k], k < g.nonlinearity_coefs.size() ? g.nonlinearity_coefs[k] : 0.0);
     }
   }
 };
@@ -128,6 +131,7 @@ void expect_coverage(const Coverage& coverage) {
 TEST(Calibration, RoundTripOverSeedsMeetsTheAccuracyGoals) {
   const sim::RateTableGyro g = tactical_gyro();
   Coverage coverage;
+  int right_degree = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const CalibratedRun run = calibrate_run(g, seed);
@@ -138,12 +142,15 @@ TEST(Calibration, RoundTripOverSeedsMeetsTheAccuracyGoals) {
     ASSERT_EQ(c.temperatures_c.size(), 3u);
     ASSERT_EQ(c.scale_factor_temp.size(), 2u);
     ASSERT_EQ(c.bias_temp.size(), 2u);
-    ASSERT_EQ(c.nonlinearity.size(), 2u);
+    // The degree is chosen from the data (the truth's is 2); a spurious higher term is kept
+    // when its t value passes the 99.5 % point by chance, so on most runs, not all.
+    ASSERT_GE(c.nonlinearity.size(), 2u);
+    right_degree += c.nonlinearity.size() == 2u ? 1 : 0;
     EXPECT_LT(std::abs(c.scale_factor.value / g.scale_factor_lsb_per_deg_s - 1.0), 10e-6);
-    for (std::size_t k = 0; k < 2; ++k) {
+    for (std::size_t k = 0; k < c.nonlinearity.size(); ++k) {
       const double ppm_fs = std::pow(kFullScale, static_cast<double>(k + 1)) * 1e6;
-      EXPECT_LT(std::abs(c.nonlinearity[k].value - g.nonlinearity_coefs[k]) * ppm_fs, 5.0)
-          << "a_" << k + 1;
+      const double truth = k < g.nonlinearity_coefs.size() ? g.nonlinearity_coefs[k] : 0.0;
+      EXPECT_LT(std::abs(c.nonlinearity[k].value - truth) * ppm_fs, 5.0) << "a_" << k + 1;
     }
     EXPECT_LT(std::abs(c.asymmetry.value - g.asymmetry) * 1e6, 5.0);
     // The temperature polynomials: the scale factor's change over the range within 10 ppm,
@@ -164,6 +171,8 @@ TEST(Calibration, RoundTripOverSeedsMeetsTheAccuracyGoals) {
     EXPECT_NEAR(c.noise.N, g.noise.N, 0.05 * g.noise.N);
   }
   expect_coverage(coverage);
+  EXPECT_GE(right_degree, 8) << "the nonlinearity's degree was right on " << right_degree
+                             << " runs of 10";
 }
 
 // A random walk of the bias (no flicker), another correlation of the plateaus: the
