@@ -219,25 +219,49 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
   return plateaus;
 }
 
+// The model linearised at p in the metric W^T W: the whitened Jacobian A = W J and
+// residual W (u - model(p)), the raw residual, and (A^T A)^-1 (columns scaled to unit norm
+// for conditioning), the covariance before the residuals' scale.
+struct Linearised {
+  Eigen::MatrixXd a;
+  Eigen::VectorXd whitened_residual, residual;
+  Eigen::MatrixXd unscaled_covariance;
+  double chi2() const { return whitened_residual.squaredNorm(); }
+};
+
+Linearised linearise(const Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
+                     const Eigen::VectorXd& u, const Eigen::MatrixXd& whiten) {
+  const int points = static_cast<int>(x.size());
+  Eigen::MatrixXd J(points, l.size());
+  Linearised lin;
+  lin.residual.resize(points);
+  const OutputModelTerms t = terms_of(p, l);
+  for (int i = 0; i < points; ++i) {
+    J.row(i) = model_gradient(p, l, x[i]);
+    lin.residual(i) = u(i) - t.output(x[i].w, x[i].dT);
+  }
+  lin.a = whiten * J;
+  lin.whitened_residual = whiten * lin.residual;
+  const Eigen::VectorXd norms = lin.a.colwise().norm().transpose();
+  const Eigen::MatrixXd scaled = lin.a * norms.cwiseInverse().asDiagonal();
+  lin.unscaled_covariance = norms.cwiseInverse().asDiagonal() *
+                            (scaled.transpose() * scaled).inverse() *
+                            norms.cwiseInverse().asDiagonal();
+  return lin;
+}
+
 // One Gauss-Newton solve of the model to the plateau means u, in the metric W^T W (W = the
 // identity: ordinary least squares; W = L^-1 with V = L L^T: generalised least squares).
 void gauss_newton(Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
                   const Eigen::VectorXd& u, const Eigen::MatrixXd& whiten) {
-  const int points = static_cast<int>(x.size());
-  Eigen::MatrixXd J(points, l.size());
-  Eigen::VectorXd residual(points);
   for (int iteration = 0; iteration < 20; ++iteration) {
-    const OutputModelTerms t = terms_of(p, l);
-    for (int i = 0; i < points; ++i) {
-      J.row(i) = model_gradient(p, l, x[i]);
-      residual(i) = u(i) - t.output(x[i].w, x[i].dT);
-    }
-    const Eigen::MatrixXd wj = whiten * J;
-    const Eigen::VectorXd jn = wj.colwise().norm().transpose();
-    const Eigen::VectorXd step = (wj * jn.cwiseInverse().asDiagonal())
+    const Linearised lin = linearise(p, l, x, u, whiten);
+    // By QR of the column-scaled A, not the normal equations (their condition is squared).
+    const Eigen::VectorXd norms = lin.a.colwise().norm().transpose();
+    const Eigen::VectorXd step = (lin.a * norms.cwiseInverse().asDiagonal())
                                      .colPivHouseholderQr()
-                                     .solve(whiten * residual)
-                                     .cwiseQuotient(jn);
+                                     .solve(lin.whitened_residual)
+                                     .cwiseQuotient(norms);
     p += step;
     if ((step.cwiseAbs().array() <= 1e-13 * (p.cwiseAbs().array() + 1e-300)).all()) break;
   }
@@ -283,20 +307,10 @@ Eigen::VectorXd start_values(const Layout& l, const std::vector<Point>& x,
 double t_value(const Eigen::VectorXd& p, const Layout& l, const std::vector<Point>& x,
                const Eigen::VectorXd& u, int j, const Eigen::MatrixXd& whiten,
                bool noise_covariance) {
-  const int points = static_cast<int>(x.size());
-  Eigen::MatrixXd J(points, l.size());
-  Eigen::VectorXd residual(points);
-  const OutputModelTerms t = terms_of(p, l);
-  for (int i = 0; i < points; ++i) {
-    J.row(i) = model_gradient(p, l, x[i]);
-    residual(i) = u(i) - t.output(x[i].w, x[i].dT);
-  }
-  const Eigen::MatrixXd wj = whiten * J;
-  const Eigen::VectorXd jn = wj.colwise().norm().transpose();
-  const Eigen::MatrixXd js = wj * jn.cwiseInverse().asDiagonal();
-  const double chi2_per_dof = (whiten * residual).squaredNorm() / (points - l.size());
+  const Linearised lin = linearise(p, l, x, u, whiten);
+  const double chi2_per_dof = lin.chi2() / static_cast<double>(x.size() - l.size());
   const double scale = noise_covariance ? std::max(1.0, chi2_per_dof) : chi2_per_dof;
-  const double sd = std::sqrt((js.transpose() * js).inverse()(j, j) * scale) / jn(j);
+  const double sd = std::sqrt(lin.unscaled_covariance(j, j) * scale);
   return std::abs(p(j)) / sd;
 }
 
@@ -607,9 +621,6 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
 
   // Gauss-Newton on the full model: first with every plateau alike, then with the plateau
   // means' covariance from the noise identified on the residual record.
-  const auto model_at = [&](const Eigen::VectorXd& q, int i) {
-    return terms_of(q, l).output(x[i].w, x[i].dT);
-  };
   gauss_newton(p, l, x, u, identity);
   c.noise_covariance = o.noise_covariance;
   Eigen::MatrixXd whiten = identity;  // W with W^T W = V^-1 (identity: ordinary least squares)
@@ -628,31 +639,22 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
       c.noise_covariance = false;
     }
   }
-  Eigen::MatrixXd J(points, parameters);
-  Eigen::VectorXd residual(points);
-  for (int i = 0; i < points; ++i) {
-    J.row(i) = model_gradient(p, l, x[i]);
-    residual(i) = u(i) - model_at(p, i);
-    c.plateaus[i].residual_lsb = residual(i);
-  }
+  const Linearised lin = linearise(p, l, x, u, whiten);
+  const Eigen::VectorXd& residual = lin.residual;
+  for (int i = 0; i < points; ++i) c.plateaus[i].residual_lsb = residual(i);
   c.dof = points - parameters;
   c.residual_rms_lsb = std::sqrt(residual.squaredNorm() / points);
-  const Eigen::MatrixXd wj = whiten * J;
-  const Eigen::VectorXd wr = whiten * residual;
-  const Eigen::VectorXd jn = wj.colwise().norm().transpose();
-  const Eigen::MatrixXd js = wj * jn.cwiseInverse().asDiagonal();
-  Eigen::MatrixXd covariance = jn.cwiseInverse().asDiagonal() * (js.transpose() * js).inverse() *
-                               jn.cwiseInverse().asDiagonal();
+  Eigen::MatrixXd covariance = lin.unscaled_covariance;
   // The residuals' spread against the covariance's: ordinary least squares takes the variance
   // from them; the noise model's covariance is widened when they say it is too narrow (never
   // narrowed).
-  const double chi2_per_dof = wr.squaredNorm() / c.dof;
+  const double chi2_per_dof = lin.chi2() / c.dof;
   c.dispersion = c.noise_covariance ? std::max(1.0, chi2_per_dof) : chi2_per_dof;
   if (plateau_cov.size() > 0) {
     // u0's error against the run's level (plateau_covariance()): its estimator's weights on
     // the plateau means (row u0 of (A^T A)^-1 A^T W, A = W J) less the samples' share of each
     // in the level; plus the stationary terms' part of the level.
-    const Eigen::RowVectorXd weights = covariance.row(l.u0()) * wj.transpose() * whiten;
+    const Eigen::RowVectorXd weights = covariance.row(l.u0()) * lin.a.transpose() * whiten;
     double used = 0.0;
     for (const auto& plateau : c.plateaus) used += static_cast<double>(plateau.samples);
     Eigen::VectorXd share(points);
