@@ -44,7 +44,7 @@ struct CalibrateCommand {
 
 report::ReportOptions report_options(const CalibrateCommand& c) {
   report::ReportOptions options;
-  options.language = report::language_from_string(c.language);
+  options.language = language_from_string(c.language);
   return options;
 }
 

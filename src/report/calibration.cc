@@ -7,7 +7,7 @@
 #include <span>
 
 #include "foglab/core/version.h"
-#include "foglab/report/language.h"
+#include "foglab/core/language.h"
 #include "report_internal.h"
 
 namespace foglab::report {

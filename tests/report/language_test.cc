@@ -2,7 +2,7 @@
 // placeholders, and a Russian report with no English left in it (issue 20): every word of
 // Latin letters in the page's text and its plots' text is a symbol, a standard's name or the
 // program's.
-#include "foglab/report/language.h"
+#include "foglab/core/language.h"
 
 #include <gtest/gtest.h>
 
@@ -34,7 +34,9 @@ TEST(Language, BothCataloguesHoldEveryTextWithTheSamePlaceholders) {
     const bool cyrillic =
         ru.find("\xD0") != std::string_view::npos || ru.find("\xD1") != std::string_view::npos;
     const bool needs_words = ru.size() > 12;
-    if (needs_words) EXPECT_TRUE(cyrillic) << "key " << k << ": " << ru;
+    if (needs_words) {
+      EXPECT_TRUE(cyrillic) << "key " << k << ": " << ru;
+    }
   }
   EXPECT_EQ(language_from_string("RU"), Language::ru);
   EXPECT_THROW(language_from_string("de"), UsageError);

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "foglab/model/calibration.h"
-#include "foglab/report/language.h"
+#include "foglab/core/language.h"
 #include "foglab/report/report.h"
 
 namespace foglab::report {

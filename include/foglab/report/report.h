@@ -45,7 +45,7 @@
 
 #include "foglab/core/units.h"
 #include "foglab/model/analysis.h"
-#include "foglab/report/language.h"
+#include "foglab/core/language.h"
 #include "foglab/report/plot.h"
 
 namespace foglab::report {

@@ -1,17 +1,21 @@
-// foglab — the reports' languages: every heading, label, unit and sentence a report prints
-// lives in one catalogue per language (src/report/catalogue_en.cc, catalogue_ru.cc), keyed by
-// Text; the report code only says which key, with fmt arguments for the numbers. The Russian
-// catalogue uses the lab manual's own terms (смещение нуля, масштабный коэффициент, ...) and
-// units (°/ч, °/с, °C; е.м.р. for the output's least significant bit, млн⁻¹ for ppm).
+// foglab — the languages foglab writes: every heading, label, unit and sentence a report
+// prints, and every note the analyses leave (model::AnalysisResult::notes and the like), lives
+// in one catalogue per language (src/core/catalogue_en.cc, catalogue_ru.cc), keyed by Text; the
+// code only says which key, with the numbers for its fmt placeholders. The Russian catalogue
+// uses the lab manual's own terms (смещение нуля, масштабный коэффициент, ...) and units (°/ч,
+// °/с, °C; е.м.р. for the output's least significant bit, млн⁻¹ for ppm).
 //
-// Reports converted so far: calibrate's (report/calibration.h). lab1, lab2 and analyze's
-// still print English only.
+// A note is a Message: its key and its values, written in a language when it is shown (the
+// JSON carries the English).
 #pragma once
 
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
-namespace foglab::report {
+namespace foglab {
 
 enum class Language { en, ru };
 
@@ -25,6 +29,7 @@ std::string_view html_lang(Language language);
 /// The catalogues' keys.
 enum class Text {
   // shared by the reports
+  verbatim,       ///< "{}": a sentence from outside foglab, as it is
   plots_skipped,  ///< "The plots were skipped: {reason}."
   plot_skipped,   ///< "This plot was skipped: {reason}"
   note,           ///< "Note: {text}"
@@ -94,6 +99,10 @@ enum class Text {
   cal_gyro_section,       ///< "Gyro {axis} ('{file}')"
   cal_gyro_plot,          ///< "gyro {axis}: {plot title}"
   cal_gyro_figure,        ///< "Gyro {axis}: {caption}"
+  // ---- lab 1's report ----
+  // ---- lab 2's report ----
+  // ---- analyze's report ----
+  // ---- the analyses' notes ----
   count_
 };
 
@@ -101,4 +110,41 @@ enum class Text {
 /// with fmt placeholders for its numbers.
 std::string_view text(Language language, Text key);
 
-}  // namespace foglab::report
+/// A sentence of the catalogue with the values of its placeholders, written in a language only
+/// when it is shown. A value that is a Text is that key's own text in the same language (a
+/// word or clause chosen by the code: "start" or "end").
+struct Message {
+  using Value = std::variant<long long, double, std::string, Text>;
+  Text key{};
+  std::vector<Value> values;
+
+  Message() = default;
+  template <class... Args>
+  explicit Message(Text k, Args&&... args) : key(k) {
+    values.reserve(sizeof...(args));
+    (values.push_back(value_of(std::forward<Args>(args))), ...);
+  }
+  /// A sentence that only exists in English (from a library foglab calls): shown as it is.
+  static Message verbatim(std::string sentence);
+
+  /// The sentence in `language`.
+  [[nodiscard]] std::string text(Language language = Language::en) const;
+
+  friend bool operator==(const Message&, const Message&) = default;
+
+ private:
+  template <class T>
+  static Value value_of(T&& v) {
+    using U = std::remove_cvref_t<T>;
+    if constexpr (std::is_same_v<U, Text>) return Value(v);
+    else if constexpr (std::is_same_v<U, bool>) return Value(static_cast<long long>(v));
+    else if constexpr (std::is_integral_v<U>) return Value(static_cast<long long>(v));
+    else if constexpr (std::is_floating_point_v<U>) return Value(static_cast<double>(v));
+    else return Value(std::string(std::forward<T>(v)));
+  }
+};
+
+/// The English text of each message, in order (what the JSON carries).
+std::vector<std::string> english(const std::vector<Message>& messages);
+
+}  // namespace foglab

@@ -1,13 +1,13 @@
-// foglab — the catalogues behind report/language.h: one per language, each a list of
+// foglab — the catalogues behind core/language.h: one per language, each a list of
 // (key, text) pairs; language.cc indexes them. Not installed.
 #pragma once
 
 #include <span>
 #include <string_view>
 
-#include "foglab/report/language.h"
+#include "foglab/core/language.h"
 
-namespace foglab::report::detail {
+namespace foglab::detail {
 
 struct CatalogueEntry {
   Text key;
@@ -17,4 +17,4 @@ struct CatalogueEntry {
 std::span<const CatalogueEntry> catalogue_en();
 std::span<const CatalogueEntry> catalogue_ru();
 
-}  // namespace foglab::report::detail
+}  // namespace foglab::detail

@@ -1,4 +1,4 @@
-#include "foglab/report/language.h"
+#include "foglab/core/language.h"
 
 #include <array>
 #include <cctype>
@@ -7,7 +7,10 @@
 #include "catalogue.h"
 #include "foglab/core/error.h"
 
-namespace foglab::report {
+#include <fmt/args.h>
+#include <fmt/format.h>
+
+namespace foglab {
 namespace {
 
 using Index = std::array<std::string_view, static_cast<std::size_t>(Text::count_)>;
@@ -41,4 +44,27 @@ std::string_view text(Language language, Text key) {
   return found.empty() ? en.at(static_cast<std::size_t>(key)) : found;
 }
 
-}  // namespace foglab::report
+Message Message::verbatim(std::string sentence) { return Message(Text::verbatim, std::move(sentence)); }
+
+std::string Message::text(Language language) const {
+  fmt::dynamic_format_arg_store<fmt::format_context> args;
+  for (const Value& v : values) {
+    if (const Text* key = std::get_if<Text>(&v)) {
+      args.push_back(std::string(foglab::text(language, *key)));
+    } else {
+      std::visit([&](const auto& x) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(x)>, Text>) args.push_back(x);
+      }, v);
+    }
+  }
+  return fmt::vformat(foglab::text(language, key), args);
+}
+
+std::vector<std::string> english(const std::vector<Message>& messages) {
+  std::vector<std::string> out;
+  out.reserve(messages.size());
+  for (const Message& m : messages) out.push_back(m.text());
+  return out;
+}
+
+}  // namespace foglab

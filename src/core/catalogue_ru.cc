@@ -1,14 +1,15 @@
-// foglab — the reports' Russian text (report/language.h), in the lab manual's terms and
+// foglab — the reports' Russian text (core/language.h), in the lab manual's terms and
 // symbols: смещение нуля (bias), масштабный коэффициент (scale factor), случайное блуждание
 // угла (angle random walk), ρ the white noise's intensity, q the Wiener process's;
 // е.м.р. (единица младшего разряда) the output's LSB, млн⁻¹ ppm.
 #include "catalogue.h"
 
-namespace foglab::report::detail {
+namespace foglab::detail {
 
 namespace {
 
 constexpr CatalogueEntry kEntries[] = {
+    {Text::verbatim, "{}"},
     {Text::plots_skipped, "Графики не построены: {}."},
     {Text::plot_skipped, "График не построен: {}"},
     {Text::note, "Примечание: {}"},
@@ -98,10 +99,14 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::cal_gyro_section, "Гироскоп {} ({})"},
     {Text::cal_gyro_plot, "гироскоп {}: {}"},
     {Text::cal_gyro_figure, "Гироскоп {}: {}"},
+    // ---- lab 1's report ----
+    // ---- lab 2's report ----
+    // ---- analyze's report ----
+    // ---- the analyses' notes ----
 };
 
 }  // namespace
 
 std::span<const CatalogueEntry> catalogue_ru() { return kEntries; }
 
-}  // namespace foglab::report::detail
+}  // namespace foglab::detail

@@ -1,11 +1,12 @@
-// foglab — the reports' English text (report/language.h).
+// foglab — the reports' English text (core/language.h).
 #include "catalogue.h"
 
-namespace foglab::report::detail {
+namespace foglab::detail {
 
 namespace {
 
 constexpr CatalogueEntry kEntries[] = {
+    {Text::verbatim, "{}"},
     {Text::plots_skipped, "The plots were skipped: {}."},
     {Text::plot_skipped, "This plot was skipped: {}"},
     {Text::note, "Note: {}"},
@@ -95,10 +96,14 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::cal_gyro_section, "Gyro {} ('{}')"},
     {Text::cal_gyro_plot, "gyro {}: {}"},
     {Text::cal_gyro_figure, "Gyro {}: {}"},
+    // ---- lab 1's report ----
+    // ---- lab 2's report ----
+    // ---- analyze's report ----
+    // ---- the analyses' notes ----
 };
 
 }  // namespace
 
 std::span<const CatalogueEntry> catalogue_en() { return kEntries; }
 
-}  // namespace foglab::report::detail
+}  // namespace foglab::detail
