@@ -15,6 +15,7 @@
 #include "foglab/model/calibration.h"
 #include "foglab/report/calibration.h"
 #include "foglab/sim/rate_table.h"
+#include "support/english_left.h"
 
 namespace foglab::report {
 namespace {
@@ -42,15 +43,6 @@ TEST(Language, BothCataloguesHoldEveryTextWithTheSamePlaceholders) {
   EXPECT_THROW(language_from_string("de"), UsageError);
 }
 
-// The text a reader sees: the page without its style sheet and markup, the SVGs' <text>.
-std::string visible_text(std::string page) {
-  page = std::regex_replace(page, std::regex("<style>[\\s\\S]*?</style>"), " ");
-  page = std::regex_replace(page, std::regex("<desc>[\\s\\S]*?</desc>"), " ");
-  page = std::regex_replace(page, std::regex("<title>[\\s\\S]*?</title>"), " ");
-  page = std::regex_replace(page, std::regex("<[^>]*>"), " ");
-  return page;
-}
-
 TEST(Language, ARussianCalibrationReportHasNoEnglishLeft) {
   sim::RateTableGyro g;
   g.scale_factor_temp_coefs = {-8e-5};
@@ -69,15 +61,8 @@ TEST(Language, ARussianCalibrationReportHasNoEnglishLeft) {
   // Latin words allowed: symbols of the model, the standard's and the program's names, the
   // file's, and gnuplot's own words (none when plots are drawn).
   const std::set<std::string> allowed = {"IEEE", "Std", "foglab", "sign", "sqrt", "stend", "csv"};
-  for (const std::string* text : {&rep.html, &rep.markdown}) {
-    const std::string visible = visible_text(*text);
-    const std::regex word("[A-Za-z]{3,}");
-    for (auto it = std::sregex_iterator(visible.begin(), visible.end(), word);
-         it != std::sregex_iterator(); ++it) {
-      EXPECT_TRUE(allowed.count(it->str()))
-          << "English left: '" << it->str() << "' in ..."
-          << visible.substr(std::max<std::ptrdiff_t>(0, it->position() - 60), 120);
-    }
+  for (const std::string* page : {&rep.html, &rep.markdown}) {
+    for (const std::string& left : test::english_left(*page, allowed)) ADD_FAILURE() << left;
   }
   EXPECT_NE(rep.html.find("<html lang=\"ru\">"), std::string::npos);
   EXPECT_NE(rep.html.find("смещение нуля"), std::string::npos);
