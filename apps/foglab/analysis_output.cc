@@ -53,7 +53,7 @@ nlohmann::json systematic_json(const model::AnalysisResult& r, const AnalysisJso
          {"degree_chosen", s.degree_chosen},
          {"criterion", numbers(s.criterion)},
          {"residual_rms_deg_h", number(s.residual_rms_deg_h)},
-         {"note", s.note}};
+         {"note", s.note.text()}};
   } else {
     j = {{"degree", 0},
          {"coefficients", nlohmann::json::array({number(in.record_mean_deg_h)})},
@@ -150,12 +150,12 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
           {"model", noise_model_json(f.model)},
           {"candidates_total", f.candidates.size()},
           {"candidates", candidates},
-          {"ramp_set_aside",
-           f.ramp_set_aside.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.ramp_set_aside)},
+          {"ramp_set_aside", f.ramp_set_aside.empty() ? nlohmann::json(nullptr)
+                                                      : nlohmann::json(f.ramp_set_aside.text())},
           {"first_taus_left_out", f.first_taus_left_out},
           {"first_taus_left_out_why", f.first_taus_left_out_why.empty()
                                           ? nlohmann::json(nullptr)
-                                          : nlohmann::json(f.first_taus_left_out_why)}};
+                                          : nlohmann::json(f.first_taus_left_out_why.text())}};
 }
 
 nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
@@ -250,8 +250,8 @@ nlohmann::json evidence_json(const model::RandomBiasEvidence& e, const model::No
           {"psd_low_frequency_slope", number(e.psd_low_frequency_slope)},
           {"gauss_markov_set_aside", fit.gauss_markov_set_aside.empty()
                                          ? nlohmann::json(nullptr)
-                                         : nlohmann::json(fit.gauss_markov_set_aside)},
-          {"summary", e.summary}};
+                                         : nlohmann::json(fit.gauss_markov_set_aside.text())},
+          {"summary", e.summary.text()}};
 }
 
 nlohmann::json units_json() {
@@ -354,7 +354,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
       {"psd", {{"N", optional_json(r.psd_readings.N)}, {"K", optional_json(r.psd_readings.K)}}}};
 
   std::vector<std::string> notes = in.notes;
-  notes.insert(notes.end(), r.notes.begin(), r.notes.end());
+  for (const Message& n : r.notes) notes.push_back(n.text());
 
   return {{"input", input},
           {"systematic", systematic_json(r, in)},

@@ -26,6 +26,7 @@ struct AnalyzeCommand {
   std::string csv_path;
   std::string report_path;
   std::string kalibr_path;
+  std::string language = "en";  ///< --lang: the report's and the summary's (one gyroscope only)
 };
 
 struct Temperature {

@@ -207,7 +207,7 @@ io::Series load_input(const InputOptions& options) {
   }
   progress(fmt::format("reading '{}'", options.path));
   io::Series series = io::read_series(options.path, read_options(options));
-  for (const std::string& text : series.notes) note(text);
+  for (const Message& m : series.notes) note(m.text());
   if (!series.gaps.empty()) {
     const std::int64_t missing = missing_samples(series.gaps);
     note(

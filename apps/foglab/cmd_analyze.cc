@@ -19,6 +19,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
+#include "foglab/core/language.h"
 #include "foglab/core/numeric.h"
 #include "foglab/core/output.h"
 #include "foglab/core/version.h"
@@ -133,7 +134,7 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   read.sample_rate_hz = series.sample_rate_hz;  // the rate's, already checked
   read.unit = RateUnit::deg_per_hour;           // identity: degC stay degC
   io::Series t = io::read_series(path, read);
-  for (const std::string& text : t.notes) note(text);
+  for (const Message& m : t.notes) note(m.text());
   if (t.values.size() != series.values.size()) {
     throw DataError(fmt::format(
         "'{}': the rate channel {} has {} samples but the temperature channel {} has {}; "
@@ -180,7 +181,7 @@ ChannelAnalysis analyse_series(const AnalyzeCommand& c, io::Series series,
   report_input.channel = series.channel;
   report_input.temperature_channel = temperature.channel;
   report_input.input_unit = c.input.units;
-  report_input.notes = notes;
+  for (const std::string& text : notes) report_input.notes.push_back(Message::verbatim(text));
   if (temperature.channel.empty()) report_input.record_mean_deg_h = record_mean_deg_h;
   if (preview) {
     report_input.preview = report::preview_record(series.values, temperature.values_c,
@@ -209,7 +210,14 @@ ChannelAnalysis analyse_series(const AnalyzeCommand& c, io::Series series,
 namespace {
 
 void run(const AnalyzeCommand& c) {
+  const Language language = language_from_string(c.language);
   if (const auto channels = imu_channels(c)) {
+    if (language != Language::en) {
+      throw UsageError(fmt::format(
+          "--lang {}: the IMU form of analyze (several channels, an accelerometer, a ROS bag) "
+          "writes English only; name one gyroscope channel with --channel",
+          c.language));
+    }
     run_imu_analysis(c, *channels);
     return;
   }
@@ -226,7 +234,8 @@ void run(const AnalyzeCommand& c) {
   std::string html, yaml;
   if (!c.report_path.empty()) {
     progress("drawing the report's plots");
-    const report::ReportOptions report_options;
+    report::ReportOptions report_options;
+    report_options.language = language;
     const report::Report rep = report::make_report(result, report_input, report_options);
     if (rep.plots_skipped) note(rep.plots_note);
     html = report::html_document(rep);
@@ -237,7 +246,7 @@ void run(const AnalyzeCommand& c) {
   if (!c.report_path.empty()) write_text_file(c.report_path, html);
   if (!c.kalibr_path.empty()) write_text_file(c.kalibr_path, yaml);
   if (c.json_path != "-" && c.csv_path != "-") {
-    std::cout << report::markdown_summary(result, report_input);
+    std::cout << report::markdown_summary(result, report_input, language);
   }
 }
 
@@ -277,6 +286,10 @@ std::function<void()> register_analyze(CLI::App& app) {
   cmd->add_option("--kalibr", c->kalibr_path,
                   "write Kalibr's imu.yaml for the gyroscope (noise density rad/s/sqrt(Hz), "
                   "random walk rad/s^2/sqrt(Hz))");
+  cmd->add_option("--lang", c->language,
+                  "the report's and the terminal summary's language: en, or ru (the lab manual's "
+                  "terms and units); one gyroscope channel only")
+      ->capture_default_str();
   return [c] { run(*c); };
 }
 

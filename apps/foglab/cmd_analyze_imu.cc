@@ -250,7 +250,7 @@ void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& n
     read.sample_rate_hz = c.input.sample_rate_hz;
     read.max_samples = c.input.max_samples ? *c.input.max_samples : default_max_samples();
     record = io::read_imu_bag(c.input.path, read);
-    for (const std::string& text : record->notes) note(text);
+    for (const Message& m : record->notes) note(m.text());
     note(bag_timing_note(*record));
     note("sensor_msgs/Imu carries no temperature: each axis's systematic part is its mean");
   } else if (!c.topic.empty()) {
@@ -300,7 +300,7 @@ void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& n
       progress(fmt::format("reading '{}' channel {}", c.input.path,
                            run.name.empty() ? "(default)" : run.name));
       series = io::read_series(c.input.path, read);
-      for (const std::string& text : series.notes) note(text);
+      for (const Message& m : series.notes) note(m.text());
       if (run.name.empty()) {
         run.name = series.channel;
         run.unit = channel_unit(spec, run.name, c.input.path, run.notes);
@@ -329,7 +329,7 @@ void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& n
     ri.temperature_channel = temperature.channel;
     ri.input_unit = std::string(to_string(run.unit));
     ri.sensor = run.sensor;
-    ri.notes = run.notes;
+    for (const std::string& text : run.notes) ri.notes.push_back(Message::verbatim(text));
     if (temperature.channel.empty()) ri.record_mean_deg_h = record_mean;
     if (!c.report_path.empty()) {
       ri.preview = report::preview_record(series.values, temperature.values_c,

@@ -116,7 +116,7 @@ nlohmann::json calibration_json(const model::Calibration& r) {
             {"noise_1s", number(r.budget.noise_1s_deg_h)}}},
           {"corrected_rate_equation", report::corrected_rate_equation(r)},
           {"plateaus", plateaus},
-          {"notes", r.notes}};
+          {"notes", english(r.notes)}};
 }
 
 nlohmann::json to_json(const CalibrateCommand& c, const model::Calibration& r) {
@@ -196,7 +196,7 @@ std::string to_table(const std::string& what, const model::Calibration& r) {
       r.budget.bias_deg_h, r.budget.scale_factor_deg_h, r.budget.nonlinearity_deg_h,
       r.budget.noise_1s_deg_h);
   out += "  corrected rate (eq. 11): " + report::corrected_rate_equation(r) + "\n";
-  for (const std::string& note : r.notes) out += "note: " + note + "\n";
+  for (const Message& note : r.notes) out += "note: " + note.text() + "\n";
   return out;
 }
 

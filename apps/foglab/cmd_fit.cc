@@ -45,7 +45,7 @@ nlohmann::json to_json(const FitCommand& c, const io::AllanTable& table, const m
           {"arw_deg_sqrt_h", number(r.arw_deg_sqrt_h)},
           {"accuracy_class", std::string(to_string(r.verdict.accuracy_class))},
           {"accuracy_class_decided_by", std::string(to_string(r.verdict.decided_by))},
-          {"notes", r.notes},
+          {"notes", english(r.notes)},
           {"foglab_version", std::string(version())}};
 }
 
@@ -71,7 +71,7 @@ std::string to_table(const FitCommand& c, const io::AllanTable& table, const mod
       "deg/sqrt(h); accuracy class {} (decided by {})\n",
       r.bias_instability_deg_h, r.bias_instability_tau_s, r.arw_deg_sqrt_h,
       to_string(r.verdict.accuracy_class), to_string(r.verdict.decided_by));
-  for (const std::string& note : r.notes) out += "note: " + note + "\n";
+  for (const Message& note : r.notes) out += "note: " + note.text() + "\n";
   return out;
 }
 

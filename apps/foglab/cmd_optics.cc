@@ -15,6 +15,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
+#include "foglab/core/language.h"
 #include "foglab/core/output.h"
 #include "foglab/core/units.h"
 #include "foglab/core/version.h"
@@ -407,9 +408,11 @@ struct Lab1Command {
   int variant = 1;
   std::string out = "lab1-report";
   bool no_plots = false;
+  std::string language = "en";
 };
 
 void run_lab1(const Lab1Command& c) {
+  const Language language = language_from_string(c.language);
   const sim::Coil coil = sim::lab1_coil(c.variant);
   OutputFolder folder("--out", c.out);  // a bad --out is said before the work
   progress(fmt::format("running lab 1 on Table 4 variant {}", c.variant));
@@ -418,7 +421,8 @@ void run_lab1(const Lab1Command& c) {
   progress("drawing the plots");
   report::ReportOptions ro;
   ro.plots = !c.no_plots;
-  const std::string title = fmt::format("foglab lab 1: variant {}", c.variant);
+  ro.language = language;
+  const std::string title = fmt::format(fmt::runtime(text(language, Text::lab1_title)), c.variant);
   const report::Lab1Report rep = report::make_lab1_report(result, title, options.loop, ro);
   if (rep.plots_skipped) note(rep.plots_note);
   const sim::CoilNumbers& n = result.numbers;
@@ -540,6 +544,9 @@ std::function<void()> register_lab1(CLI::App& app) {
   cmd->add_option("--out", c->out, "directory for report.html, report.md, sweeps.csv, lab1.json")
       ->capture_default_str();
   cmd->add_flag("--no-plots", c->no_plots, "write the report without plots (no gnuplot)");
+  cmd->add_option("--lang", c->language,
+                  "the report's language: en, or ru (the lab manual's terms and units)")
+      ->capture_default_str();
   return [c] { run_lab1(*c); };
 }
 

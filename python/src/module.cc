@@ -278,7 +278,7 @@ py::dict read_file(const std::string& path, const std::string& channel,
     d["sample_rate_hz"] = r.sample_rate_hz;
     d["start_time_s"] = r.start_time_s;
     d["gaps"] = gaps_list(r.gaps);
-    d["notes"] = r.notes;
+    d["notes"] = english(r.notes);
     static constexpr const char* kAxes[] = {"x", "y", "z"};
     for (std::size_t j = 0; j < 3; ++j) {
       d[py::str(std::string("gyro_") + kAxes[j] + "_rad_s")] =
@@ -305,7 +305,7 @@ py::dict read_file(const std::string& path, const std::string& channel,
   d["start_time_s"] = series.start_time_s;
   d["gaps"] = gaps_list(series.gaps);
   d["channels"] = series.available_channels;
-  d["notes"] = series.notes;
+  d["notes"] = english(series.notes);
   d["values"] = to_numpy(std::move(series.values));
   return d;
 }

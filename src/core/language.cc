@@ -47,17 +47,65 @@ std::string_view text(Language language, Text key) {
 Message Message::verbatim(std::string sentence) { return Message(Text::verbatim, std::move(sentence)); }
 
 std::string Message::text(Language language) const {
+  if (empty()) return {};
   fmt::dynamic_format_arg_store<fmt::format_context> args;
   for (const Value& v : values) {
-    if (const Text* key = std::get_if<Text>(&v)) {
-      args.push_back(std::string(foglab::text(language, *key)));
-    } else {
-      std::visit([&](const auto& x) {
-        if constexpr (!std::is_same_v<std::decay_t<decltype(x)>, Text>) args.push_back(x);
-      }, v);
+    std::visit(
+        [&](const auto& x) {
+          using V = std::decay_t<decltype(x)>;
+          if constexpr (std::is_same_v<V, Text>) {
+            args.push_back(std::string(foglab::text(language, x)));
+          } else if constexpr (std::is_same_v<V, Nested>) {
+            args.push_back(x.message->text(language));
+          } else if constexpr (std::is_same_v<V, NoiseTermSet>) {
+            args.push_back(terms_text(x, language));
+          } else if constexpr (std::is_same_v<V, List>) {
+            std::string joined;
+            for (const Message& m : *x.items)
+              joined += (joined.empty() ? "" : ", ") + m.text(language);
+            args.push_back(joined);
+          } else {
+            args.push_back(x);
+          }
+        },
+        v);
+  }
+  std::string sentence = fmt::vformat(foglab::text(language, key), args);
+  // fmt writes an infinite number as "inf", a missing one as "nan": English words in a
+  // Russian sentence. Each, as a word of its own, becomes the symbol.
+  if (language != Language::en) {
+    for (const auto& [word, symbol] : {std::pair{"inf", "∞"}, std::pair{"nan", "—"}}) {
+      const std::string_view w = word;
+      for (std::size_t at = sentence.find(w); at != std::string::npos;
+           at = sentence.find(w, at + 1)) {
+        const auto letter = [&](std::size_t i) {
+          return std::isalpha(static_cast<unsigned char>(sentence[i])) != 0;
+        };
+        if ((at > 0 && letter(at - 1)) ||
+            (at + w.size() < sentence.size() && letter(at + w.size())))
+          continue;
+        sentence.replace(at, w.size(), symbol);
+      }
     }
   }
-  return fmt::vformat(foglab::text(language, key), args);
+  return sentence;
+}
+
+std::string terms_text(NoiseTermSet terms, Language language) {
+  if (language == Language::en) return to_string(terms);
+  std::string symbols;
+  for (const NoiseTerm t : kNoiseTerms) {
+    if (!terms.contains(t)) continue;
+    const Text symbol = t == NoiseTerm::white          ? Text::an_sym_n
+                        : t == NoiseTerm::flicker      ? Text::an_sym_b
+                        : t == NoiseTerm::random_walk  ? Text::an_sym_k
+                        : t == NoiseTerm::ramp         ? Text::an_sym_r
+                        : t == NoiseTerm::quantisation ? Text::an_sym_q
+                                                       : Text::an_sym_gm;
+    if (!symbols.empty()) symbols += '+';
+    symbols += text(language, symbol);
+  }
+  return symbols.empty() ? std::string(text(language, Text::an_none)) : symbols;
 }
 
 std::vector<std::string> english(const std::vector<Message>& messages) {

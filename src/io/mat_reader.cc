@@ -527,10 +527,9 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
   series.channel = channel.name;
   if (is_integer_class(channel.class_type)) {
     const bool wide = channel.class_type == MAT_C_INT64 || channel.class_type == MAT_C_UINT64;
-    series.notes.push_back(
-        fmt::format("{}: variable '{}' is {}: its integers are converted to double{}",
-                    quoted_path(path), channel.name, describe(channel),
-                    wide ? " (those beyond 2^53 in magnitude are rounded)" : ""));
+    series.notes.emplace_back(Text::io_note_mat_integer, quoted_path(path), channel.name,
+                              describe(channel),
+                              wide ? Message(Text::io_note_mat_integer_wide) : Message());
   }
 
   // The rate first: the time vector is read and freed before the channel,

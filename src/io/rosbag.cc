@@ -632,10 +632,7 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
   record.frame_id = read.frame_id;
   record.timing.stamp_source = read.header_stamps ? "header.stamp" : "bag receive time";
   if (!read.header_stamps) {
-    record.notes.push_back(fmt::format(
-        "every header.stamp of topic '{}' is zero: the times are the bag's receive times, "
-        "which carry the recording host's delays",
-        read.topic));
+    record.notes.emplace_back(Text::io_note_zero_stamps, read.topic);
   }
   const std::size_t n = stamps_ns.size();
   if (n < 2) {
@@ -683,10 +680,9 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
     record.linear_acceleration_m_s2[j].resize(kept);
   }
   if (record.timing.duplicates_dropped > 0) {
-    record.notes.push_back(fmt::format(
-        "{} of the {} messages of topic '{}' dropped: each fell on the time slot of the message "
-        "before it, or earlier (a repeated or out-of-order {})",
-        record.timing.duplicates_dropped, n, read.topic, record.timing.stamp_source));
+    record.notes.emplace_back(Text::io_note_duplicates, record.timing.duplicates_dropped, n,
+                              read.topic,
+                              read.header_stamps ? Text::io_stamp_header : Text::io_stamp_receive);
   }
   if (kept < 2) {
     throw_data_error(

@@ -272,54 +272,38 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
   while (end < f.size() && f[end] <= 10.0 * f.front()) ++end;
   e.psd_low_frequency_slope = log_slope(std::span(f).first(end), std::span(s.psd.psd).first(end));
 
-  const std::string fits = fmt::format(
-      "criterion (-2 ln L + penalty x parameters): no random bias {:.1f}, Wiener {:.1f}, "
-      "Gauss-Markov {:.1f}",
-      e.criterion_none, e.criterion_wiener, e.criterion_gauss_markov);
+  const Message fits(Text::ev_criteria, e.criterion_none, e.criterion_wiener,
+                     e.criterion_gauss_markov);
   switch (n.random_bias_process) {
     case RandomBiasProcess::wiener:
-      e.summary = fmt::format(
-          "Wiener random bias: the Allan deviation rises at the long taus (end slope {:.2f}, "
-          "+0.5 expected) and {}; {}",
-          e.adev_end_slope,
-          n.gauss_markov_set_aside.empty()
-              ? "a random walk explains it best"
-              : "a random walk explains it (" + n.gauss_markov_set_aside + ")",
-          fits);
+      e.summary = Message(Text::ev_wiener, e.adev_end_slope,
+                          n.gauss_markov_set_aside.empty()
+                              ? Message(Text::ev_rw_best)
+                              : Message(Text::ev_rw_explains, n.gauss_markov_set_aside),
+                          fits);
       break;
     case RandomBiasProcess::gauss_markov:
-      e.summary = fmt::format(
-          "first-order Gauss-Markov random bias (Tc = {:.3g} s): the Allan deviation rises and "
-          "turns down again (end slope {:.2f}), the PSD flattens at low frequency (slope {:.2f}); "
-          "{}",
-          n.model.gm_tc, e.adev_end_slope, e.psd_low_frequency_slope, fits);
+      e.summary = Message(Text::ev_gauss_markov, n.model.gm_tc, e.adev_end_slope,
+                          e.psd_low_frequency_slope, fits);
       break;
     case RandomBiasProcess::none:
-      e.summary = fmt::format(
-          "no random bias visible in this record: neither a random walk nor a Gauss-Markov term "
-          "improves the fit enough (end slope {:.2f}); {}",
-          e.adev_end_slope, fits);
+      e.summary = Message(Text::ev_none, e.adev_end_slope, fits);
       break;
   }
   return e;
 }
 
 // What the analysis did with the gaps of a record of `samples` present samples.
-std::string gap_note(std::size_t samples, std::span<const Gap> gaps, double fs) {
+Message gap_note(std::size_t samples, std::span<const Gap> gaps, double fs) {
   const std::int64_t missing = missing_samples(gaps);
   const std::vector<Stretch> stretches =
       contiguous_stretches(static_cast<std::int64_t>(samples), gaps);
   std::int64_t longest = 0;
   for (const Stretch& s : stretches) longest = std::max(longest, s.size());
-  return fmt::format(
-      "{} gap(s) in the time axis, {} samples ({:.6g} s, {:.3g} % of the span) missing; the record "
-      "was analysed as its {} contiguous stretches (longest {:.6g} s): the Allan deviation pools "
-      "the terms inside each stretch and the PSD the Welch segments inside each stretch (terms "
-      "and segments spanning a gap are left out); nothing was interpolated",
-      gaps.size(), missing, static_cast<double>(missing) / fs,
-      100.0 * static_cast<double>(missing) /
-          static_cast<double>(missing + static_cast<std::int64_t>(samples)),
-      stretches.size(), static_cast<double>(longest) / fs);
+  return Message(Text::note_gaps, gaps.size(), missing, static_cast<double>(missing) / fs,
+                 100.0 * static_cast<double>(missing) /
+                     static_cast<double>(missing + static_cast<std::int64_t>(samples)),
+                 stretches.size(), static_cast<double>(longest) / fs);
 }
 
 }  // namespace
@@ -351,26 +335,19 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.spikes = find_spikes(rate_deg_h, options.spikes, lsb);
   r.steps = find_steps(rate_deg_h, options.steps, lsb);
   if (!r.steps.indices.empty()) {
-    std::string list;
+    std::vector<Message> list;
     for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
-      list += fmt::format("{}{:+.4g} deg/h at {:.6g} s", i ? ", " : "", r.steps.sizes_deg_h[i],
-                          elapsed_s(r.steps.indices[i], gaps, sample_rate_hz));
+      list.emplace_back(Text::note_step_item, r.steps.sizes_deg_h[i],
+                        elapsed_s(r.steps.indices[i], gaps, sample_rate_hz));
     }
-    r.notes.push_back(fmt::format(
-        "{} bias step(s): {} (each beyond {:g} robust spreads of the difference of the window "
-        "means on either side); {}",
-        r.steps.indices.size(), list, options.steps.threshold,
-        r.steps.removed ? "the record was levelled (each size subtracted from the samples after "
-                          "it) before the analysis"
-                        : "they were left in (not levelled)"));
+    r.notes.emplace_back(Text::note_steps, r.steps.indices.size(), std::move(list),
+                         options.steps.threshold,
+                         r.steps.removed ? Text::note_steps_levelled : Text::note_steps_kept);
   }
   if (r.spikes.count > 0) {
-    r.notes.push_back(fmt::format(
-        "{} spike(s): isolated samples departing from the mean of their neighbours by more than "
-        "{:.4g} deg/h ({:g} robust standard deviations); {}",
-        r.spikes.count, r.spikes.threshold_deg_h, options.spikes.threshold,
-        r.spikes.removed ? "each was replaced by the mean of its neighbours before the analysis"
-                         : "they were left in (not removed)"));
+    r.notes.emplace_back(Text::note_spikes, r.spikes.count, r.spikes.threshold_deg_h,
+                         options.spikes.threshold,
+                         r.spikes.removed ? Text::note_spikes_replaced : Text::note_spikes_kept);
   }
   // The output word's rounding, when noise-like (a step of at most two
   // sample-to-sample spreads, output_quantisation.h), is white noise of a
@@ -398,8 +375,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       s = statistics(rate_deg_h, sample_rate_hz, with_known, gaps, &*record, fit->degree);
     }
   } else {
-    r.notes.push_back(
-        "no temperature: the systematic part is the mean rate only (removed by the statistics)");
+    r.notes.emplace_back(Text::note_no_temperature);
     s = statistics(rate_deg_h, sample_rate_hz, with_known, gaps, nullptr, 0);
   }
   if (fit) {
@@ -427,18 +403,11 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   }
   if (const OutputQuantisation& q = r.output_quantisation; q.detected) {
     const double n = s.noise.model.N;
-    r.notes.push_back(fmt::format(
-        "the output is quantised in steps of {:.6g} deg/h ({} distinct values in the first {} "
-        "samples); rounding adds white noise of level {:.4g} deg/h/sqrt(Hz), {:.3g} % of N^2, "
-        "{}",
-        q.lsb_deg_h, q.distinct_values, q.samples_examined, q.white_level_deg_h_sqrt_hz,
+    r.notes.emplace_back(
+        Text::note_quantised, q.lsb_deg_h, q.distinct_values, q.samples_examined,
+        q.white_level_deg_h_sqrt_hz,
         n > 0 ? 100.0 * std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : kNaN,
-        q.noise_like
-            ? "which the fit takes as known: N is the sensor's own white level"
-            : "which the fitted N includes: the step is more than twice the samples' "
-              "sample-to-sample spread, so the rounding is not noise-like and the short-tau "
-              "statistics are distorted (N, B and the class then describe the output word, not "
-              "the sensor; spikes must depart by four steps, and steps be at least one)"));
+        q.noise_like ? Text::note_quantised_known : Text::note_quantised_distorting);
   }
   r.evidence = evidence_of(s);
   r.psd = std::move(s.psd);
@@ -452,28 +421,25 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.bias_instability_tau_s = r.adev_readings.bias_instability_tau_s;
   r.bias_instability_at_edge = r.adev_readings.minimum_at_edge;
   if (r.bias_instability_at_edge) {
-    r.notes.push_back(
-        fmt::format("the Allan deviation is lowest at the {} of its tau range ({:.4g} s): the bias "
-                    "instability may be lower than reported",
-                    r.bias_instability_tau_s == r.allan.tau_s.back() ? "end" : "start",
-                    r.bias_instability_tau_s));
+    r.notes.emplace_back(
+        Text::note_minimum_at_edge,
+        r.bias_instability_tau_s == r.allan.tau_s.back() ? Text::word_end : Text::word_start,
+        r.bias_instability_tau_s);
   }
   r.arw_deg_sqrt_h = arw_deg_sqrt_h(r.noise.model.N);
   if (r.noise.status == FitStatus::degenerate) {
-    r.notes.push_back("noise-model fit: " + r.noise.message +
-                      "; there is no ARW, and the class verdict takes the worst ARW class");
+    r.notes.emplace_back(Text::note_fit_degenerate, r.noise.outcome);
     r.arw_deg_sqrt_h = kNaN;
   } else if (r.noise.N.status != TermStatus::resolved) {
-    r.notes.push_back(
-        "no white rate noise resolved: the ARW for the class verdict is its upper bound");
+    r.notes.emplace_back(Text::note_no_white);
     if (std::isfinite(r.noise.N.upper_95)) r.arw_deg_sqrt_h = arw_deg_sqrt_h(r.noise.N.upper_95);
   }
-  if (!r.noise.ramp_set_aside.empty())
-    r.notes.push_back("noise-model fit: " + r.noise.ramp_set_aside);
-  if (!r.noise.first_taus_left_out_why.empty())
-    r.notes.push_back("noise-model fit: " + r.noise.first_taus_left_out_why);
+  if (!r.noise.ramp_set_aside.empty()) r.notes.emplace_back(Text::note_fit, r.noise.ramp_set_aside);
+  if (!r.noise.first_taus_left_out_why.empty()) {
+    r.notes.emplace_back(Text::note_fit, r.noise.first_taus_left_out_why);
+  }
   if (r.noise.status == FitStatus::iteration_limit) {
-    r.notes.push_back("noise-model fit: " + r.noise.message);
+    r.notes.emplace_back(Text::note_fit, r.noise.outcome);
   }
   r.verdict = classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h);
   return r;

@@ -125,7 +125,7 @@ CalibrationPlateau plateau_over(const CalibrationRecord& r, const CalibrationOpt
 // out as with a commanded rate (the output settles with the table, the temperature after it).
 std::vector<CalibrationPlateau> plateaus_from_output(const CalibrationRecord& r,
                                                      const CalibrationOptions& o,
-                                                     std::vector<std::string>& notes) {
+                                                     std::vector<Message>& notes) {
   constexpr double kStepThreshold = 8.0;
   const auto n = static_cast<std::int64_t>(r.output_lsb.size());
   const auto block = std::max<std::int64_t>(1, std::llround(r.sample_rate_hz));
@@ -170,21 +170,15 @@ std::vector<CalibrationPlateau> plateaus_from_output(const CalibrationRecord& r,
     b = e;
   }
   if (left_out > 0) {
-    notes.push_back(fmt::format(
-        "{} level stretches of the output left out: shorter than two 1 s blocks, or than the "
-        "settle time ({} s) plus {} samples",
-        left_out, o.settle_s, kMinPlateauSamples));
+    notes.emplace_back(Text::cal_note_stretches_left_out, left_out, o.settle_s, kMinPlateauSamples);
   }
-  notes.push_back(fmt::format(
-      "plateaus found from the output: {} where it stays level (1 s means stepping less than "
-      "{:.3g} LSB), each plateau's rate the rate column's mean over it",
-      plateaus.size(), threshold));
+  notes.emplace_back(Text::cal_note_plateaus_from_output, plateaus.size(), threshold);
   return plateaus;
 }
 
 std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
                                               const CalibrationOptions& o,
-                                              std::vector<std::string>& notes) {
+                                              std::vector<Message>& notes) {
   if (o.plateaus == PlateauSource::output) return plateaus_from_output(r, o, notes);
   const auto n = static_cast<std::int64_t>(r.output_lsb.size());
   const auto settle = static_cast<std::int64_t>(std::ceil(o.settle_s * r.sample_rate_hz));
@@ -200,10 +194,8 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
       // A few by name; a commanded rate that changes every sample (a measured rate, not a
       // command) would otherwise make a note a sample.
       if (++left_out <= kNamedShortPlateaus) {
-        notes.push_back(fmt::format(
-            "the plateau at {} deg/s from sample {} ({} samples) is left out: shorter than the "
-            "settle time ({} s) plus {} samples",
-            r.rate_command_deg_s[start], start + 1, i - start, o.settle_s, kMinPlateauSamples));
+        notes.emplace_back(Text::cal_note_plateau_left_out, r.rate_command_deg_s[start], start + 1,
+                           i - start, o.settle_s, kMinPlateauSamples);
       }
     } else {
       plateaus.push_back(plateau_over(r, o, first, i));
@@ -211,10 +203,7 @@ std::vector<CalibrationPlateau> find_plateaus(const CalibrationRecord& r,
     start = i;
   }
   if (left_out > kNamedShortPlateaus) {
-    notes.push_back(
-        fmt::format("{} more plateaus left out, {} in all: is the rate column the "
-                    "commanded rate? (a measured rate: find the plateaus from the output)",
-                    left_out - kNamedShortPlateaus, left_out));
+    notes.emplace_back(Text::cal_note_more_left_out, left_out - kNamedShortPlateaus, left_out);
   }
   return plateaus;
 }
@@ -347,7 +336,7 @@ std::optional<PlateauCovariance> plateau_covariance(const CalibrationRecord& r,
                                                     const OutputModelTerms& fitted,
                                                     double rate_unit_lsb_per_deg_s,
                                                     double reference_c,
-                                                    std::vector<std::string>& notes) {
+                                                    std::vector<Message>& notes) {
   const double deg_h_per_lsb = 3600.0 / rate_unit_lsb_per_deg_s;
   std::vector<double> residual_deg_h;
   for (const CalibrationPlateau& plateau : plateaus) {
@@ -364,17 +353,11 @@ std::optional<PlateauCovariance> plateau_covariance(const CalibrationRecord& r,
                                             stats::AllanOptions{});
     fit = fit_noise_model(allan);
   } catch (const std::exception& e) {  // UsageError or DataError: too short for the statistic
-    notes.push_back(fmt::format(
-        "the plateaus are weighted alike: no noise model could be fitted to the residual "
-        "record ({})",
-        e.what()));
+    notes.emplace_back(Text::cal_note_alike_no_fit, Message::verbatim(e.what()));
     return std::nullopt;
   }
   if (fit.status == FitStatus::degenerate) {
-    notes.push_back(fmt::format(
-        "the plateaus are weighted alike: no noise model could be fitted to the residual "
-        "record ({})",
-        fit.message));
+    notes.emplace_back(Text::cal_note_alike_no_fit, fit.outcome);
     return std::nullopt;
   }
 
@@ -452,9 +435,7 @@ std::optional<PlateauCovariance> plateau_covariance(const CalibrationRecord& r,
     v.cov_lsb2 = std::move(cov);
     return v;
   }
-  notes.push_back(
-      "the plateaus are weighted alike: the noise model's covariance of the plateau means is "
-      "not positive definite");
+  notes.emplace_back(Text::cal_note_alike_not_pd);
   return std::nullopt;
 }
 
@@ -523,7 +504,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     throw DataError(fmt::format(
         "calibrate: every plateau is shorter than the settle time ({} s) plus {} samples: "
         "nothing to fit{}",
-        o.settle_s, kMinPlateauSamples, c.notes.empty() ? "" : " (" + c.notes.back() + ")"));
+        o.settle_s, kMinPlateauSamples, c.notes.empty() ? "" : " (" + c.notes.back().text() + ")"));
   }
   c.temperatures_c = distinct_temperatures(c.plateaus);
   std::vector<double> rates;
@@ -554,7 +535,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   }
   l.asymmetry = o.asymmetry && positive && negative;
   if (o.asymmetry && !l.asymmetry) {
-    c.notes.push_back("no asymmetry fitted: the run has rates of one sign only");
+    c.notes.emplace_back(Text::cal_note_no_asymmetry);
   }
   // At one temperature the rates must outnumber the rate terms (S, a_k, A) and the bias.
   const int distinct_rates = static_cast<int>(rates.size());
@@ -573,10 +554,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   if (o.nonlinearity_degree >= 0) {
     l.q = std::min(o.nonlinearity_degree, rate_limit);
     if (l.q < o.nonlinearity_degree) {
-      c.notes.push_back(
-          fmt::format("nonlinearity fitted to degree {} only: the run has {} "
-                      "distinct rates",
-                      l.q, distinct_rates));
+      c.notes.emplace_back(Text::cal_note_degree_limited, l.q, distinct_rates);
     }
   } else {
     // Chosen from the data: from the highest degree the run allows (at most
@@ -593,7 +571,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     if (o.noise_covariance && l.q > 0) {
       Eigen::VectorXd highest = start_values(l, x, u);
       gauss_newton(highest, l, x, u, identity);
-      std::vector<std::string> unused_notes;  // the final fit's pass says them
+      std::vector<Message> unused_notes;  // the final fit's pass says them
       if (const auto v = plateau_covariance(r, c.plateaus, terms_of(highest, l), rate_unit(highest),
                                             o.reference_c, unused_notes)) {
         choice_whiten = v->whiten;

@@ -28,21 +28,12 @@ void set_status(const detail::SubsetFit& chosen, std::span<const detail::SubsetF
   const auto limited = std::count_if(fits.begin(), fits.end(), [](const detail::SubsetFit& f) {
     return f.status == FitStatus::iteration_limit;
   });
-  const std::string others =
-      limited == 0
-          ? "every candidate converged"
-          : fmt::format("{} of {} candidates stopped at the iteration limit", limited, fits.size());
-  if (chosen.status == FitStatus::converged) {
-    r.message = fmt::format(
-        "converged: the chosen model {} in {} iteration(s) (relative change below {:g}); {}",
-        to_string(chosen.terms), chosen.iterations, options.tolerance, others);
-  } else {
-    r.message = fmt::format(
-        "iteration limit: the chosen model {} stopped after {} iterations without its fitted "
-        "Allan variances settling to a relative change of {:g}; {}; its estimates are those of "
-        "the last iteration",
-        to_string(chosen.terms), chosen.iterations, options.tolerance, others);
-  }
+  const Message others = limited == 0 ? Message(Text::fit_others_converged)
+                                      : Message(Text::fit_others_limited, limited, fits.size());
+  r.outcome = Message(
+      chosen.status == FitStatus::converged ? Text::fit_converged : Text::fit_iteration_limit,
+      chosen.terms, chosen.iterations, options.tolerance, others);
+  r.message = r.outcome.text();
 }
 
 // A fit that could not be done: no candidate was feasible. Every parameter
@@ -50,10 +41,8 @@ void set_status(const detail::SubsetFit& chosen, std::span<const detail::SubsetF
 NoiseFitResult degenerate(const detail::Points& p) {
   NoiseFitResult r;
   r.status = FitStatus::degenerate;
-  r.message = fmt::format(
-      "degenerate: no candidate model could be fitted to the {} Allan-variance points (no subset "
-      "of terms has positive coefficients)",
-      p.y.size());
+  r.outcome = Message(Text::fit_degenerate, p.y.size());
+  r.message = r.outcome.text();
   r.points = static_cast<int>(p.y.size());
   r.deviance = kNaN;
   r.dispersion = kNaN;
@@ -182,10 +171,9 @@ NoiseFitResult conclude(const detail::Points& p, const std::vector<detail::Subse
 // from a random walk (a Gauss-Markov process far from its Tc is one) and
 // the Wiener candidate goes to the front of `fits`; returns why (empty:
 // the chosen model stands).
-std::string set_aside_unresolved_gauss_markov(const detail::Points& p,
-                                              std::vector<detail::SubsetFit>& fits,
-                                              const NoiseFitResult& r,
-                                              const NoiseFitOptions& options) {
+Message set_aside_unresolved_gauss_markov(const detail::Points& p,
+                                          std::vector<detail::SubsetFit>& fits,
+                                          const NoiseFitResult& r, const NoiseFitOptions& options) {
   constexpr double kHumpOverTc = 1.89;
   if (r.random_bias_process != RandomBiasProcess::gauss_markov ||
       kHumpOverTc * r.gm_tc.ci95_high <= p.tau.back()) {
@@ -198,14 +186,9 @@ std::string set_aside_unresolved_gauss_markov(const detail::Points& p,
   const double gm_criterion = detail::candidate(fits.front(), options.penalty).criterion;
   const double wiener_criterion = detail::candidate(*wiener, options.penalty).criterion;
   if (wiener_criterion - gm_criterion > 2.0 * options.penalty) return {};
-  std::string why = fmt::format(
-      "the Gauss-Markov model {} fitted better (criterion {:.1f} against {:.1f}, less than two "
-      "parameters' worth), but its Tc of {:.4g} s has the 95 % interval [{:.4g}, {:.4g}] s, which "
-      "does not close below the longest tau / {} = {:.4g} s: the record does not show the process "
-      "turning away from a random walk, so the Wiener model {} is taken",
-      to_string(fits.front().terms), gm_criterion, wiener_criterion, r.gm_tc.value,
-      r.gm_tc.ci95_low, r.gm_tc.ci95_high, kHumpOverTc, p.tau.back() / kHumpOverTc,
-      to_string(wiener->terms));
+  Message why(Text::fit_gm_set_aside, fits.front().terms, gm_criterion, wiener_criterion,
+              r.gm_tc.value, r.gm_tc.ci95_low, r.gm_tc.ci95_high, kHumpOverTc,
+              p.tau.back() / kHumpOverTc, wiener->terms);
   std::rotate(fits.begin(), wiener, wiener + 1);
   return why;
 }
@@ -217,8 +200,8 @@ std::string set_aside_unresolved_gauss_markov(const detail::Points& p,
 // rise at the last taus is not a ramp in this record (a random walk's
 // excursion ends a record steeper than it runs through it): every
 // candidate with R is left out of `fits`; returns why (empty: it stands).
-std::string set_aside_unsupported_ramp(std::vector<detail::SubsetFit>& fits,
-                                       const NoiseFitResult& r, const NoiseFitOptions& options) {
+Message set_aside_unsupported_ramp(std::vector<detail::SubsetFit>& fits, const NoiseFitResult& r,
+                                   const NoiseFitOptions& options) {
   constexpr double kSigmas = 3.0;
   const double slope = options.record_slope_deg_h_s, span = options.record_span_s;
   if (!r.terms.contains(NoiseTerm::ramp) || r.R.status != TermStatus::resolved ||
@@ -235,13 +218,8 @@ std::string set_aside_unsupported_ramp(std::vector<detail::SubsetFit>& fits,
   });
   if (kept == 0) return {};
   std::erase_if(fits, [](const detail::SubsetFit& f) { return f.terms.contains(NoiseTerm::ramp); });
-  return fmt::format(
-      "the model {} had a rate ramp R = {:.4g} deg/h/s [{:.4g}, {:.4g}], but the record's "
-      "least-squares slope over its {:.6g} s is {:.4g} deg/h/s, and the model's other terms "
-      "({}) allow {:.4g} deg/h/s at most (3 standard deviations of the slope beyond it): the "
-      "rise at the last taus is not a ramp in this record, so the models with R are left out",
-      to_string(r.terms), r.model.R, r.R.ci95_low, r.R.ci95_high, span, slope,
-      to_string(r.terms.without(NoiseTerm::ramp)), supported);
+  return Message(Text::fit_ramp_set_aside, r.terms, r.model.R, r.R.ci95_low, r.R.ci95_high, span,
+                 slope, r.terms.without(NoiseTerm::ramp), supported);
 }
 
 // The chosen model's dispersion: its deviance over its degrees of freedom
@@ -379,38 +357,34 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   // 3-6. The evidence and the intervals; then the ramp and the
   // Gauss-Markov rules.
   NoiseFitResult r = conclude(p, fits, bandwidth, known_white, lines, options);
-  std::string trimmed_why;
+  Message trimmed_why;
   if (left_out.count > 0) {
-    trimmed_why = fmt::format(
-        "the first {} tau(s) ({:.6g} s to {:.6g} s) were left out: no modelled output filter "
-        "(first-order, moving average, Butterworth) followed them (the fit's dispersion was "
-        "above 4 with them, and leaving them out lowered it by more than 30 %), so the terms rest "
-        "on the taus from {:.6g} s; N's interval spans the fits with one and two more left out",
-        left_out.count, left_out.first_tau_s, left_out.last_tau_s, p.tau.front());
+    trimmed_why = Message(Text::fit_first_taus_left_out, left_out.count, left_out.first_tau_s,
+                          left_out.last_tau_s, p.tau.front());
   }
   auto mark = [&](NoiseFitResult& result) {
     result.first_taus_left_out = left_out.count;
     result.first_taus_left_out_why = trimmed_why;
-    if (left_out.count > 0) result.message += "; " + trimmed_why;
+    if (left_out.count > 0) result.message += "; " + trimmed_why.text();
     if (next_n && result.N.status == TermStatus::resolved) {
       result.N.ci95_low = std::min(result.N.ci95_low, next_n->first);
       result.N.ci95_high = std::max(result.N.ci95_high, next_n->second);
     }
   };
   mark(r);
-  const std::string ramp = set_aside_unsupported_ramp(fits, r, options);
+  const Message ramp = set_aside_unsupported_ramp(fits, r, options);
   if (!ramp.empty()) {
     r = conclude(p, fits, bandwidth, known_white, lines, options);
     mark(r);
     r.ramp_set_aside = ramp;
-    r.message += "; " + ramp;
+    r.message += "; " + ramp.text();
   }
-  if (std::string why = set_aside_unresolved_gauss_markov(p, fits, r, options); !why.empty()) {
+  if (Message why = set_aside_unresolved_gauss_markov(p, fits, r, options); !why.empty()) {
     r = conclude(p, fits, bandwidth, known_white, lines, options);
     mark(r);
     r.ramp_set_aside = ramp;
     r.gauss_markov_set_aside = why;
-    r.message += (ramp.empty() ? "; " : "; " + ramp + "; ") + why;
+    r.message += (ramp.empty() ? "; " : "; " + ramp.text() + "; ") + why.text();
   }
   return r;
 }

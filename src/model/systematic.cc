@@ -469,14 +469,12 @@ SystematicFit fit_of(const Sums& s, const SystematicOptions& options) {
     fit.degree = 0;
     fit.constant_fallback = true;
     fit.lab_constant_meaningful = false;
-    fit.note = fmt::format(
-        "the temperature moves by only {:.3g} degC (block means; below {:.3g} degC), too little "
-        "to see a temperature dependence: the systematic part is a constant, the mean rate{}",
-        fit.temperature_span_c, options.min_span_c,
-        options.degree > 0 ? fmt::format(" (degree {} was asked for)", options.degree) : "");
+    fit.note =
+        Message(Text::temp_too_flat, fit.temperature_span_c, options.min_span_c,
+                options.degree > 0 ? Message(Text::temp_degree_asked, options.degree) : Message());
   } else if (options.degree >= 0) {
     fit.degree = options.degree;
-    fit.note = fmt::format("polynomial of degree {} in temperature, as asked", fit.degree);
+    fit.note = Message(Text::temp_as_asked, fit.degree);
   } else {
     fit.degree = options.max_degree;
     fit.degree_chosen = true;
@@ -511,15 +509,10 @@ SystematicFit choose_of(const SystematicFit& first, const Sums& s, const NoiseMo
         static_cast<int>(std::min_element(fit.criterion.begin() + lowest, fit.criterion.end()) -
                          fit.criterion.begin());
     fit.degree = best;
-    fit.note = fmt::format(
-        "degree {} chosen by the criterion W_d + {:.3g} d (Wald statistic of the higher "
-        "coefficients with the noise model's covariance) = {:.4g} for d = 0..{}{}",
-        best, penalty, fmt::join(fit.criterion, ", "), top,
-        lowest > 0 ? fmt::format(", from degree {} up (the temperature moves by {:.3g} degC, so "
-                                 "its linear coefficient is measured and reported with its "
-                                 "standard error, significant or not)",
-                                 lowest, fit.temperature_span_c)
-                   : "");
+    fit.note = Message(
+        Text::temp_chosen, best, penalty, fmt::format("{:.4g}", fmt::join(fit.criterion, ", ")),
+        top,
+        lowest > 0 ? Message(Text::temp_chosen_from, lowest, fit.temperature_span_c) : Message());
   }
   fit.coefficients = unscale(solve_scaled(mo, fit.degree), s.scale);
   fit.bias_deg_h = fit.coefficients[0];

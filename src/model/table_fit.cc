@@ -84,19 +84,12 @@ TableFit fit_allan_table(const TableColumns& table, const NoiseFitOptions& optio
     for (std::size_t k = 0; k < count; ++k) {
       r.edf[k] = white_fm_oadev_edf(n_phase, factor_at(table, k));
     }
-    r.notes.push_back(
-        "the table has no counts, edf or bounds: the fit assumed OADEV of a record 10 times the "
-        "longest tau (white-FM edf), so its parameters have no intervals and no upper bounds, "
-        "and which terms it resolved rests on that assumption");
+    r.notes.emplace_back(Text::table_note_no_edf);
   } else if (given < count) {
-    r.notes.push_back(
-        fmt::format("{} of {} taus have no edf, bounds or count and were left out of the fit",
-                    count - given, count));
+    r.notes.emplace_back(Text::table_note_some_no_edf, count - given, count);
   }
   if (r.edf_source == TableEdfSource::counts) {
-    r.notes.push_back(
-        "edf from the counts, taken as OADEV terms with SP 1065's white-FM formula (the table "
-        "does not say its noise types)");
+    r.notes.emplace_back(Text::table_note_edf_from_counts);
   }
   std::vector<double> tau, dev, edf;
   for (std::size_t k = 0; k < count; ++k) {

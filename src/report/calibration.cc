@@ -146,7 +146,7 @@ std::string calibration_markdown(const model::Calibration& c, std::string_view t
   m += "\n|---|---|---|---|\n|";
   for (const std::string& cell : budget_cells(c)) m += " " + cell + " |";
   m += "\n\n" + say(l, Text::cal_corrected_rate) + " `" + corrected_rate_equation(c, l) + "`\n";
-  for (const std::string& note : c.notes) m += "\n" + say(l, Text::note, note) + "\n";
+  for (const Message& note : c.notes) m += "\n" + say(l, Text::note, note.text(l)) + "\n";
   return m;
 }
 
@@ -173,8 +173,8 @@ std::string calibration_html(const model::Calibration& c, std::string_view title
   h += "</tr>\n</table>\n";
   h += "<p>" + html_escape(say(l, Text::cal_corrected_rate)) + " <code>" +
        html_escape(corrected_rate_equation(c, l)) + "</code></p>\n";
-  for (const std::string& note : c.notes) {
-    h += "<p class=\"warn\">" + html_escape(say(l, Text::note, note)) + "</p>\n";
+  for (const Message& note : c.notes) {
+    h += "<p class=\"warn\">" + html_escape(say(l, Text::note, note.text(l))) + "</p>\n";
   }
   h += "<details><summary>" + html_escape(say(l, Text::cal_plateaus)) + "</summary>\n<table>\n<tr>";
   for (const Text column : {Text::cal_col_rate, Text::cal_col_samples, Text::cal_col_mean,

@@ -235,7 +235,8 @@ std::string imu_markdown(std::span<const ImuAxis> axes, std::string_view title) 
   for (const ImuAxis& a : axes) {
     const model::AnalysisResult& r = *a.result;
     const std::string u = unit_of(a.sensor);
-    const ParameterText n = parameter_text(r.noise.N), k = parameter_text(r.noise.K);
+    const ParameterText n = parameter_text(r.noise.N, Language::en),
+                        k = parameter_text(r.noise.K, Language::en);
     const bool gyro = a.sensor == Sensor::gyroscope;
     const std::string walk =
         gyro ? fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h))
@@ -277,7 +278,8 @@ std::string imu_markdown(std::span<const ImuAxis> axes, std::string_view title) 
   for (const ImuAxis& a : axes) {
     if (a.result->notes.empty()) continue;
     md += fmt::format("\nNotes on {}:\n\n", a.channel);
-    for (const std::string& n : a.result->notes) md += "- " + in_sensor_units(n, a.sensor) + "\n";
+    for (const Message& n : a.result->notes)
+      md += "- " + in_sensor_units(n.text(), a.sensor) + "\n";
   }
   return md;
 }
@@ -333,7 +335,8 @@ std::string imu_html(std::span<const ImuAxis> axes, std::span<const Report> axis
   for (const ImuAxis& a : axes) {
     const model::AnalysisResult& r = *a.result;
     const bool gyro = a.sensor == Sensor::gyroscope;
-    const ParameterText n = parameter_text(r.noise.N), k = parameter_text(r.noise.K);
+    const ParameterText n = parameter_text(r.noise.N, Language::en),
+                        k = parameter_text(r.noise.K, Language::en);
     const std::string u = unit_of(a.sensor);
     h += "<tr>" + td(a.channel) + td(to_string(a.sensor)) + td(n.value) + td(n.interval) +
          td(u + "/sqrt(Hz)") +

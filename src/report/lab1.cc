@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
+#include "foglab/core/language.h"
 #include "foglab/core/units.h"
 #include "report_internal.h"
 
@@ -18,14 +20,15 @@ constexpr const char* kColours[] = {kGrey, kBlue, kOrange};  // none, square, si
 
 constexpr std::size_t kMaxPlotPoints = 1500;
 
-std::string modulation_title(sim::Modulation m) {
+/// The modulation's name as the report shows it (sim's names are for the CLI and the JSON).
+std::string modulation_title(sim::Modulation m, Language l) {
   switch (m) {
     case sim::Modulation::none:
-      return "no modulation";
+      return say(l, Text::lab1_modulation_none);
     case sim::Modulation::square:
-      return "square modulation";
+      return say(l, Text::lab1_modulation_square);
     case sim::Modulation::sine:
-      return "sine modulation";
+      return say(l, Text::lab1_modulation_sine);
   }
   return "";
 }
@@ -67,13 +70,11 @@ Series points(std::string title, std::vector<double> x, std::vector<double> y, c
 
 // ---- plots ----------------------------------------------------------------------------
 
-Plot intensity_plot(const sim::Lab1Result& r) {
+Plot intensity_plot(const sim::Lab1Result& r, Language l) {
   Plot p;
-  p.title =
-      "Intensity at the detector against the total phase (I vs fi), rate ramp over "
-      "+-Omega_pi/2";
-  p.x_label = "total phase phi_s + dphi_m [rad]";
-  p.y_label = "detector output [a.u.]";
+  p.title = say(l, Text::lab1_plot_intensity);
+  p.x_label = say(l, Text::lab1_axis_total_phase);
+  p.y_label = say(l, Text::lab1_axis_detector);
   double lo = 0.0, hi = 0.0, gamma = 0.5;
   for (const sim::Lab1OpenLoopRun& run : r.open_loop) {
     const auto& tr = run.ramp.trace;
@@ -89,28 +90,30 @@ Plot intensity_plot(const sim::Lab1Result& r) {
     x.push_back(phi);
     y.push_back(gamma * (1.0 + std::cos(phi)));
   }
-  Series curve = line("gamma (1 + cos phi)", x, y, kGrey, 2);
+  Series curve = line(say(l, Text::lab1_legend_cosine), x, y, kGrey, 2);
   curve.sets_range = false;
   p.series.push_back(std::move(curve));
   for (std::size_t k = 0; k < 3; ++k) {
     const auto& tr = r.open_loop[k].ramp.trace;
-    p.series.push_back(points(modulation_title(r.open_loop[k].modulation), thin(tr.total_phase_rad),
-                              thin(tr.detector), kColours[k], k == 0 ? 0.5 : 0.3));
+    p.series.push_back(points(modulation_title(r.open_loop[k].modulation, l),
+                              thin(tr.total_phase_rad), thin(tr.detector), kColours[k],
+                              k == 0 ? 0.5 : 0.3));
   }
   p.key = "bottom center";
   return p;
 }
 
-Plot output_plot(const sim::Lab1Result& r) {
+Plot output_plot(const sim::Lab1Result& r, Language l) {
   Plot p;
-  p.title = "Demodulated output against rate (S vs Om), open loop";
-  p.x_label = "input rate [deg/s]";
-  p.y_label = "output [a.u.] (no modulation: the detector's mean)";
+  p.title = say(l, Text::lab1_plot_output);
+  p.x_label = say(l, Text::lab1_axis_input_rate);
+  p.y_label = say(l, Text::lab1_axis_output_mean);
   for (std::size_t k = 0; k < 3; ++k) {
     const sim::Lab1OpenLoopRun& run = r.open_loop[k];
     const auto& ps = run.ramp.periods;
-    p.series.push_back(line(modulation_title(run.modulation) + ", time simulation",
-                            thin(ps.rate_rad_s, kDegPerRad), thin(ps.demodulated), kColours[k]));
+    p.series.push_back(
+        line(say(l, Text::lab1_legend_time_simulation, modulation_title(run.modulation, l)),
+             thin(ps.rate_rad_s, kDegPerRad), thin(ps.demodulated), kColours[k]));
     sim::OpticsOptions o;
     o.modulation = run.modulation;
     std::vector<double> x, y;
@@ -119,7 +122,7 @@ Plot output_plot(const sim::Lab1Result& r) {
       x.push_back(rate * kDegPerRad);
       y.push_back(sim::steady_state_output(r.coil, rate, o));
     }
-    Series a = line(k == 2 ? "analytic steady state" : "", x, y, kRed, 2);
+    Series a = line(k == 2 ? say(l, Text::lab1_legend_steady_state) : "", x, y, kRed, 2);
     a.line_width = 1.0;
     p.series.push_back(std::move(a));
   }
@@ -127,48 +130,49 @@ Plot output_plot(const sim::Lab1Result& r) {
   return p;
 }
 
-Plot trace_plot(const sim::OpticsResult& run, const std::string& title, const char* color) {
+Plot trace_plot(const sim::OpticsResult& run, const std::string& title, const char* color,
+                Language l) {
   Plot p;
   p.title = title;
-  p.x_label = "time [us]";
-  p.y_label = "detector output [a.u.]";
-  p.y2_label = "phase difference dphi_m [rad]";
+  p.x_label = say(l, Text::lab1_axis_time_us);
+  p.y_label = say(l, Text::lab1_axis_detector);
+  p.y2_label = say(l, Text::lab1_axis_modulation_phase);
   const auto& tr = run.trace;
   const std::vector<double> t_us = scaled(tr.time_s, 1e6);
-  Series det = line("detector", t_us, tr.detector, color);
+  Series det = line(say(l, Text::lab1_legend_detector), t_us, tr.detector, color);
   det.style = SeriesStyle::linespoints;
   det.point_size = 0.4;
   p.series.push_back(std::move(det));
   p.series.push_back(
-      line("modulation phase difference (right axis)", t_us, tr.modulation_rad, kGreen, 2, true));
+      line(say(l, Text::lab1_legend_modulation_phase), t_us, tr.modulation_rad, kGreen, 2, true));
   p.key = "bottom right";
   return p;
 }
 
-Plot ramp_time_plot(const sim::Lab1Result& r) {
+Plot ramp_time_plot(const sim::Lab1Result& r, Language l) {
   Plot p;
-  p.title = "Open loop over the rate ramp: output and rate against time";
-  p.x_label = "time [ms]";
-  p.y_label = "demodulated output, low-passed [a.u.]";
-  p.y2_label = "input rate [deg/s]";
+  p.title = say(l, Text::lab1_plot_ramp_time);
+  p.x_label = say(l, Text::lab1_axis_time_ms);
+  p.y_label = say(l, Text::lab1_axis_output_lowpassed);
+  p.y2_label = say(l, Text::lab1_axis_input_rate);
   for (std::size_t k = 1; k < 3; ++k) {
     const auto& ps = r.open_loop[k].ramp.periods;
-    p.series.push_back(line(modulation_title(r.open_loop[k].modulation), thin(ps.time_s, 1e3),
+    p.series.push_back(line(modulation_title(r.open_loop[k].modulation, l), thin(ps.time_s, 1e3),
                             thin(ps.output), kColours[k]));
   }
   const auto& ps = r.open_loop[1].ramp.periods;
-  p.series.push_back(line("input rate (right axis)", thin(ps.time_s, 1e3),
+  p.series.push_back(line(say(l, Text::lab1_legend_input_rate), thin(ps.time_s, 1e3),
                           thin(ps.rate_rad_s, kDegPerRad), kGreen, 2, true));
   p.key = "top left";
   return p;
 }
 
-Plot sweep_plot(const sim::Lab1Result& r) {
+Plot sweep_plot(const sim::Lab1Result& r, Language l) {
   Plot p;
-  p.title = "The lab's sweep: scale factor against rate";
-  p.x_label = "input rate [deg/s]";
-  p.y_label = "open-loop scale factor S/Omega [a.u. per deg/s]";
-  p.y2_label = "closed-loop scale factor [1]";
+  p.title = say(l, Text::lab1_plot_sweep);
+  p.x_label = say(l, Text::lab1_axis_input_rate);
+  p.y_label = say(l, Text::lab1_axis_open_scale_factor);
+  p.y2_label = say(l, Text::lab1_axis_closed_scale_factor);
   auto add = [&](const sim::SweepResult& s, const std::string& title, const char* color,
                  SeriesStyle style, bool y2, double unit) {
     Series series = line(title, scaled(s.rates_rad_s, kDegPerRad), scaled(s.scale_factors, unit),
@@ -178,12 +182,14 @@ Plot sweep_plot(const sim::Lab1Result& r) {
     p.series.push_back(std::move(series));
   };
   // Open-loop S per rad/s -> per deg/s: divide by kDegPerRad.
-  add(r.sweep_square_analytic, "square, analytic", kRed, SeriesStyle::lines, false,
+  add(r.sweep_square_analytic, say(l, Text::lab1_legend_square_analytic), kRed, SeriesStyle::lines,
+      false, 1.0 / kDegPerRad);
+  add(r.sweep_square, say(l, Text::lab1_legend_square_time), kBlue, SeriesStyle::points, false,
       1.0 / kDegPerRad);
-  add(r.sweep_square, "square, time simulation", kBlue, SeriesStyle::points, false,
+  add(r.sweep_sine, say(l, Text::lab1_legend_sine_time), kOrange, SeriesStyle::points, false,
       1.0 / kDegPerRad);
-  add(r.sweep_sine, "sine, time simulation", kOrange, SeriesStyle::points, false, 1.0 / kDegPerRad);
-  add(r.sweep_closed, "closed loop (right axis)", kGreen, SeriesStyle::linespoints, true, 1.0);
+  add(r.sweep_closed, say(l, Text::lab1_legend_closed_right), kGreen, SeriesStyle::linespoints,
+      true, 1.0);
   p.y2_range = AxisRange{0.0, 1.2};
   p.y_range =
       AxisRange{0.0, 1.2 *
@@ -197,24 +203,24 @@ Plot sweep_plot(const sim::Lab1Result& r) {
   return p;
 }
 
-Plot closed_ramp_plot(const sim::Lab1Result& r) {
+Plot closed_ramp_plot(const sim::Lab1Result& r, Language l) {
   Plot p;
-  p.title = "Rate ramp beyond Omega_pi/2: closed loop against open loop";
-  p.x_label = "input rate [deg/s]";
-  p.y_label = "closed-loop output [deg/s]";
-  p.y2_label = "open-loop output S [a.u.]";
+  p.title = say(l, Text::lab1_plot_closed_ramp);
+  p.x_label = say(l, Text::lab1_axis_input_rate);
+  p.y_label = say(l, Text::lab1_axis_closed_output);
+  p.y2_label = say(l, Text::lab1_axis_open_output);
   const auto& c = r.closed_ramp.periods;
   const auto& o = r.open_ramp.periods;
   const std::vector<double> x = thin(c.rate_rad_s, kDegPerRad);
-  Series ideal = line("output = input", x, x, kGrey, 2);
+  Series ideal = line(say(l, Text::lab1_legend_ideal), x, x, kGrey, 2);
   ideal.line_width = 1.0;
   p.series.push_back(std::move(ideal));
-  p.series.push_back(line("closed loop", x, thin(c.output, kDegPerRad), kGreen));
-  p.series.push_back(line("open loop, square (right axis)", thin(o.rate_rad_s, kDegPerRad),
-                          thin(o.demodulated), kBlue, 1, true));
+  p.series.push_back(line(say(l, Text::lab1_legend_closed), x, thin(c.output, kDegPerRad), kGreen));
+  p.series.push_back(line(say(l, Text::lab1_legend_open_square_right),
+                          thin(o.rate_rad_s, kDegPerRad), thin(o.demodulated), kBlue, 1, true));
   const double w = r.numbers.omega_pi2_deg_s;
   const double top = x.empty() ? w : x.back();
-  Series edge = line("+Omega_pi/2", {w, w}, {0.0, top}, kRed, 3);
+  Series edge = line(say(l, Text::lab1_legend_range_edge), {w, w}, {0.0, top}, kRed, 3);
   edge.sets_range = false;
   p.series.push_back(std::move(edge));
   // Room above the curves for the legend.
@@ -249,16 +255,19 @@ Block paragraph(std::string text) {
   return b;
 }
 
-Block sweep_table(const sim::SweepResult& s, const sim::SweepResult* analytic) {
+Block sweep_table(const sim::SweepResult& s, const sim::SweepResult* analytic, Language l) {
   Block b;
   b.kind = Block::Kind::table;
   if (s.closed_loop) {
-    b.rows.push_back({"rate [deg/s]", "output [deg/s]", "scale factor [1]"});
+    b.rows.push_back({say(l, Text::lab1_col_rate), say(l, Text::lab1_col_output_deg_s),
+                      say(l, Text::lab1_col_scale_factor_1)});
   } else if (analytic) {
-    b.rows.push_back({"rate [deg/s]", "S, time [a.u.]", "S, analytic [a.u.]",
-                      "SF, time [a.u. per deg/s]", "SF, analytic [a.u. per deg/s]"});
+    b.rows.push_back({say(l, Text::lab1_col_rate), say(l, Text::lab1_col_s_time),
+                      say(l, Text::lab1_col_s_analytic), say(l, Text::lab1_col_sf_time),
+                      say(l, Text::lab1_col_sf_analytic)});
   } else {
-    b.rows.push_back({"rate [deg/s]", "S [a.u.]", "SF [a.u. per deg/s]"});
+    b.rows.push_back(
+        {say(l, Text::lab1_col_rate), say(l, Text::lab1_col_s), say(l, Text::lab1_col_sf)});
   }
   for (std::size_t i = 0; i < s.rates_rad_s.size(); ++i) {
     const double rate_deg = s.rates_rad_s[i] * kDegPerRad;
@@ -296,52 +305,54 @@ Tracking ramp_tracking(const sim::Lab1Result& r, const sim::ClosedLoopOptions& l
   return t;
 }
 
-std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions& loop) {
+std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions& loop,
+                          Language l) {
   const sim::CoilNumbers& n = r.numbers;
   std::vector<Block> out;
-  out.push_back(heading("The coil (item 1.1)"));
+  out.push_back(heading(say(l, Text::lab1_coil)));
   Block coil;
   coil.kind = Block::Kind::table;
   coil.rows = {
-      {"quantity", "value", "unit"},
-      {"fibre length L", fmt::format("{:.6g}", r.coil.length_m), "m"},
-      {"coil radius R", fmt::format("{:.6g}", r.coil.radius_m), "m"},
-      {"wavelength lambda", fmt::format("{:.6g}", r.coil.wavelength_m * 1e9), "nm"},
-      {"group index n_g", fmt::format("{:.6g}", r.coil.group_index), "-"},
-      {"Sagnac scale factor K_s = 4 pi R L / (lambda c)", fmt::format("{:.6g}", n.scale_factor_s),
-       "s (rad per rad/s)"},
-      {"range Omega_pi/2 = (pi/2) / K_s", fmt::format("{:.6g}", n.omega_pi2_rad_s), "rad/s"},
-      {"range Omega_pi/2", fmt::format("{:.6g}", n.omega_pi2_deg_s), "deg/s"},
-      {"transit time tau0 = n_g L / c", fmt::format("{:.6g}", n.transit_time_s * 1e6), "us"},
-      {"modulation frequency f_m = 1/(2 tau0)",
-       fmt::format("{:.6g}", n.modulation_frequency_hz * 1e-3), "kHz"}};
+      {say(l, Text::lab1_quantity), say(l, Text::value), say(l, Text::unit)},
+      {say(l, Text::lab1_row_length), fmt::format("{:.6g}", r.coil.length_m),
+       say(l, Text::lab1_unit_m)},
+      {say(l, Text::lab1_row_radius), fmt::format("{:.6g}", r.coil.radius_m),
+       say(l, Text::lab1_unit_m)},
+      {say(l, Text::lab1_row_wavelength), fmt::format("{:.6g}", r.coil.wavelength_m * 1e9),
+       say(l, Text::lab1_unit_nm)},
+      {say(l, Text::lab1_row_group_index), fmt::format("{:.6g}", r.coil.group_index), "-"},
+      {say(l, Text::lab1_row_scale_factor), fmt::format("{:.6g}", n.scale_factor_s),
+       say(l, Text::lab1_unit_scale_factor)},
+      {say(l, Text::lab1_row_range), fmt::format("{:.6g}", n.omega_pi2_rad_s),
+       say(l, Text::lab1_unit_rad_s)},
+      {say(l, Text::lab1_row_range_deg), fmt::format("{:.6g}", n.omega_pi2_deg_s),
+       say(l, Text::lab1_unit_deg_s)},
+      {say(l, Text::lab1_row_transit_time), fmt::format("{:.6g}", n.transit_time_s * 1e6),
+       say(l, Text::lab1_unit_us)},
+      {say(l, Text::lab1_row_modulation_frequency),
+       fmt::format("{:.6g}", n.modulation_frequency_hz * 1e-3), say(l, Text::lab1_unit_khz)}};
   out.push_back(std::move(coil));
 
+  out.push_back(heading(say(l, Text::lab1_open_loop), {0, 1, 2, 3, 4}));
+  out.push_back(heading(say(l, Text::lab1_square_sweep)));
+  out.push_back(sweep_table(r.sweep_square, &r.sweep_square_analytic, l));
   out.push_back(
-      heading("Open loop: no, square and sine modulation (items 2.4-2.10)", {0, 1, 2, 3, 4}));
-  out.push_back(heading("Open loop, square modulation: the ten-rate sweep (items 3.1-3.6)"));
-  out.push_back(sweep_table(r.sweep_square, &r.sweep_square_analytic));
-  out.push_back(paragraph(fmt::format(
-      "Nonlinearity over +-Omega_pi/2: {:.3f} % (time simulation), {:.3f} % (analytic, "
-      "(sinc(pi/10) - sinc(pi/2)) / mean).",
-      r.sweep_square.nonlinearity_percent, r.sweep_square_analytic.nonlinearity_percent)));
+      paragraph(say(l, Text::lab1_square_nonlinearity, r.sweep_square.nonlinearity_percent,
+                    r.sweep_square_analytic.nonlinearity_percent)));
   if (r.range_30_rad_s) {
-    out.push_back(paragraph(fmt::format(
-        "Range with 30 % nonlinearity (bisection to 0.1 %): +-{:.5g} deg/s = {:.4f} Omega_pi/2 "
-        "(time simulation); analytic +-{:.5g} deg/s.",
-        *r.range_30_rad_s * kDegPerRad, *r.range_30_rad_s / n.omega_pi2_rad_s,
-        r.range_30_analytic_rad_s ? *r.range_30_analytic_rad_s * kDegPerRad : NAN)));
+    out.push_back(
+        paragraph(say(l, Text::lab1_range_30, *r.range_30_rad_s * kDegPerRad,
+                      *r.range_30_rad_s / n.omega_pi2_rad_s,
+                      r.range_30_analytic_rad_s ? *r.range_30_analytic_rad_s * kDegPerRad : NAN)));
   }
-  out.push_back(heading("Open loop, sine modulation (phi_m = 1.8 rad): the sweep"));
-  out.push_back(sweep_table(r.sweep_sine, nullptr));
-  out.push_back(paragraph(
-      fmt::format("Nonlinearity over +-Omega_pi/2: {:.3f} %.", r.sweep_sine.nonlinearity_percent)));
+  out.push_back(heading(say(l, Text::lab1_sine_sweep)));
+  out.push_back(sweep_table(r.sweep_sine, nullptr, l));
+  out.push_back(paragraph(say(l, Text::lab1_sine_nonlinearity, r.sweep_sine.nonlinearity_percent)));
+  out.push_back(heading(say(l, Text::lab1_closed_loop), {5, 6}));
+  out.push_back(sweep_table(r.sweep_closed, nullptr, l));
   out.push_back(
-      heading("Closed loop: the ramp and the ten-rate sweep (items 4.2, 5.1-5.4)", {5, 6}));
-  out.push_back(sweep_table(r.sweep_closed, nullptr));
-  out.push_back(paragraph(fmt::format("Nonlinearity over +-Omega_pi/2: {:.3g} ppm ({:.3g} %).",
-                                      r.sweep_closed.nonlinearity_percent * 1e4,
-                                      r.sweep_closed.nonlinearity_percent)));
+      paragraph(say(l, Text::lab1_closed_nonlinearity, r.sweep_closed.nonlinearity_percent * 1e4,
+                    r.sweep_closed.nonlinearity_percent)));
 
   const sim::Lab1OpenLoopRun& sq = r.open_loop[1];
   const sim::Lab1OpenLoopRun& si = r.open_loop[2];
@@ -349,53 +360,32 @@ std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions
   const double ramp_end_rad_s =
       r.closed_ramp.periods.rate_rad_s.empty() ? NAN : r.closed_ramp.periods.rate_rad_s.back();
   const double j1 = si.full_scale / sq.full_scale;
-  out.push_back(heading("Checks against theory", {7}));
+  out.push_back(heading(say(l, Text::lab1_checks), {7}));
   Block checks;
   checks.kind = Block::Kind::list;
   checks.items = {
-      fmt::format("Square modulation: the time simulation follows S = 2 gamma sin(phi_s) within "
-                  "{:.2g} % of full scale at the sweep rates (goal 0.1 %).",
-                  100.0 * sq.worst_deviation_of_full_scale),
-      fmt::format("Sine modulation: it follows S = 2 gamma J1(phi_m) sin(phi_s) within {:.2g} % of "
-                  "full scale; J1(1.8) = {:.4f}.",
-                  100.0 * si.worst_deviation_of_full_scale, j1),
-      fmt::format("Closed loop: {:.3g} ppm nonlinearity over +-Omega_pi/2; under the ramp to "
-                  "{:.4g} deg/s ({:.3g} Omega_pi/2) the output stays on the input with a lag of "
-                  "{:.3g} deg/s at the end (a type-1 loop's ramp lag, theory {:.3g} deg/s), where "
-                  "the open loop has folded.",
-                  r.sweep_closed.nonlinearity_percent * 1e4, ramp_end_rad_s * kDegPerRad,
-                  ramp_end_rad_s / n.omega_pi2_rad_s, t.lag_deg_s, t.theory_deg_s),
-      fmt::format("Square modulation at {:.3g} f_m: the phase difference is 0 in {:.1f} % of the "
-                  "samples (the transition spikes; theory {:.1f} %) and the signal falls to "
-                  "{:.4f} of the proper one (theory, with the gate: {:.4f}).",
-                  r.off_frequency.modulation_frequency_hz / n.modulation_frequency_hz,
-                  100.0 * r.off_frequency_spike_fraction,
-                  100.0 * (1.0 - 2.0 * r.off_frequency.modulation_frequency_hz * n.transit_time_s),
-                  r.off_frequency_signal_ratio, r.off_frequency_theory_ratio)};
+      say(l, Text::lab1_check_square, 100.0 * sq.worst_deviation_of_full_scale),
+      say(l, Text::lab1_check_sine, 100.0 * si.worst_deviation_of_full_scale, j1),
+      say(l, Text::lab1_check_closed, r.sweep_closed.nonlinearity_percent * 1e4,
+          ramp_end_rad_s * kDegPerRad, ramp_end_rad_s / n.omega_pi2_rad_s, t.lag_deg_s,
+          t.theory_deg_s),
+      say(l, Text::lab1_check_off_frequency,
+          r.off_frequency.modulation_frequency_hz / n.modulation_frequency_hz,
+          100.0 * r.off_frequency_spike_fraction,
+          100.0 * (1.0 - 2.0 * r.off_frequency.modulation_frequency_hz * n.transit_time_s),
+          r.off_frequency_signal_ratio, r.off_frequency_theory_ratio)};
   out.push_back(std::move(checks));
 
-  out.push_back(heading("Conclusions"));
+  out.push_back(heading(say(l, Text::lab1_conclusions)));
   Block conclusions;
   conclusions.kind = Block::Kind::list;
   conclusions.items = {
-      "Without modulation the detector gives gamma (1 + cos phi_s): flat at zero rate (no "
-      "sensitivity to small rates) and blind to the sign of the rate.",
-      fmt::format("Square modulation at f_m = {:.4g} kHz biases the interferometer to +-pi/2: the "
-                  "demodulated output 2 gamma sin(phi_s) is the steepest and odd in the rate; it "
-                  "needs exactly the proper frequency (off it: spikes and a loss of signal).",
-                  n.modulation_frequency_hz * 1e-3),
-      fmt::format("Sine modulation gives J1(phi_m) = {:.3f} of that at phi_m = 1.8 rad, with the "
-                  "same sine-shaped nonlinearity, and degrades gracefully off frequency.",
-                  j1),
-      fmt::format("Both open-loop outputs are sinusoidal in the rate: {:.1f} % nonlinearity over "
-                  "+-Omega_pi/2, 30 % reached at +-{:.4g} deg/s, and past Omega_pi/2 the output "
-                  "folds back, so the rate becomes ambiguous.",
-                  r.sweep_square.nonlinearity_percent,
-                  r.range_30_rad_s ? *r.range_30_rad_s * kDegPerRad : NAN),
-      fmt::format("The closed loop holds the interferometer at zero phase with the phase ramp and "
-                  "reads the rate from the feedback: linear ({:.2g} ppm) and not limited to "
-                  "Omega_pi/2.",
-                  r.sweep_closed.nonlinearity_percent * 1e4)};
+      say(l, Text::lab1_conclusion_none),
+      say(l, Text::lab1_conclusion_square, n.modulation_frequency_hz * 1e-3),
+      say(l, Text::lab1_conclusion_sine, j1),
+      say(l, Text::lab1_conclusion_open, r.sweep_square.nonlinearity_percent,
+          r.range_30_rad_s ? *r.range_30_rad_s * kDegPerRad : NAN),
+      say(l, Text::lab1_conclusion_closed, r.sweep_closed.nonlinearity_percent * 1e4)};
   out.push_back(std::move(conclusions));
   return out;
 }
@@ -432,14 +422,14 @@ std::string to_markdown(const std::vector<Block>& bs, std::string_view title) {
   return md;
 }
 
-std::string to_html(const std::vector<Block>& bs, const std::vector<Figure>& figures) {
+std::string to_html(const std::vector<Block>& bs, const std::vector<Figure>& figures, Language l) {
   std::string h;
   for (const Block& b : bs) {
     switch (b.kind) {
       case Block::Kind::heading:
         h += "<h2>" + html_escape(b.text) + "</h2>\n";
         for (const std::size_t i : b.figures) {
-          h += figure_html(figures.at(i));
+          h += figure_html(figures.at(i), l);
         }
         break;
       case Block::Kind::paragraph:
@@ -487,60 +477,57 @@ std::string sweep_csv(const sim::Lab1Result& r) {
 
 }  // namespace
 
-std::vector<Plot> lab1_plots(const sim::Lab1Result& r) {
+std::vector<Plot> lab1_plots(const sim::Lab1Result& r, Language l) {
   std::vector<Plot> plots;
-  plots.push_back(intensity_plot(r));
-  plots.push_back(output_plot(r));
-  plots.push_back(trace_plot(r.open_loop[1].window,
-                             "Square modulation at a constant rate: detector and phase difference",
-                             kBlue));
-  plots.push_back(trace_plot(r.open_loop[2].window,
-                             "Sine modulation at a constant rate: detector and phase difference",
-                             kOrange));
-  plots.push_back(ramp_time_plot(r));
-  plots.push_back(sweep_plot(r));
-  plots.push_back(closed_ramp_plot(r));
-  plots.push_back(trace_plot(
-      r.off_frequency,
-      fmt::format("Square modulation at {:.3g} f_m: transition spikes",
-                  r.off_frequency.modulation_frequency_hz / r.numbers.modulation_frequency_hz),
-      kPurple));
+  plots.push_back(intensity_plot(r, l));
+  plots.push_back(output_plot(r, l));
+  plots.push_back(
+      trace_plot(r.open_loop[1].window, say(l, Text::lab1_plot_trace_square), kBlue, l));
+  plots.push_back(
+      trace_plot(r.open_loop[2].window, say(l, Text::lab1_plot_trace_sine), kOrange, l));
+  plots.push_back(ramp_time_plot(r, l));
+  plots.push_back(sweep_plot(r, l));
+  plots.push_back(closed_ramp_plot(r, l));
+  plots.push_back(
+      trace_plot(r.off_frequency,
+                 say(l, Text::lab1_plot_off_frequency,
+                     r.off_frequency.modulation_frequency_hz / r.numbers.modulation_frequency_hz),
+                 kPurple, l));
   return plots;
 }
 
 Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
                             const sim::ClosedLoopOptions& loop, const ReportOptions& options) {
+  const Language l = options.language;
   Lab1Report rep;
-  const std::vector<Plot> plots = lab1_plots(r);
-  static const char* const kNames[][2] = {
-      {"intensity", "Intensity at the detector against the total phase (items 2.5, 2.7, 2.9)."},
-      {"output", "Demodulated output against the input rate, each modulation (items 2.7, 2.9)."},
-      {"trace_square", "Time traces, square modulation at 0.5 Omega_pi/2."},
-      {"trace_sine", "Time traces, sine modulation at 0.5 Omega_pi/2."},
-      {"ramp_time", "The open loop over the rate ramp against time."},
-      {"sweep", "Scale factors of the ten-rate sweeps (items 3.4, 5.3)."},
-      {"closed_ramp",
-       "The closed loop follows a ramp well beyond Omega_pi/2; the open loop "
-       "folds (item 4.2)."},
-      {"off_frequency", "Square modulation away from the proper frequency."},
+  const std::vector<Plot> plots = lab1_plots(r, l);
+  static constexpr std::pair<const char*, Text> kFigures[] = {
+      {"intensity", Text::lab1_fig_intensity},
+      {"output", Text::lab1_fig_output},
+      {"trace_square", Text::lab1_fig_trace_square},
+      {"trace_sine", Text::lab1_fig_trace_sine},
+      {"ramp_time", Text::lab1_fig_ramp_time},
+      {"sweep", Text::lab1_fig_sweep},
+      {"closed_ramp", Text::lab1_fig_closed_ramp},
+      {"off_frequency", Text::lab1_fig_off_frequency},
   };
   std::vector<FigureSpec> specs;
-  for (const auto& [name, caption] : kNames) specs.push_back({name, caption});
+  for (const auto& [name, caption] : kFigures) specs.push_back({name, say(l, caption)});
   RenderedFigures drawn = render_figures(plots, specs, options);
   rep.figures = std::move(drawn.figures);
   rep.plots_skipped = drawn.skipped;
   rep.plots_note = std::move(drawn.note);
 
-  const std::vector<Block> text = blocks(r, loop);
+  const std::vector<Block> text = blocks(r, loop, l);
   rep.markdown = to_markdown(text, title);
   if (rep.plots_skipped) rep.markdown += rep.plots_note + "\n";
   rep.sweep_csv = sweep_csv(r);
   Report page;
   page.title = std::string(title);
-  page.html_section = to_html(text, rep.figures);
+  page.html_section = to_html(text, rep.figures, l);
   const std::string preface =
       rep.plots_skipped ? "<p class=\"warn\">" + html_escape(rep.plots_note) + "</p>\n" : "";
-  rep.html = html_document(std::span<const Report>(&page, 1), title, preface);
+  rep.html = html_document(std::span<const Report>(&page, 1), title, preface, l);
   return rep;
 }
 

@@ -28,40 +28,40 @@ Lab2Cell number_cell(double v, int digits = 4) {
   return {v, kNaN, kNaN, std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : "-"};
 }
 
-Lab2Cell reading_cell(const std::optional<double>& v) {
-  if (!v) return {kNaN, kNaN, kNaN, "not visible"};
+Lab2Cell reading_cell(const std::optional<double>& v, Language l) {
+  if (!v) return {kNaN, kNaN, kNaN, say(l, Text::lab2_not_visible)};
   return number_cell(*v);
 }
 
 /// A fitted parameter: "v [lo, hi]" when resolved, "< bound" when left out.
-Lab2Cell estimate_cell(const model::ParameterEstimate& p) {
-  const ParameterText t = parameter_text(p);
+Lab2Cell estimate_cell(const model::ParameterEstimate& p, Language l) {
+  const ParameterText t = parameter_text(p, l);
   if (p.status == model::TermStatus::resolved) {
     return {p.value, p.ci95_low, p.ci95_high, t.value + " " + t.interval};
   }
   if (p.status == model::TermStatus::upper_bound) return {kNaN, 0.0, p.ci95_high, t.value};
-  return {kNaN, kNaN, kNaN, "absent"};
+  return {kNaN, kNaN, kNaN, say(l, Text::lab2_absent)};
 }
 
-Lab2Cell bias_instability_cell(const model::AnalysisResult& r) {
+Lab2Cell bias_instability_cell(const model::AnalysisResult& r, Language l) {
   const auto [lo, hi] = model::adev_interval_at(r.allan, r.bias_instability_tau_s);
   std::string text =
-      fmt::format("{} at {} s", g(r.bias_instability_deg_h), g(r.bias_instability_tau_s));
+      say(l, Text::lab2_bi_at, g(r.bias_instability_deg_h), g(r.bias_instability_tau_s));
   if (std::isfinite(lo) && std::isfinite(hi)) text += fmt::format(" [{}, {}]", g(lo), g(hi));
-  if (r.bias_instability_at_edge) text += " (range end)";
+  if (r.bias_instability_at_edge) text += say(l, Text::lab2_range_end);
   return {r.bias_instability_deg_h, lo, hi, text};
 }
 
-std::string process_name(RandomBiasProcess p) {
+std::string process_name(RandomBiasProcess p, Language l) {
   switch (p) {
     case RandomBiasProcess::wiener:
-      return "Wiener";
+      return say(l, Text::lab2_process_wiener);
     case RandomBiasProcess::gauss_markov:
-      return "Gauss-Markov";
+      return say(l, Text::lab2_process_gauss_markov);
     case RandomBiasProcess::none:
       break;
   }
-  return "not visible";
+  return say(l, Text::lab2_process_none);
 }
 
 // ---- rows --------------------------------------------------------------------------
@@ -69,16 +69,18 @@ std::string process_name(RandomBiasProcess p) {
 using CellOf = std::function<Lab2Cell(const Lab2Run&)>;
 using TruthOf = std::function<std::string(const Lab2Truth&)>;
 
-void add_row(Lab2Table& t, std::string quantity, std::string method, std::string unit,
-             const CellOf& cell, const TruthOf& truth) {
-  Lab2Row row{std::move(quantity), std::move(method), std::move(unit), {}, {}};
+void add_row(Lab2Table& t, Text quantity, Text method, Text unit, const CellOf& cell,
+             const TruthOf& truth) {
+  const Language l = t.language;
+  Lab2Row row{
+      say(l, quantity), say(l, method), unit == Text::verbatim ? "-" : say(l, unit), {}, {}};
   std::array<std::string, 2> truths;
   for (std::size_t k = 0; k < 2; ++k) {
     row.runs[k] = t.runs[k] ? cell(*t.runs[k]) : missing_cell();
     if (truth && t.runs[k] && t.runs[k]->truth) truths[k] = truth(*t.runs[k]->truth);
   }
   if (!truths[0].empty() && !truths[1].empty() && truths[0] != truths[1]) {
-    row.truth = truths[0] + " (constant) / " + truths[1] + " (ramp)";
+    row.truth = say(l, Text::lab2_truth_both, truths[0], truths[1]);
   } else {
     row.truth = truths[0].empty() ? truths[1] : truths[0];
   }
@@ -90,9 +92,19 @@ bool any_run(const Lab2Table& t, const std::function<bool(const Lab2Run&)>& test
                      [&](const Lab2Run* r) { return r != nullptr && test(*r); });
 }
 
+/// The accuracy class and which criterion decided it: "tactical (both criteria)".
+std::string class_cell_text(const ClassVerdict& v, Language l) {
+  const Text decided = v.decided_by == ClassCriterion::both  ? Text::lab2_both_criteria
+                       : v.decided_by == ClassCriterion::arw ? Text::lab2_by_arw
+                                                             : Text::lab2_by_bias_instability;
+  return say(l, Text::lab2_class_cell, class_name(v.accuracy_class, l), say(l, decided));
+}
+
 void build_rows(Lab2Table& t) {
-  const auto fit = [](model::ParameterEstimate model::NoiseFitResult::*p) -> CellOf {
-    return [p](const Lab2Run& r) { return estimate_cell(r.result.noise.*p); };
+  const Language l = t.language;
+  constexpr Text kNoUnit = Text::verbatim;  // shown as "-"
+  const auto fit = [l](model::ParameterEstimate model::NoiseFitResult::*p) -> CellOf {
+    return [p, l](const Lab2Run& r) { return estimate_cell(r.result.noise.*p, l); };
   };
   const auto truth_number = [](double Lab2Truth::*p) -> TruthOf {
     return [p](const Lab2Truth& tr) {
@@ -101,53 +113,54 @@ void build_rows(Lab2Table& t) {
   };
 
   add_row(
-      t, "systematic bias", "lab: constant term of polyfit(T, Y, 2)", "deg/h",
-      [](const Lab2Run& r) {
+      t, Text::lab2_q_systematic_bias, Text::lab2_m_lab_constant, Text::lab2_unit_deg_h,
+      [l](const Lab2Run& r) {
         if (!r.result.systematic) return missing_cell();
         const model::SystematicFit& s = *r.result.systematic;
         Lab2Cell c = number_cell(s.lab_constant_term_deg_h, 5);
-        if (!s.lab_constant_meaningful) c.text += " (not meaningful: T barely moves)";
+        if (!s.lab_constant_meaningful) c.text += say(l, Text::lab2_not_meaningful);
         return c;
       },
       truth_number(&Lab2Truth::lab_constant_term_deg_h));
   add_row(
-      t, "systematic bias", "fit: at the mean temperature", "deg/h",
-      [](const Lab2Run& r) {
+      t, Text::lab2_q_systematic_bias, Text::lab2_m_at_mean_temperature, Text::lab2_unit_deg_h,
+      [l](const Lab2Run& r) {
         if (!r.result.systematic) return missing_cell();
         const model::SystematicFit& s = *r.result.systematic;
         // No interval: the intercept's standard error counts only the
         // stationary noise (systematic.h), while flicker and a random walk
         // move the record's mean too; the comparison below uses the ADEV.
         Lab2Cell c = number_cell(s.bias_deg_h, 5);
-        c.text += fmt::format(" at {:.4g} degC", s.t_ref_c);
+        c.text += say(l, Text::lab2_at_temperature, s.t_ref_c);
         return c;
       },
       truth_number(&Lab2Truth::bias_at_t_ref_deg_h));
   add_row(
-      t, "temperature coefficient c1", "fit: polynomial in (T - mean)", "deg/h/degC",
-      [](const Lab2Run& r) {
+      t, Text::lab2_q_c1, Text::lab2_m_polynomial, Text::lab2_unit_deg_h_per_degc,
+      [l](const Lab2Run& r) {
         if (!r.result.systematic) return missing_cell();
         const model::SystematicFit& s = *r.result.systematic;
         if (s.coefficients.size() < 2) {
-          return Lab2Cell{kNaN, kNaN, kNaN,
-                          s.constant_fallback ? "- (T barely moves)" : "- (degree 0 chosen)"};
+          return Lab2Cell{
+              kNaN, kNaN, kNaN,
+              say(l, s.constant_fallback ? Text::lab2_t_barely_moves : Text::lab2_degree_0_chosen)};
         }
         const double se = s.standard_errors.size() > 1 ? s.standard_errors[1] : kNaN;
         Lab2Cell c = number_cell(s.coefficients[1]);
         if (std::isfinite(se)) {
           c.ci95_low = s.coefficients[1] - 1.96 * se;
           c.ci95_high = s.coefficients[1] + 1.96 * se;
-          c.text += fmt::format(" +- {}", g(1.96 * se));
+          c.text += say(l, Text::lab2_plus_minus, g(1.96 * se));
         }
         return c;
       },
       truth_number(&Lab2Truth::c1_deg_h_per_c));
   add_row(
-      t, "random bias process", "fit: model choice", "-",
-      [](const Lab2Run& r) {
-        return Lab2Cell{kNaN, kNaN, kNaN, process_name(r.result.noise.random_bias_process)};
+      t, Text::lab2_q_random_bias, Text::lab2_m_model_choice, kNoUnit,
+      [l](const Lab2Run& r) {
+        return Lab2Cell{kNaN, kNaN, kNaN, process_name(r.result.noise.random_bias_process, l)};
       },
-      [](const Lab2Truth& tr) { return process_name(tr.random_bias_process); });
+      [l](const Lab2Truth& tr) { return process_name(tr.random_bias_process, l); });
 
   const bool wiener = any_run(t, [](const Lab2Run& r) {
     return r.result.noise.random_bias_process == RandomBiasProcess::wiener ||
@@ -160,190 +173,192 @@ void build_rows(Lab2Table& t) {
   // The Wiener rows always: the lab asks for K "when present", and a reading
   // that finds no -2 slope is the answer that it is not.
   add_row(
-      t, "Wiener intensity K", "PSD: -2 slope at 1 Hz", "deg/h/sqrt(s)",
-      [](const Lab2Run& r) { return reading_cell(r.result.psd_readings.K); },
+      t, Text::lab2_q_k, Text::lab2_m_psd_k, Text::lab2_unit_deg_h_sqrt_s,
+      [l](const Lab2Run& r) { return reading_cell(r.result.psd_readings.K, l); },
       truth_number(&Lab2Truth::K));
   add_row(
-      t, "Wiener intensity K", "Allan: +1/2 line at 3 s", "deg/h/sqrt(s)",
-      [](const Lab2Run& r) { return reading_cell(r.result.adev_readings.K); },
+      t, Text::lab2_q_k, Text::lab2_m_allan_k, Text::lab2_unit_deg_h_sqrt_s,
+      [l](const Lab2Run& r) { return reading_cell(r.result.adev_readings.K, l); },
       truth_number(&Lab2Truth::K));
   if (wiener || !gauss_markov) {
-    add_row(t, "Wiener intensity K", "fit [95 %]", "deg/h/sqrt(s)", fit(&model::NoiseFitResult::K),
-            truth_number(&Lab2Truth::K));
+    add_row(t, Text::lab2_q_k, Text::lab2_m_fit, Text::lab2_unit_deg_h_sqrt_s,
+            fit(&model::NoiseFitResult::K), truth_number(&Lab2Truth::K));
   }
   if (gauss_markov) {
-    add_row(t, "Gauss-Markov sigma", "fit [95 %]", "deg/h", fit(&model::NoiseFitResult::gm_sigma),
-            truth_number(&Lab2Truth::gm_sigma));
-    add_row(t, "Gauss-Markov Tc", "fit [95 %]", "s", fit(&model::NoiseFitResult::gm_tc),
-            truth_number(&Lab2Truth::gm_tc));
+    add_row(t, Text::lab2_q_gm_sigma, Text::lab2_m_fit, Text::lab2_unit_deg_h,
+            fit(&model::NoiseFitResult::gm_sigma), truth_number(&Lab2Truth::gm_sigma));
+    add_row(t, Text::lab2_q_gm_tc, Text::lab2_m_fit, Text::lab2_unit_s,
+            fit(&model::NoiseFitResult::gm_tc), truth_number(&Lab2Truth::gm_tc));
   }
 
   add_row(
-      t, "white noise N", "PSD: flat level", "deg/h/sqrt(Hz)",
-      [](const Lab2Run& r) { return reading_cell(r.result.psd_readings.N); },
+      t, Text::lab2_q_n, Text::lab2_m_psd_n, Text::lab2_unit_deg_h_sqrt_hz,
+      [l](const Lab2Run& r) { return reading_cell(r.result.psd_readings.N, l); },
       truth_number(&Lab2Truth::N));
   add_row(
-      t, "white noise N", "Allan: -1/2 line at 1 s", "deg/h/sqrt(Hz)",
-      [](const Lab2Run& r) { return reading_cell(r.result.adev_readings.N); },
+      t, Text::lab2_q_n, Text::lab2_m_allan_n, Text::lab2_unit_deg_h_sqrt_hz,
+      [l](const Lab2Run& r) { return reading_cell(r.result.adev_readings.N, l); },
       truth_number(&Lab2Truth::N));
-  add_row(t, "white noise N", "fit [95 %]", "deg/h/sqrt(Hz)", fit(&model::NoiseFitResult::N),
-          truth_number(&Lab2Truth::N));
+  add_row(t, Text::lab2_q_n, Text::lab2_m_fit, Text::lab2_unit_deg_h_sqrt_hz,
+          fit(&model::NoiseFitResult::N), truth_number(&Lab2Truth::N));
   add_row(
-      t, "angle random walk", "fit: N/60", "deg/sqrt(h)",
+      t, Text::lab2_q_arw, Text::lab2_m_arw, Text::lab2_unit_deg_sqrt_h,
       [](const Lab2Run& r) { return number_cell(r.result.arw_deg_sqrt_h); },
       [](const Lab2Truth& tr) { return fmt::format("{:.4g}", arw_deg_sqrt_h(tr.N)); });
   add_row(
-      t, "bias instability", "Allan: minimum [95 %]", "deg/h",
-      [](const Lab2Run& r) { return bias_instability_cell(r.result); },
+      t, Text::lab2_q_bias_instability, Text::lab2_m_allan_minimum, Text::lab2_unit_deg_h,
+      [l](const Lab2Run& r) { return bias_instability_cell(r.result, l); },
       truth_number(&Lab2Truth::bias_instability_deg_h));
   add_row(
-      t, "accuracy class", "Table 1: worse of BI and ARW", "-",
-      [](const Lab2Run& r) {
-        const ClassVerdict& v = r.result.verdict;
-        return Lab2Cell{kNaN, kNaN, kNaN,
-                        fmt::format("{} ({})", to_string(v.accuracy_class),
-                                    v.decided_by == ClassCriterion::both
-                                        ? "both criteria"
-                                        : "by " + std::string(to_string(v.decided_by)))};
+      t, Text::lab2_q_class, Text::lab2_m_class, kNoUnit,
+      [l](const Lab2Run& r) {
+        return Lab2Cell{kNaN, kNaN, kNaN, class_cell_text(r.result.verdict, l)};
       },
-      [](const Lab2Truth& tr) { return std::string(to_string(tr.accuracy_class)); });
+      [l](const Lab2Truth& tr) { return class_name(tr.accuracy_class, l); });
 }
 
 // ---- the written comparison ----------------------------------------------------------
 
 /// "what: a -> b unit (+x %)" and the verdict on the 95 % intervals.
-std::string change_text(std::string_view what, std::string_view unit, const model::ValueChange& c) {
-  std::string text = fmt::format("{}: {} -> {} {} ({:+.1f} %)", what, g(c.before), g(c.after),
-                                 unit, 100.0 * c.relative);
+std::string change_text(std::string_view what, std::string_view unit, const model::ValueChange& c,
+                        Language l) {
+  const std::string text =
+      say(l, Text::lab2_change, what, g(c.before), g(c.after), unit, 100.0 * c.relative);
   switch (c.verdict) {
     case model::Change::changed:
-      return text + "; the 95 % intervals do not overlap: the ramp changed it.";
+      return text + say(l, Text::lab2_change_changed);
     case model::Change::unchanged:
-      return text + "; the 95 % intervals overlap: unchanged within the uncertainty.";
+      return text + say(l, Text::lab2_change_unchanged);
     case model::Change::not_comparable:
       break;
   }
-  return text + ".";
+  return text + say(l, Text::lab2_change_not_comparable);
 }
 
-std::vector<std::string> systematic_sentences(const model::SystematicChange& s) {
-  std::string text =
-      fmt::format("Temperature: the ramp run spans {:.3g} degC (the constant run {:.2g} degC). ",
-                  s.span_after_c, s.span_before_c);
+std::vector<std::string> systematic_sentences(const model::SystematicChange& s, Language l) {
+  std::string text = say(l, Text::lab2_temperature_spans, s.span_after_c, s.span_before_c);
   if (s.degree_after > 0) {
-    text += fmt::format(
-        "Its fitted polynomial (degree {}) moves the bias by {} deg/h over the ramp, {:.3g} "
-        "times the bias instability: without removing it the ramp would pass for a large "
-        "drift and spoil the Allan deviation at long tau.",
-        s.degree_after, g(s.polynomial_range_deg_h), s.range_over_bias_instability);
+    text += say(l, Text::lab2_polynomial_moves, s.degree_after, g(s.polynomial_range_deg_h),
+                s.range_over_bias_instability);
   } else {
-    text += "The criterion found no temperature dependence in it.";
+    text += say(l, Text::lab2_no_dependence);
   }
-  std::string bias = fmt::format(
-      "Systematic bias at the mean temperature: {:.5g} deg/h (constant, {:.4g} degC) and "
-      "{:.5g} deg/h (ramp, {:.4g} degC), {} deg/h apart",
-      s.bias_before_deg_h, s.t_ref_before_c, s.bias_after_deg_h, s.t_ref_after_c,
-      g(s.bias_difference_deg_h));
+  std::string bias = say(l, Text::lab2_bias_at_mean, s.bias_before_deg_h, s.t_ref_before_c,
+                         s.bias_after_deg_h, s.t_ref_after_c, g(s.bias_difference_deg_h));
   if (std::isfinite(s.wander_deg_h) && s.wander_deg_h > 0.0) {
-    bias += fmt::format(
-        " — {:.2g} times the fitted model's Allan deviation at half the record ({} deg/h), "
-        "the scale on which the random bias moves the mean of a record",
-        s.bias_difference_deg_h / s.wander_deg_h, g(s.wander_deg_h));
+    bias +=
+        say(l, Text::lab2_bias_wander, s.bias_difference_deg_h / s.wander_deg_h, g(s.wander_deg_h));
   }
-  bias += s.lab_constant_meaningful_before
-              ? "."
-              : "; at constant temperature the lab's polyfit constant term is not meaningful "
-                "(the temperature moves too little to extrapolate to 0 degC), so compare these.";
+  bias += say(l, s.lab_constant_meaningful_before ? Text::lab2_bias_end
+                                                  : Text::lab2_bias_constant_not_meaningful);
   return {text, bias};
 }
 
-std::string random_bias_sentence(const model::RunComparison& c) {
+std::string random_bias_sentence(const model::RunComparison& c, Language l) {
   if (c.process_before != c.process_after) {
-    return fmt::format(
-        "Random bias: {} at constant temperature, {} during the ramp. Over a record this short "
-        "a Gauss-Markov process whose correlation time is near the end of the tau range looks "
-        "like a random walk, so the two answers can differ on the same gyro; the run whose "
-        "Allan deviation reaches further past the hump decides.",
-        process_name(c.process_before), process_name(c.process_after));
+    return say(l, Text::lab2_random_bias_differs, process_name(c.process_before, l),
+               process_name(c.process_after, l));
   }
-  std::string text = "Random bias: " + process_name(c.process_before) + " in both runs";
-  if (c.random_walk) return text + "; " + change_text("K", "deg/h/sqrt(s)", *c.random_walk);
+  const std::string text = say(l, Text::lab2_random_bias_both, process_name(c.process_before, l));
+  if (c.random_walk) {
+    return text + "; " +
+           change_text(say(l, Text::lab2_k_symbol), say(l, Text::lab2_unit_deg_h_sqrt_s),
+                       *c.random_walk, l);
+  }
   if (c.gm_sigma && c.gm_tc) {
-    return text + fmt::format("; sigma {} -> {} deg/h, Tc {} -> {} s.", g(c.gm_sigma->before),
-                              g(c.gm_sigma->after), g(c.gm_tc->before), g(c.gm_tc->after));
+    return text + say(l, Text::lab2_random_bias_gm, g(c.gm_sigma->before), g(c.gm_sigma->after),
+                      g(c.gm_tc->before), g(c.gm_tc->after));
   }
   return text + ".";
 }
 
 std::string changed_item_name(model::ChangedItem item, const model::RunComparison& c,
-                              std::size_t& term) {
+                              std::size_t& term, Language l) {
   switch (item) {
     case model::ChangedItem::white_noise:
-      return "the white noise";
+      return say(l, Text::lab2_changed_white);
     case model::ChangedItem::bias_instability:
-      return "the bias instability";
+      return say(l, Text::lab2_changed_bias_instability);
     case model::ChangedItem::random_walk:
-      return "the Wiener intensity";
+      return say(l, Text::lab2_changed_k);
     case model::ChangedItem::random_bias_process:
-      return "the random-bias answer";
+      return say(l, Text::lab2_changed_process);
     case model::ChangedItem::term:
-      return fmt::format("the {} term", to_string(c.terms_in_one_run[term++].term));
+      return say(l, Text::lab2_changed_term, to_string(c.terms_in_one_run[term++].term));
   }
   return "";
 }
 
-std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ramp) {
+/// The unit of a term's parameter (core/noise_model.h's kNoiseParameters).
+std::string term_unit(NoiseTerm term, Language l) {
+  switch (term) {
+    case NoiseTerm::white:
+      return say(l, Text::lab2_unit_deg_h_sqrt_hz);
+    case NoiseTerm::random_walk:
+      return say(l, Text::lab2_unit_deg_h_sqrt_s);
+    case NoiseTerm::ramp:
+      return say(l, Text::an_unit_deg_h_s);
+    case NoiseTerm::quantisation:
+      return say(l, Text::an_unit_deg_h_times_s);
+    case NoiseTerm::flicker:
+    case NoiseTerm::gauss_markov:
+      break;
+  }
+  return say(l, Text::lab2_unit_deg_h);
+}
+
+std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ramp, Language l) {
   const model::RunComparison c = model::compare_runs(constant.result, ramp.result);
   std::vector<std::string> out;
-  if (c.systematic) out = systematic_sentences(*c.systematic);
-  if (c.white_noise) out.push_back(change_text("White noise N (fit)", "deg/h/sqrt(Hz)", *c.white_noise));
-  out.push_back(change_text("Bias instability (ADEV minimum)", "deg/h", c.bias_instability));
-  out.push_back(random_bias_sentence(c));
+  if (c.systematic) out = systematic_sentences(*c.systematic, l);
+  if (c.white_noise) {
+    out.push_back(change_text(say(l, Text::lab2_white_noise_fit),
+                              say(l, Text::lab2_unit_deg_h_sqrt_hz), *c.white_noise, l));
+  }
+  out.push_back(change_text(say(l, Text::lab2_bias_instability_minimum),
+                            say(l, Text::lab2_unit_deg_h), c.bias_instability, l));
+  out.push_back(random_bias_sentence(c, l));
   for (const model::TermInOneRun& t : c.terms_in_one_run) {
-    const NoiseParameter& p = kNoiseParameters[static_cast<std::size_t>(t.term)];
-    out.push_back(fmt::format(
-        "Only the {} run resolves {} = {} {}{}.", t.in_after ? "ramp" : "constant", p.name,
-        g(t.value), p.unit,
-        t.term == NoiseTerm::ramp && t.in_after
-            ? ": a drift the temperature polynomial does not remove (e.g. a dependence on the "
-              "rate of temperature change)"
-            : ""));
+    out.push_back(say(l, Text::lab2_only_one_run,
+                      say(l, t.in_after ? Text::lab2_run_ramp : Text::lab2_run_constant),
+                      terms_text({t.term}, l), g(t.value), term_unit(t.term, l),
+                      t.term == NoiseTerm::ramp && t.in_after ? say(l, Text::lab2_ramp_not_removed)
+                                                              : std::string()));
   }
   out.push_back(c.class_before == c.class_after
-                    ? fmt::format("Accuracy class: {} in both runs.", to_string(c.class_before))
-                    : fmt::format("Accuracy class: {} at constant temperature, {} during "
-                                  "the ramp.",
-                                  to_string(c.class_before), to_string(c.class_after)));
+                    ? say(l, Text::lab2_class_same, class_name(c.class_before, l))
+                    : say(l, Text::lab2_class_differs, class_name(c.class_before, l),
+                          class_name(c.class_after, l)));
   if (c.changed.empty()) {
-    out.push_back(
-        "Conclusion: once the temperature polynomial is removed, the ramp leaves the random "
-        "error unchanged within the 95 % intervals: the temperature acts on the systematic "
-        "part, which the polynomial captures.");
+    out.push_back(say(l, Text::lab2_conclusion_unchanged));
   } else {
     std::string list;
     std::size_t term = 0;
     for (std::size_t k = 0; k < c.changed.size(); ++k) {
-      list += (k == 0 ? "" : k + 1 == c.changed.size() ? " and " : ", ") +
-              changed_item_name(c.changed[k], c, term);
+      list += (k == 0                      ? std::string()
+               : k + 1 == c.changed.size() ? say(l, Text::lab2_and)
+                                           : std::string(", ")) +
+              changed_item_name(c.changed[k], c, term, l);
     }
-    out.push_back("Conclusion: the ramp changed " + list +
-                  ", beyond what the polynomial removes; check the residual's Allan deviation at "
-                  "long tau and the bias-temperature plot for hysteresis.");
+    out.push_back(say(l, Text::lab2_conclusion_changed, list));
   }
   return out;
 }
 
 std::string class_text(const Lab2Table& t) {
+  const Language l = t.language;
   std::string text = t.gyro + ":";
   bool first = true;
   for (std::size_t k = 0; k < 2; ++k) {
     if (!t.runs[k]) continue;
     const ClassVerdict& v = t.runs[k]->result.verdict;
-    text += fmt::format("{} {} {} ({})", first ? "" : ",", to_string(v.accuracy_class),
-                        k == 0 ? "at constant temperature" : "during the temperature ramp",
-                        v.decided_by == ClassCriterion::both  ? "both criteria agree"
-                        : v.decided_by == ClassCriterion::arw ? "decided by the ARW"
-                                                              : "decided by the bias instability");
+    const Text decided = v.decided_by == ClassCriterion::both  ? Text::lab2_class_agree
+                         : v.decided_by == ClassCriterion::arw ? Text::lab2_class_decided_arw
+                                                               : Text::lab2_class_decided_bi;
+    text += (first ? " " : ", ") +
+            say(l, Text::lab2_class_run, class_name(v.accuracy_class, l),
+                say(l, k == 0 ? Text::lab2_class_at_constant : Text::lab2_class_during_ramp),
+                say(l, decided));
     first = false;
   }
   return text;
@@ -371,7 +386,15 @@ std::string file_of(const Lab2Table& t) {
 }  // namespace
 
 std::string_view to_string(Lab2Condition condition) {
-  return condition == Lab2Condition::constant ? "constant temperature" : "temperature ramp";
+  return text(Language::en, condition == Lab2Condition::constant ? Text::lab2_constant_temperature
+                                                                 : Text::lab2_temperature_ramp);
+}
+
+std::string lab2_run_title(std::string_view gyro, Lab2Condition condition, std::string_view file,
+                           std::string_view channel, Language language) {
+  const Text name = condition == Lab2Condition::constant ? Text::lab2_constant_temperature
+                                                         : Text::lab2_temperature_ramp;
+  return say(language, Text::lab2_run_title, gyro, say(language, name), file, channel);
 }
 
 Lab2Truth lab2_truth(const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
@@ -390,7 +413,7 @@ Lab2Truth lab2_truth(const sim::Lab2Gyro& g, const sim::Lab2Run& r) {
   return t;
 }
 
-std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs) {
+std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs, Language language) {
   std::vector<Lab2Table> tables;
   for (const Lab2Run& run : runs) {
     auto it = std::find_if(tables.begin(), tables.end(),
@@ -398,6 +421,7 @@ std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs) {
     if (it == tables.end()) {
       tables.push_back({});
       tables.back().gyro = run.gyro;
+      tables.back().language = language;
       it = std::prev(tables.end());
     }
     const std::size_t k = run.condition == Lab2Condition::constant ? 0 : 1;
@@ -412,7 +436,7 @@ std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs) {
     t.has_truth = any_run(t, [](const Lab2Run& r) { return r.truth.has_value(); });
     build_rows(t);
     t.class_sentence = class_text(t);
-    if (t.runs[0] && t.runs[1]) t.comparison = compare_runs(*t.runs[0], *t.runs[1]);
+    if (t.runs[0] && t.runs[1]) t.comparison = compare_runs(*t.runs[0], *t.runs[1], language);
   }
   return tables;
 }
@@ -420,20 +444,24 @@ std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs) {
 std::string lab2_tables_markdown(std::span<const Lab2Table> tables) {
   std::string md;
   for (const Lab2Table& t : tables) {
+    const Language l = t.language;
     const std::string file = file_of(t);
     md += fmt::format("## {}{}\n\n", t.gyro, file.empty() ? "" : " (" + file + ")");
-    md += "| quantity | method | constant temperature | temperature ramp |";
-    md += t.has_truth ? " answer key | unit |\n|---|---|---|---|---|---|\n"
-                      : " unit |\n|---|---|---|---|---|\n";
+    md += fmt::format("| {} | {} | {} | {} |", say(l, Text::lab2_col_quantity),
+                      say(l, Text::lab2_col_method), say(l, Text::lab2_constant_temperature),
+                      say(l, Text::lab2_temperature_ramp));
+    if (t.has_truth) md += " " + say(l, Text::lab2_col_answer_key) + " |";
+    md += " " + say(l, Text::unit) +
+          (t.has_truth ? " |\n|---|---|---|---|---|---|\n" : " |\n|---|---|---|---|---|\n");
     for (const Lab2Row& row : t.rows) {
       md += fmt::format("| {} | {} | {} | {} |", row.quantity, row.method, row.runs[0].text,
                         row.runs[1].text);
       if (t.has_truth) md += " " + (row.truth.empty() ? std::string("-") : row.truth) + " |";
       md += " " + row.unit + " |\n";
     }
-    md += "\n**Accuracy class** — " + t.class_sentence + ".\n\n";
+    md += "\n" + say(l, Text::lab2_accuracy_class_line, t.class_sentence) + "\n\n";
     if (!t.comparison.empty()) {
-      md += "What the temperature ramp changed:\n\n";
+      md += say(l, Text::lab2_ramp_changed) + ":\n\n";
       for (const std::string& s : t.comparison) md += "- " + s + "\n";
       md += "\n";
     }
@@ -444,23 +472,26 @@ std::string lab2_tables_markdown(std::span<const Lab2Table> tables) {
 std::string lab2_tables_html(std::span<const Lab2Table> tables) {
   std::string h;
   for (const Lab2Table& t : tables) {
+    const Language l = t.language;
     const std::string file = file_of(t);
-    h += "<section>\n<h2>" + html_escape(t.gyro) +
-         (file.empty() ? "" : " <small>(" + html_escape(file) + ")</small>") +
-         ": the lab's table</h2>\n";
-    h += "<table class=\"lab2\">\n<tr>" + th("quantity") + th("method") +
-         th("constant temperature") + th("temperature ramp");
-    if (t.has_truth) h += th("answer key");
-    h += th("unit") + "</tr>\n";
+    h += "<section>\n<h2>" +
+         say(l, Text::lab2_table_heading, html_escape(t.gyro),
+             file.empty() ? "" : " <small>(" + html_escape(file) + ")</small>") +
+         "</h2>\n";
+    h += "<table class=\"lab2\">\n<tr>" + th(say(l, Text::lab2_col_quantity)) +
+         th(say(l, Text::lab2_col_method)) + th(say(l, Text::lab2_constant_temperature)) +
+         th(say(l, Text::lab2_temperature_ramp));
+    if (t.has_truth) h += th(say(l, Text::lab2_col_answer_key));
+    h += th(say(l, Text::unit)) + "</tr>\n";
     for (const Lab2Row& row : t.rows) {
       h += "<tr>" + td(row.quantity) + td(row.method) + td(row.runs[0].text) + td(row.runs[1].text);
       if (t.has_truth) h += "<td class=\"truth\">" + html_escape(row.truth) + "</td>";
       h += td(row.unit) + "</tr>\n";
     }
-    h += "</table>\n<p class=\"verdict\">Accuracy class — " + html_escape(t.class_sentence) +
-         ".</p>\n";
+    h += "</table>\n<p class=\"verdict\">" +
+         html_escape(say(l, Text::lab2_accuracy_class_line, t.class_sentence)) + "</p>\n";
     if (!t.comparison.empty()) {
-      h += "<h3>What the temperature ramp changed</h3>\n<ul>\n";
+      h += "<h3>" + html_escape(say(l, Text::lab2_ramp_changed)) + "</h3>\n<ul>\n";
       for (const std::string& s : t.comparison) h += "<li>" + html_escape(s) + "</li>\n";
       h += "</ul>\n";
     }
@@ -493,7 +524,7 @@ std::string lab2_tables_csv(std::span<const Lab2Table> tables) {
 Lab2Report make_lab2_report(std::span<const Lab2Run> runs, std::string_view title,
                             std::string_view intro, const ReportOptions& options) {
   Lab2Report out;
-  out.tables = lab2_tables(runs);
+  out.tables = lab2_tables(runs, options.language);
 
   // The plots: one task per run (each runs its gnuplots one after another).
   std::vector<std::future<Report>> pending;
@@ -515,14 +546,16 @@ Lab2Report make_lab2_report(std::span<const Lab2Run> runs, std::string_view titl
   std::string preface = "<p>" + html_escape(intro) + "</p>\n";
   if (out.plots_skipped) preface += "<p class=\"warn\">" + html_escape(out.plots_note) + "</p>\n";
   preface += lab2_tables_html(out.tables);
-  out.html = html_document(out.runs, title, preface);
+  out.html = html_document(out.runs, title, preface, options.language);
 
   out.markdown_summary =
       fmt::format("# {}\n\n{}\n\n", title, intro) + lab2_tables_markdown(out.tables);
   if (out.plots_skipped) out.markdown_summary += out.plots_note + "\n\n";
   out.markdown = out.markdown_summary;
   for (const Report& r : out.runs) out.markdown += r.markdown + "\n";
-  out.csv = lab2_tables_csv(out.tables);
+  // The CSV is for programs: its words stay English whatever the page's language.
+  out.csv = options.language == Language::en ? lab2_tables_csv(out.tables)
+                                             : lab2_tables_csv(lab2_tables(runs, Language::en));
   return out;
 }
 

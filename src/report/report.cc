@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <future>
 #include <limits>
@@ -23,9 +24,11 @@ namespace detail {
 // ---- shared with lab2.cc (report_internal.h) ----------------------------------
 
 std::string g(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; }
-std::string g(const std::optional<double>& v) { return v ? g(*v) : std::string("not visible"); }
+std::string g(const std::optional<double>& v, Language language) {
+  return v ? g(*v) : say(language, Text::an_not_visible);
+}
 
-ParameterText parameter_text(const model::ParameterEstimate& p) {
+ParameterText parameter_text(const model::ParameterEstimate& p, Language language) {
   ParameterText t;
   if (p.status == model::TermStatus::resolved) {
     t.value = g(p.value);
@@ -34,7 +37,7 @@ ParameterText parameter_text(const model::ParameterEstimate& p) {
     const double bound = std::isfinite(p.upper_95) ? p.upper_95 : p.value;
     t.value = std::isfinite(bound) ? "< " + g(bound) : "-";
     t.interval = std::isfinite(p.ci95_high) ? fmt::format("[0, {}]", g(p.ci95_high))
-                                            : std::string("no bound");
+                                            : say(language, Text::an_no_bound);
   } else {
     t.value = "-";
     if (std::isfinite(p.upper_95)) t.interval = fmt::format("(< {})", g(p.upper_95));
@@ -47,78 +50,90 @@ ParameterText parameter_text(const model::ParameterEstimate& p) {
   return t;
 }
 
-std::string random_bias_answer(const model::AnalysisResult& r) {
+std::string random_bias_answer(const model::AnalysisResult& r, Language language) {
   switch (r.noise.random_bias_process) {
     case RandomBiasProcess::wiener:
-      return fmt::format("a Wiener process (rate random walk), K = {} deg/h/sqrt(s)",
-                         parameter_text(r.noise.K).value);
+      return say(language, Text::an_random_bias_wiener, parameter_text(r.noise.K, language).value);
     case RandomBiasProcess::gauss_markov:
-      return fmt::format("a first-order Gauss-Markov process, sigma = {} deg/h, Tc = {} s",
-                         parameter_text(r.noise.gm_sigma).value,
-                         parameter_text(r.noise.gm_tc).value);
+      return say(language, Text::an_random_bias_gauss_markov,
+                 parameter_text(r.noise.gm_sigma, language).value,
+                 parameter_text(r.noise.gm_tc, language).value);
     case RandomBiasProcess::none:
       break;
   }
-  return "not visible in this record (neither a Wiener nor a Gauss-Markov process is supported "
-         "by the data)";
+  return say(language, Text::an_random_bias_none);
 }
 
-std::string bandwidth_sentence(const model::BandwidthEstimate& b) {
-  if (!b.resolved) {
-    return "none resolved (the first taus follow N/sqrt(tau): the samples' white noise is not "
-           "visibly filtered)";
-  }
+std::string bandwidth_sentence(const model::BandwidthEstimate& b, Language language) {
+  if (!b.resolved) return say(language, Text::an_bandwidth_none);
+  const std::string percent = g(100.0 * b.bandwidth.filtered_fraction);
+  const std::string lag1 = g(b.lag1_correlation);
+  const std::string lowered = g(100.0 * b.first_tau_reduction);
   if (b.bandwidth.moving_average()) {
-    return fmt::format(
-        "a moving average over {} samples (cut-off {} Hz), on {} % of the white noise (lag-1 "
-        "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, "
-        "and N is the white level above it",
-        b.bandwidth.moving_average_samples, g(b.cutoff_hz),
-        g(100.0 * b.bandwidth.filtered_fraction), g(b.lag1_correlation),
-        g(100.0 * b.first_tau_reduction));
+    return say(language, Text::an_bandwidth_moving_average, b.bandwidth.moving_average_samples,
+               g(b.cutoff_hz), percent, lag1, lowered);
   }
   if (b.bandwidth.butterworth()) {
-    return fmt::format(
-        "a second-order Butterworth low-pass at {} Hz, on {} % of the white noise (lag-1 "
-        "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, "
-        "and N is the white level above it",
-        g(b.cutoff_hz), g(100.0 * b.bandwidth.filtered_fraction), g(b.lag1_correlation),
-        g(100.0 * b.first_tau_reduction));
+    return say(language, Text::an_bandwidth_butterworth, g(b.cutoff_hz), percent, lag1, lowered);
   }
-  return fmt::format(
-      "time constant {} s, first-order cut-off {} Hz, on {} % of the white noise (lag-1 "
-      "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, and "
-      "N is the white level above it",
-      g(b.bandwidth.time_constant_s), g(b.cutoff_hz), g(100.0 * b.bandwidth.filtered_fraction),
-      g(b.lag1_correlation), g(100.0 * b.first_tau_reduction));
+  return say(language, Text::an_bandwidth_first_order, g(b.bandwidth.time_constant_s),
+             g(b.cutoff_hz), percent, lag1, lowered);
 }
 
-std::string lines_sentence(const model::NoiseFitResult& fit) {
-  if (fit.lines.empty()) return "none found in the PSD";
+std::string lines_sentence(const model::NoiseFitResult& fit, Language language) {
+  if (fit.lines.empty()) return say(language, Text::an_lines_none);
   std::string text;
   for (const SpectralLine& line : fit.lines) {
-    text += fmt::format("{}{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor",
-                        text.empty() ? "" : "; ", g(line.frequency_hz), g(line.width_hz),
-                        g(std::sqrt(line.variance)), g(line.peak_ratio));
+    if (!text.empty()) text += "; ";
+    text += say(language, Text::an_line, g(line.frequency_hz), g(line.width_hz),
+                g(std::sqrt(line.variance)), g(line.peak_ratio));
   }
   if (fit.line_variance_scale != 1.0) {
-    text += fmt::format(
-        " (the variance the fit used: {} times the PSD bins', as the Allan deviation's first taus "
-        "show it)",
-        g(fit.line_variance_scale));
+    text += say(language, Text::an_lines_scale, g(fit.line_variance_scale));
   }
-  return text + " (its Allan variance is part of the fit, not of any noise term)";
+  return text + say(language, Text::an_lines_tail);
 }
 
-std::string class_sentence(const model::AnalysisResult& r) {
+std::string class_name(AccuracyClass c, Language language) {
+  switch (c) {
+    case AccuracyClass::strategic:
+      return say(language, Text::an_class_strategic);
+    case AccuracyClass::navigation:
+      return say(language, Text::an_class_navigation);
+    case AccuracyClass::intermediate:
+      return say(language, Text::an_class_intermediate);
+    case AccuracyClass::tactical:
+      return say(language, Text::an_class_tactical);
+    case AccuracyClass::consumer:
+      break;
+  }
+  return say(language, Text::an_class_consumer);
+}
+
+std::string class_sentence(const model::AnalysisResult& r, Language language) {
   const ClassVerdict& v = r.verdict;
-  std::string decided = v.decided_by == ClassCriterion::both ? "both criteria agree"
-                        : v.decided_by == ClassCriterion::arw
-                            ? "decided by the angle random walk (the worse of the two)"
-                            : "decided by the bias instability (the worse of the two)";
-  return fmt::format("{} ({}; by bias instability {} deg/h: {}; by ARW {} deg/sqrt(h): {})",
-                     to_string(v.accuracy_class), decided, g(r.bias_instability_deg_h),
-                     to_string(v.by_bias_instability), g(r.arw_deg_sqrt_h), to_string(v.by_arw));
+  const Text decided = v.decided_by == ClassCriterion::both  ? Text::an_class_both
+                       : v.decided_by == ClassCriterion::arw ? Text::an_class_by_arw
+                                                             : Text::an_class_by_bias_instability;
+  return say(language, Text::an_class_sentence, class_name(v.accuracy_class, language),
+             say(language, decided), g(r.bias_instability_deg_h),
+             class_name(v.by_bias_instability, language), g(r.arw_deg_sqrt_h),
+             class_name(v.by_arw, language));
+}
+
+std::string sensor_text(std::string_view text, Sensor sensor, Language language) {
+  if (language == Language::en) return in_sensor_units(text, sensor);
+  std::string out(text);
+  if (sensor == Sensor::gyroscope) return out;
+  auto replace_all = [&out](std::string_view from, std::string_view to) {
+    for (std::size_t at = out.find(from); at != std::string::npos;
+         at = out.find(from, at + to.size())) {
+      out.replace(at, from.size(), to);
+    }
+  };
+  replace_all("случайное блуждание угловой скорости", "случайное блуждание ускорения");
+  replace_all("°/ч", "м/с²");
+  return out;
 }
 
 std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }
@@ -166,7 +181,7 @@ RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector
           std::async(std::launch::async, [&plots, i, po] { return render_svg(plots[i], po); }));
     }
   }
-  std::string skip_reason = options.plots ? "" : "plotting was turned off";
+  std::string skip_reason = options.plots ? "" : say(options.language, Text::an_plots_off);
   for (std::size_t i = 0; i < plots.size(); ++i) {
     Figure fig;
     fig.name = specs.at(i).name;
@@ -174,8 +189,7 @@ RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector
     if (options.plots) {
       PlotOutcome drawn = pending[i].get();
       if (drawn.gnuplot_missing) {
-        skip_reason = "gnuplot could not be run (" + drawn.error +
-                      "); install gnuplot (Debian: gnuplot-nox) to draw them";
+        skip_reason = say(options.language, Text::an_gnuplot_missing, drawn.error);
       } else {
         fig.svg = std::move(drawn.svg);
         fig.error = drawn.error;
@@ -194,10 +208,10 @@ RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector
   return out;
 }
 
-std::string record_title(const ReportInput& input) {
+std::string record_title(const ReportInput& input, Language language) {
   if (!input.title.empty()) return input.title;
   if (input.channel.empty()) return input.file_name;
-  return fmt::format("{} ({})", input.file_name, input.channel);
+  return say(language, Text::an_record_title, input.file_name, input.channel);
 }
 
 }  // namespace detail
@@ -210,13 +224,77 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- text helpers --------------------------------------------------------------
 
-std::string coefficient_unit(std::size_t j) {
-  return j == 0 ? "deg/h" : j == 1 ? "deg/h/degC" : fmt::format("deg/h/degC^{}", j);
+std::string coefficient_unit(std::size_t j, Language language) {
+  return j == 0   ? say(language, Text::unit_deg_h)
+         : j == 1 ? say(language, Text::an_unit_deg_h_per_degc)
+                  : say(language, Text::an_unit_deg_h_per_degc_k, j);
 }
 
-std::vector<std::string> all_notes(const model::AnalysisResult& r, const ReportInput& in) {
-  std::vector<std::string> notes = in.notes;
-  for (const std::string& n : r.notes) {
+// The unit the samples were read in, as the user gave it (English) or in the manual's units.
+std::string input_unit_text(const std::string& unit, Language language) {
+  if (language == Language::en) return unit;
+  try {
+    switch (rate_unit_from_string(unit)) {
+      case SampleUnit::deg_per_hour:
+        return say(language, Text::unit_deg_h);
+      case SampleUnit::deg_per_second:
+        return say(language, Text::an_unit_deg_s);
+      case SampleUnit::rad_per_second:
+        return say(language, Text::an_unit_rad_s);
+      case SampleUnit::m_per_s2:
+        return say(language, Text::an_unit_m_s2);
+      case SampleUnit::standard_gravity:
+        return "g";
+      case SampleUnit::milli_g:
+        return say(language, Text::an_unit_mg);
+    }
+  } catch (const UsageError&) {
+  }
+  return unit;  // not one foglab names (a list of an IMU's units, ...): as given
+}
+
+std::string status_text(model::TermStatus status, Language language) {
+  switch (status) {
+    case model::TermStatus::resolved:
+      return say(language, Text::an_status_resolved);
+    case model::TermStatus::upper_bound:
+      return say(language, Text::an_status_upper_bound);
+    case model::TermStatus::absent:
+      break;
+  }
+  return say(language, Text::an_status_absent);
+}
+
+// The words of each of kNoiseParameters (core/noise_model.h), in its order: symbol, meaning
+// (a gyroscope's, an accelerometer's) and unit.
+struct ParameterWords {
+  Text name, meaning, meaning_accelerometer, unit;
+};
+constexpr std::array<ParameterWords, kNoiseParameters.size()> kParameterWords = {{
+    {Text::an_sym_n, Text::an_meaning_n, Text::an_meaning_n_accel, Text::an_unit_deg_h_sqrt_hz},
+    {Text::an_sym_b, Text::an_meaning_b, Text::an_meaning_b, Text::unit_deg_h},
+    {Text::an_sym_k, Text::an_meaning_k, Text::an_meaning_k, Text::an_unit_deg_h_sqrt_s},
+    {Text::an_sym_r, Text::an_meaning_r, Text::an_meaning_r, Text::an_unit_deg_h_s},
+    {Text::an_sym_q, Text::an_meaning_q, Text::an_meaning_q, Text::an_unit_deg_h_times_s},
+    {Text::an_param_gm_sigma, Text::an_meaning_gm_sigma, Text::an_meaning_gm_sigma,
+     Text::unit_deg_h},
+    {Text::an_param_gm_tc, Text::an_meaning_gm_tc, Text::an_meaning_gm_tc, Text::an_unit_s},
+}};
+
+// How the noise-model fit ended: the model's English sentence, or its parts in `language`.
+std::string fit_text(const model::NoiseFitResult& n, Language language) {
+  if (language == Language::en || n.outcome.empty()) return n.message;
+  std::string text = n.outcome.text(language);
+  for (const Message* why :
+       {&n.first_taus_left_out_why, &n.ramp_set_aside, &n.gauss_markov_set_aside}) {
+    if (!why->empty()) text += "; " + why->text(language);
+  }
+  return text;
+}
+
+std::vector<Message> all_notes(const model::AnalysisResult& r, const ReportInput& in) {
+  std::vector<Message> notes = in.notes;
+  for (const Message& n : r.notes) {
     if (r.systematic && n == r.systematic->note) continue;  // shown with the systematic part
     if (std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(n);
   }
@@ -225,163 +303,163 @@ std::vector<std::string> all_notes(const model::AnalysisResult& r, const ReportI
 
 // ---- HTML ----------------------------------------------------------------------------
 
-std::string html_tables(const model::AnalysisResult& r, const ReportInput& in) {
+std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, Language l) {
+  const std::string deg_h = say(l, Text::unit_deg_h);
   std::string h;
   // The recording.
-  h += "<h3>Recording</h3>\n<table class=\"meta\">\n";
+  h += "<h3>" + html_escape(say(l, Text::an_recording)) + "</h3>\n<table class=\"meta\">\n";
   auto row = [&](std::string_view k, const std::string& v) {
     h += "<tr>" + th(k) + td(v) + "</tr>\n";
   };
-  row("file", in.file_name.empty() ? "-" : in.file_name);
-  row("rate channel", in.channel.empty() ? "-" : in.channel);
-  row("temperature channel", in.temperature_channel.empty() ? "none" : in.temperature_channel);
-  row("input unit", fmt::format("{} (analysed in deg/h)", in.input_unit));
-  row("samples", fmt::format("{}", r.samples));
-  row("sample rate", fmt::format("{} Hz", g(r.sample_rate_hz)));
-  row("duration", fmt::format("{:.1f} s ({:.3g} h)", r.duration_s, r.duration_s / kSecondsPerHour));
+  row(say(l, Text::an_file), in.file_name.empty() ? "-" : in.file_name);
+  row(say(l, Text::an_rate_channel), in.channel.empty() ? "-" : in.channel);
+  row(say(l, Text::an_temperature_channel),
+      in.temperature_channel.empty() ? say(l, Text::an_none) : in.temperature_channel);
+  row(say(l, Text::an_input_unit), say(l, Text::an_analysed_in, input_unit_text(in.input_unit, l)));
+  row(say(l, Text::an_samples), fmt::format("{}", r.samples));
+  row(say(l, Text::an_sample_rate), g(r.sample_rate_hz) + " " + say(l, Text::an_unit_hz));
+  row(say(l, Text::an_duration),
+      say(l, Text::an_duration_value, r.duration_s, r.duration_s / kSecondsPerHour));
   h += "</table>\n";
 
   // Systematic part.
-  h += "<h3>Systematic part (bias and its temperature dependence)</h3>\n";
+  h += "<h3>" + html_escape(say(l, Text::an_systematic)) + "</h3>\n";
   if (r.systematic) {
     const model::SystematicFit& s = *r.systematic;
-    h += fmt::format(
-        "<p>Least-squares polynomial of degree {} in (T - t_ref), t_ref = {:.4g} degC{}{}. "
-        "Standard errors from the fitted noise model.</p>\n",
-        s.degree, s.t_ref_c, s.degree_chosen ? ", degree chosen by the criterion" : "",
-        s.constant_fallback ? ", constant fallback (the temperature barely moves)" : "");
-    h += "<table>\n<tr>" + th("coefficient") + th("value") + th("standard error") + th("unit") +
-         "</tr>\n";
+    h += "<p>" +
+         html_escape(say(l, Text::an_systematic_fit, s.degree, s.t_ref_c,
+                         s.degree_chosen ? say(l, Text::an_degree_chosen) : "",
+                         s.constant_fallback ? say(l, Text::an_constant_fallback_why) : "")) +
+         "</p>\n";
+    h += "<table>\n<tr>" + th(say(l, Text::an_coefficient)) + th(say(l, Text::value)) +
+         th(say(l, Text::an_standard_error)) + th(say(l, Text::unit)) + "</tr>\n";
     for (std::size_t j = 0; j < s.coefficients.size(); ++j) {
       const double se = j < s.standard_errors.size() ? s.standard_errors[j] : kNaN;
       h += "<tr>" + td(fmt::format("c{}", j)) + td(fmt::format("{:.6g}", s.coefficients[j])) +
-           td(g(se)) + td(coefficient_unit(j)) + "</tr>\n";
+           td(g(se)) + td(coefficient_unit(j, l)) + "</tr>\n";
     }
     h += "</table>\n<table class=\"meta\">\n";
-    row("systematic bias at t_ref", fmt::format("{:.6g} deg/h", s.bias_deg_h));
-    row("lab's polyfit(T, Y, 2) constant term",
-        fmt::format("{:.6g} deg/h{}", s.lab_constant_term_deg_h,
-                    s.lab_constant_meaningful ? "" : " (not meaningful: the span is too small)"));
-    row("temperature span", fmt::format("{:.4g} degC ({:.4g} to {:.4g} degC)", s.temperature_span_c,
-                                        s.temperature_min_c, s.temperature_max_c));
-    row("residual rms", fmt::format("{} deg/h", g(s.residual_rms_deg_h)));
+    row(say(l, Text::an_systematic_bias), fmt::format("{:.6g} {}", s.bias_deg_h, deg_h));
+    row(say(l, Text::an_lab_constant),
+        fmt::format("{:.6g} {}{}", s.lab_constant_term_deg_h, deg_h,
+                    s.lab_constant_meaningful ? "" : say(l, Text::an_not_meaningful)));
+    row(say(l, Text::an_temperature_span), say(l, Text::an_span_value, s.temperature_span_c,
+                                               s.temperature_min_c, s.temperature_max_c));
+    row(say(l, Text::an_residual_rms), g(s.residual_rms_deg_h) + " " + deg_h);
     h += "</table>\n";
-    if (!s.note.empty()) h += "<p class=\"note\">" + html_escape(s.note) + "</p>\n";
+    if (!s.note.empty()) h += "<p class=\"note\">" + html_escape(s.note.text(l)) + "</p>\n";
   } else {
-    h += in.record_mean_deg_h
-             ? fmt::format(
-                   "<p>No temperature: only the record mean (the constant bias), {:.6g} "
-                   "deg/h, was removed.</p>\n",
-                   *in.record_mean_deg_h)
-             : std::string(
-                   "<p>No temperature: only the record mean (the constant bias) was "
-                   "removed.</p>\n");
+    h += "<p>" +
+         html_escape(in.record_mean_deg_h
+                         ? say(l, Text::an_no_temperature_mean, *in.record_mean_deg_h)
+                         : say(l, Text::an_no_temperature)) +
+         "</p>\n";
   }
 
   // Noise model.
-  h += fmt::format(
-      "<h3>Noise model (IEEE Std 952, fitted to the Allan variance)</h3>\n"
-      "<p>Terms chosen: {}; {} tau points, dispersion {:.3g}. Intervals are 95 %; a term the "
-      "record cannot resolve gets a one-sided 95 % upper bound.</p>\n"
-      "<p class=\"fit-{}\">Fit: {}.</p>\n",
-      html_escape(to_string(r.noise.terms)), r.noise.points, r.noise.dispersion,
-      model::to_string(r.noise.status), html_escape(r.noise.message));
-  h += "<table>\n<tr>" + th("parameter") + th("meaning") + th("value") + th("95 % interval") +
-       th("status") + th("unit") + "</tr>\n";
-  for (const NoiseParameter& p : kNoiseParameters) {
-    const model::ParameterEstimate& e = r.noise.estimate(p);
-    const ParameterText t = parameter_text(e);
-    h += fmt::format("<tr class=\"{}\">", model::to_string(e.status)) + td(p.name) + td(p.meaning) +
-         td(t.value) + td(t.interval) + td(model::to_string(e.status)) + td(p.unit) + "</tr>\n";
+  h += "<h3>" + html_escape(say(l, Text::an_noise_model)) + "</h3>\n";
+  h += "<p>" +
+       html_escape(say(l, Text::an_terms_chosen, terms_text(r.noise.terms, l), r.noise.points,
+                       r.noise.dispersion)) +
+       "</p>\n";
+  h += fmt::format("<p class=\"fit-{}\">{}</p>\n", model::to_string(r.noise.status),
+                   html_escape(say(l, Text::an_fit, fit_text(r.noise, l))));
+  h += "<table>\n<tr>" + th(say(l, Text::an_parameter)) + th(say(l, Text::an_meaning)) +
+       th(say(l, Text::value)) + th(say(l, Text::interval95)) + th(say(l, Text::an_status)) +
+       th(say(l, Text::unit)) + "</tr>\n";
+  for (std::size_t i = 0; i < kNoiseParameters.size(); ++i) {
+    const ParameterWords& words = kParameterWords[i];
+    const model::ParameterEstimate& e = r.noise.estimate(kNoiseParameters[i]);
+    const ParameterText t = parameter_text(e, l);
+    h += fmt::format("<tr class=\"{}\">", model::to_string(e.status)) + td(say(l, words.name)) +
+         td(say(l, in.sensor == Sensor::gyroscope ? words.meaning : words.meaning_accelerometer)) +
+         td(t.value) + td(t.interval) + td(status_text(e.status, l)) + td(say(l, words.unit)) +
+         "</tr>\n";
   }
   h += "</table>\n<table class=\"meta\">\n";
   if (in.sensor == Sensor::gyroscope) {
-    row("angle random walk (N/60)", fmt::format("{} deg/sqrt(h)", g(r.arw_deg_sqrt_h)));
+    row(say(l, Text::an_arw), g(r.arw_deg_sqrt_h) + " " + say(l, Text::an_unit_deg_sqrt_h));
   } else {
-    row("velocity random walk (60 N)",
-        fmt::format("{} m/s/sqrt(h)", g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N))));
+    row(say(l, Text::an_vrw), g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)) + " " +
+                                  say(l, Text::an_unit_m_s_sqrt_h));
   }
-  row("sensor bandwidth", bandwidth_sentence(r.noise.bandwidth));
-  row("spectral lines", lines_sentence(r.noise));
-  row("bias steps",
+  row(say(l, Text::an_bandwidth), bandwidth_sentence(r.noise.bandwidth, l));
+  row(say(l, Text::an_lines), lines_sentence(r.noise, l));
+  row(say(l, Text::an_steps),
       r.steps.indices.empty()
-          ? std::string("none")
+          ? say(l, Text::an_none)
           : fmt::format("{}{}", r.steps.indices.size(),
-                        r.steps.removed ? ", levelled before the analysis (the notes list them)"
-                                        : ", left in"));
-  row("spikes", r.spikes.count == 0
-                    ? std::string("none")
-                    : fmt::format("{} (beyond {} deg/h from their neighbours' mean){}",
-                                  r.spikes.count, g(r.spikes.threshold_deg_h),
-                                  r.spikes.removed ? ", replaced by that mean" : ", left in"));
-  row("output quantisation",
+                        say(l, r.steps.removed ? Text::an_steps_levelled : Text::an_left_in)));
+  row(say(l, Text::an_spikes),
+      r.spikes.count == 0
+          ? say(l, Text::an_none)
+          : say(l, Text::an_spikes_value, r.spikes.count, g(r.spikes.threshold_deg_h),
+                say(l, r.spikes.removed ? Text::an_spikes_replaced : Text::an_left_in)));
+  row(say(l, Text::an_quantisation),
       r.output_quantisation.detected
-          ? fmt::format("steps of {} deg/h (LSB); rounding noise {} deg/h/sqrt(Hz), inside N",
-                        g(r.output_quantisation.lsb_deg_h),
-                        g(r.output_quantisation.white_level_deg_h_sqrt_hz))
-          : std::string("none seen in the samples"));
-  row("bias instability (ADEV minimum)",
-      fmt::format("{} deg/h at tau = {} s{}", g(r.bias_instability_deg_h),
-                  g(r.bias_instability_tau_s),
-                  r.bias_instability_at_edge ? " (at the end of the tau range: the true minimum "
-                                               "may lie beyond it)"
-                                             : ""));
+          ? say(l, Text::an_quantisation_value, g(r.output_quantisation.lsb_deg_h),
+                g(r.output_quantisation.white_level_deg_h_sqrt_hz))
+          : say(l, Text::an_quantisation_none));
+  row(say(l, Text::an_bias_instability),
+      say(l, Text::an_bias_instability_value, g(r.bias_instability_deg_h),
+          g(r.bias_instability_tau_s),
+          r.bias_instability_at_edge ? say(l, Text::an_at_edge_why) : ""));
   h += "</table>\n";
 
   // Readings beside the fit.
-  h += "<h3>The lab's graphical readings beside the fit</h3>\n";
-  h += "<table>\n<tr>" + th("quantity") + th("ADEV reading") + th("PSD reading") +
-       th("fit (95 % interval)") + th("unit") + "</tr>\n";
-  auto fit_text = [](const model::ParameterEstimate& e) {
-    const ParameterText t = parameter_text(e);
+  h += "<h3>" + html_escape(say(l, Text::an_readings)) + "</h3>\n";
+  h += "<table>\n<tr>" + th(say(l, Text::an_quantity)) + th(say(l, Text::an_adev_reading)) +
+       th(say(l, Text::an_psd_reading)) + th(say(l, Text::an_fit_interval)) +
+       th(say(l, Text::unit)) + "</tr>\n";
+  auto fit_value = [l](const model::ParameterEstimate& e) {
+    const ParameterText t = parameter_text(e, l);
     return t.interval.empty() ? t.value : t.value + " " + t.interval;
   };
-  h += "<tr>" + td("white noise N (ADEV at tau = 1 s on the -1/2 line; PSD flat level)") +
-       td(g(r.adev_readings.N)) + td(g(r.psd_readings.N)) + td(fit_text(r.noise.N)) +
-       td("deg/h/sqrt(Hz)") + "</tr>\n";
-  h += "<tr>" +
-       td("Wiener intensity K (ADEV at tau = 3 s on the +1/2 line; PSD -2 slope at 1 Hz)") +
-       td(g(r.adev_readings.K)) + td(g(r.psd_readings.K)) + td(fit_text(r.noise.K)) +
-       td("deg/h/sqrt(s)") + "</tr>\n";
-  h += "<tr>" + td("bias instability (ADEV minimum; fit: flicker B)") +
-       td(fmt::format("{} at {} s", g(r.adev_readings.bias_instability_deg_h),
-                      g(r.adev_readings.bias_instability_tau_s))) +
-       td("-") + td(fit_text(r.noise.B)) + td("deg/h") + "</tr>\n";
+  h += "<tr>" + td(say(l, Text::an_reading_n)) + td(g(r.adev_readings.N, l)) +
+       td(g(r.psd_readings.N, l)) + td(fit_value(r.noise.N)) +
+       td(say(l, Text::an_unit_deg_h_sqrt_hz)) + "</tr>\n";
+  h += "<tr>" + td(say(l, Text::an_reading_k)) + td(g(r.adev_readings.K, l)) +
+       td(g(r.psd_readings.K, l)) + td(fit_value(r.noise.K)) +
+       td(say(l, Text::an_unit_deg_h_sqrt_s)) + "</tr>\n";
+  h += "<tr>" + td(say(l, Text::an_reading_bias_instability)) +
+       td(say(l, Text::an_value_at, g(r.adev_readings.bias_instability_deg_h),
+              g(r.adev_readings.bias_instability_tau_s))) +
+       td("-") + td(fit_value(r.noise.B)) + td(deg_h) + "</tr>\n";
   h += "</table>\n";
 
   // Random bias.
   const model::RandomBiasEvidence& ev = r.evidence;
-  h += "<h3>Random bias</h3>\n<p><strong>The random part of the bias is " +
-       html_escape(random_bias_answer(r)) + ".</strong></p>\n";
-  if (!ev.summary.empty()) h += "<p>" + html_escape(ev.summary) + "</p>\n";
-  h += "<table>\n<tr>" + th("hypothesis") + th("deviance") + th("criterion") + "</tr>\n";
-  h += "<tr>" + td("no random bias") + td(g(ev.deviance_none)) + td(g(ev.criterion_none)) +
-       "</tr>\n";
-  h += "<tr>" + td("Wiener process") + td(g(ev.deviance_wiener)) + td(g(ev.criterion_wiener)) +
-       "</tr>\n";
-  h += "<tr>" + td("Gauss-Markov process") + td(g(ev.deviance_gauss_markov)) +
+  h += "<h3>" + html_escape(say(l, Text::an_random_bias)) + "</h3>\n<p><strong>" +
+       html_escape(say(l, Text::an_random_bias_is, random_bias_answer(r, l))) + "</strong></p>\n";
+  if (!ev.summary.empty()) h += "<p>" + html_escape(ev.summary.text(l)) + "</p>\n";
+  h += "<table>\n<tr>" + th(say(l, Text::an_hypothesis)) + th(say(l, Text::an_deviance)) +
+       th(say(l, Text::an_criterion)) + "</tr>\n";
+  h += "<tr>" + td(say(l, Text::an_no_random_bias)) + td(g(ev.deviance_none)) +
+       td(g(ev.criterion_none)) + "</tr>\n";
+  h += "<tr>" + td(say(l, Text::an_wiener_process)) + td(g(ev.deviance_wiener)) +
+       td(g(ev.criterion_wiener)) + "</tr>\n";
+  h += "<tr>" + td(say(l, Text::an_gauss_markov_process)) + td(g(ev.deviance_gauss_markov)) +
        td(g(ev.criterion_gauss_markov)) + "</tr>\n</table>\n";
-  h += fmt::format(
-      "<p>Log-log slope of the ADEV over its last three points: {} (+0.5 for a Wiener process, "
-      "negative after a Gauss-Markov hump); of the PSD over its lowest decade: {} (-2 for a "
-      "Wiener process, about 0 on a Gauss-Markov plateau).</p>\n",
-      g(ev.adev_end_slope), g(ev.psd_low_frequency_slope));
+  h += "<p>" +
+       html_escape(say(l, Text::an_slopes, g(ev.adev_end_slope), g(ev.psd_low_frequency_slope))) +
+       "</p>\n";
 
   // Class.
   if (in.sensor == Sensor::gyroscope) {
-    h += "<h3>Accuracy class (lab manual, Table 1)</h3>\n<p class=\"verdict\">" +
-         html_escape(class_sentence(r)) + "</p>\n";
+    h += "<h3>" + html_escape(say(l, Text::an_class)) + "</h3>\n<p class=\"verdict\">" +
+         html_escape(class_sentence(r, l)) + "</p>\n";
   } else {
-    h += "<h3>Accuracy class</h3>\n<p>" + html_escape(kNoAccelerometerClass) + "</p>\n";
+    h += "<h3>" + html_escape(say(l, Text::an_class_accel)) + "</h3>\n<p>" +
+         html_escape(say(l, Text::an_no_accelerometer_class)) + "</p>\n";
   }
 
-  const std::vector<std::string> notes = all_notes(r, in);
+  const std::vector<Message> notes = all_notes(r, in);
   if (!notes.empty()) {
-    h += "<h3>Notes</h3>\n<ul>\n";
-    for (const std::string& n : notes) h += "<li>" + html_escape(n) + "</li>\n";
+    h += "<h3>" + html_escape(say(l, Text::an_notes)) + "</h3>\n<ul>\n";
+    for (const Message& n : notes) h += "<li>" + html_escape(n.text(l)) + "</li>\n";
     h += "</ul>\n";
   }
-  return in_sensor_units(h, in.sensor);
+  return sensor_text(h, in.sensor, l);
 }
 
 }  // namespace
@@ -413,83 +491,87 @@ std::string html_escape(std::string_view text) {
   return out;
 }
 
-std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& in) {
-  std::string md = fmt::format("## {}\n\n", record_title(in));
-  md += fmt::format(
-      "Recording `{}`, channel {}, temperature {}: {} samples at {} Hz ({:.3g} h){}.\n\n",
-      in.file_name.empty() ? "-" : in.file_name, in.channel.empty() ? "-" : in.channel,
-      in.temperature_channel.empty() ? "none" : in.temperature_channel, r.samples,
-      g(r.sample_rate_hz), r.duration_s / kSecondsPerHour,
-      r.gaps.empty() ? std::string()
-                     : fmt::format(", {} gap(s) with {} samples missing "
-                                   "(analysed by contiguous stretches)",
-                                   r.gaps.size(), missing_samples(r.gaps)));
+std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& in, Language l) {
+  const std::string deg_h = say(l, Text::unit_deg_h);
+  std::string md = fmt::format("## {}\n\n", record_title(in, l));
+  md += say(l, Text::an_md_recording, in.file_name.empty() ? "-" : in.file_name,
+            in.channel.empty() ? "-" : in.channel,
+            in.temperature_channel.empty() ? say(l, Text::an_none) : in.temperature_channel,
+            r.samples, g(r.sample_rate_hz), r.duration_s / kSecondsPerHour,
+            r.gaps.empty() ? std::string()
+                           : say(l, Text::an_md_gaps, r.gaps.size(), missing_samples(r.gaps))) +
+        "\n\n";
 
-  md += "### Systematic part\n\n";
+  md += "### " + say(l, Text::an_md_systematic) + "\n\n";
   if (r.systematic) {
     const model::SystematicFit& s = *r.systematic;
-    md += fmt::format("Polynomial of degree {} in (T - {:.4g} degC){}{}.\n\n", s.degree, s.t_ref_c,
-                      s.degree_chosen ? ", degree chosen by the criterion" : "",
-                      s.constant_fallback ? ", constant fallback" : "");
-    md += "| coefficient | value | standard error | unit |\n|---|---:|---:|---|\n";
+    md += say(l, Text::an_md_polynomial, s.degree, s.t_ref_c,
+              s.degree_chosen ? say(l, Text::an_degree_chosen) : "",
+              s.constant_fallback ? say(l, Text::an_constant_fallback) : "") +
+          "\n\n";
+    md += fmt::format("| {} | {} | {} | {} |\n|---|---:|---:|---|\n", say(l, Text::an_coefficient),
+                      say(l, Text::value), say(l, Text::an_standard_error), say(l, Text::unit));
     for (std::size_t j = 0; j < s.coefficients.size(); ++j) {
       const double se = j < s.standard_errors.size() ? s.standard_errors[j] : kNaN;
       md += fmt::format("| c{} | {:.6g} | {} | {} |\n", j, s.coefficients[j], g(se),
-                        coefficient_unit(j));
+                        coefficient_unit(j, l));
     }
-    md += fmt::format(
-        "\n- systematic bias at {:.4g} degC: **{:.6g} deg/h**; temperature span {:.4g} degC\n"
-        "- lab's polyfit(T, Y, 2) constant term: {:.6g} deg/h{}\n",
-        s.t_ref_c, s.bias_deg_h, s.temperature_span_c, s.lab_constant_term_deg_h,
-        s.lab_constant_meaningful ? "" : " (not meaningful: the span is too small)");
-    if (!s.note.empty()) md += "- " + s.note + "\n";
+    md += "\n- " +
+          say(l, Text::an_md_systematic_bias, s.t_ref_c, s.bias_deg_h, s.temperature_span_c) + "\n";
+    md +=
+        fmt::format("- {}: {:.6g} {}{}\n", say(l, Text::an_lab_constant), s.lab_constant_term_deg_h,
+                    deg_h, s.lab_constant_meaningful ? "" : say(l, Text::an_not_meaningful));
+    if (!s.note.empty()) md += "- " + s.note.text(l) + "\n";
     md += "\n";
   } else {
-    md += in.record_mean_deg_h
-              ? fmt::format("No temperature: only the record mean, {:.6g} deg/h, was removed.\n\n",
-                            *in.record_mean_deg_h)
-              : std::string("No temperature: only the record mean was removed.\n\n");
+    md += (in.record_mean_deg_h ? say(l, Text::an_md_no_temperature_mean, *in.record_mean_deg_h)
+                                : say(l, Text::an_md_no_temperature)) +
+          "\n\n";
   }
 
-  md += fmt::format("### Noise model (terms {}, 95 % intervals)\n\nFit: {}.\n\n",
-                    to_string(r.noise.terms), r.noise.message);
-  md += "| parameter | value | 95 % interval | status | unit |\n|---|---:|---|---|---|\n";
-  for (const NoiseParameter& p : kNoiseParameters) {
-    const model::ParameterEstimate& e = r.noise.estimate(p);
-    const ParameterText t = parameter_text(e);
-    md += fmt::format("| {} | {} | {} | {} | {} |\n", p.name, t.value, t.interval,
-                      model::to_string(e.status), p.unit);
+  md += "### " + say(l, Text::an_md_noise, terms_text(r.noise.terms, l)) + "\n\n" +
+        say(l, Text::an_fit, fit_text(r.noise, l)) + "\n\n";
+  md += fmt::format("| {} | {} | {} | {} | {} |\n|---|---:|---|---|---|\n",
+                    say(l, Text::an_parameter), say(l, Text::value), say(l, Text::interval95),
+                    say(l, Text::an_status), say(l, Text::unit));
+  for (std::size_t i = 0; i < kNoiseParameters.size(); ++i) {
+    const model::ParameterEstimate& e = r.noise.estimate(kNoiseParameters[i]);
+    const ParameterText t = parameter_text(e, l);
+    md += fmt::format("| {} | {} | {} | {} | {} |\n", say(l, kParameterWords[i].name), t.value,
+                      t.interval, status_text(e.status, l), say(l, kParameterWords[i].unit));
   }
-  const char* at_edge = r.bias_instability_at_edge ? " (at the end of the tau range)" : "";
+  const std::string at_edge = r.bias_instability_at_edge ? say(l, Text::an_md_at_edge) : "";
   if (in.sensor == Sensor::gyroscope) {
-    md += fmt::format(
-        "\n- ARW {} deg/sqrt(h); bias instability (ADEV minimum) **{} deg/h** at {} s{}\n",
-        g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h), g(r.bias_instability_tau_s), at_edge);
+    md += "\n- " +
+          say(l, Text::an_md_arw, g(r.arw_deg_sqrt_h), g(r.bias_instability_deg_h),
+              g(r.bias_instability_tau_s), at_edge) +
+          "\n";
   } else {
-    md += fmt::format(
-        "\n- VRW {} m/s/sqrt(h); bias instability (ADEV minimum) **{} m/s^2** ({} mg) at {} "
-        "s{}\n",
-        g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)), g(r.bias_instability_deg_h),
-        g(r.bias_instability_deg_h / kStandardGravity * 1000.0), g(r.bias_instability_tau_s),
-        at_edge);
+    md += "\n- " +
+          say(l, Text::an_md_vrw, g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)),
+              g(r.bias_instability_deg_h), g(r.bias_instability_deg_h / kStandardGravity * 1000.0),
+              g(r.bias_instability_tau_s), at_edge) +
+          "\n";
   }
-  md += fmt::format("- graphical readings: ADEV N {}, K {}, minimum {} deg/h; PSD N {}, K {}\n",
-                    g(r.adev_readings.N), g(r.adev_readings.K),
-                    g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N),
-                    g(r.psd_readings.K));
-  md += "- sensor bandwidth: " + bandwidth_sentence(r.noise.bandwidth) + "\n";
-  md += "- spectral lines: " + lines_sentence(r.noise) + "\n";
-  md += "- random bias: " + random_bias_answer(r) + "\n";
-  if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary + ")\n";
+  md += "- " +
+        say(l, Text::an_md_readings, g(r.adev_readings.N, l), g(r.adev_readings.K, l),
+            g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N, l),
+            g(r.psd_readings.K, l)) +
+        "\n";
+  md += "- " + say(l, Text::an_bandwidth) + ": " + bandwidth_sentence(r.noise.bandwidth, l) + "\n";
+  md += "- " + say(l, Text::an_lines) + ": " + lines_sentence(r.noise, l) + "\n";
+  md += "- " + say(l, Text::an_md_random_bias) + ": " + random_bias_answer(r, l) + "\n";
+  if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary.text(l) + ")\n";
   md += in.sensor == Sensor::gyroscope
-            ? "- accuracy class: **" + class_sentence(r) + "**\n"
-            : "- accuracy class: " + std::string(kNoAccelerometerClass) + "\n";
-  const std::vector<std::string> notes = all_notes(r, in);
+            ? "- " + say(l, Text::an_md_class) + ": **" + class_sentence(r, l) + "**\n"
+            : "- " + say(l, Text::an_md_class) + ": " + say(l, Text::an_no_accelerometer_class) +
+                  "\n";
+  const std::vector<Message> notes = all_notes(r, in);
   if (!notes.empty()) {
-    md += "\nNotes:\n\n";
-    for (const std::string& n : notes) md += "- " + n + "\n";
+    md += "\n" + say(l, Text::an_notes) + ":\n\n";
+    for (const Message& n : notes) md += "- " + n.text(l) + "\n";
   }
-  return in_sensor_units(md, in.sensor);
+  return sensor_text(md, in.sensor, l);
 }
 
 std::string kalibr_imu_yaml(const model::AnalysisResult& r, const ReportInput& in,
@@ -522,29 +604,23 @@ std::string kalibr_imu_yaml(const model::AnalysisResult& r, const ReportInput& i
 
 Report make_report(const model::AnalysisResult& result, const ReportInput& input,
                    const ReportOptions& options) {
+  const Language l = options.language;
   Report rep;
-  rep.title = record_title(input);
+  rep.title = record_title(input, l);
+  rep.language = l;
   const std::vector<Plot> plots = report_plots(result, input, options);
-  static const char* kCaptions[][2] = {
-      {"time",
-       "Rate (block means, with the minimum and maximum of each block) and temperature "
-       "against time."},
-      {"bias_temperature",
-       "Bias (block means of the rate) against temperature, with the fitted "
-       "polynomial."},
-      {"psd",
-       "Square root of the two-sided PSD of the residual, log-log with equal decades, with "
-       "the white-noise level and the random-walk line of the graphical readings."},
-      {"adev",
-       "Overlapping Allan deviation of the residual with its 95 % confidence band, the "
-       "fitted model and the line of each term, log-log with equal decades."},
+  static constexpr std::pair<const char*, Text> kCaptions[] = {
+      {"time", Text::an_caption_time},
+      {"bias_temperature", Text::an_caption_bias},
+      {"psd", Text::an_caption_psd},
+      {"adev", Text::an_caption_adev},
   };
   // No bias plot without a temperature: the captions shift by one.
   const bool has_bias_plot = plots.size() == 4;
   std::vector<FigureSpec> specs;
   for (std::size_t i = 0; i < plots.size(); ++i) {
     const std::size_t kind = has_bias_plot || i == 0 ? i : i + 1;
-    specs.push_back({kCaptions[kind][0], kCaptions[kind][1]});
+    specs.push_back({kCaptions[kind].first, say(l, kCaptions[kind].second)});
   }
   RenderedFigures drawn = render_figures(plots, specs, options);
   rep.figures = std::move(drawn.figures);
@@ -557,12 +633,12 @@ Report make_report(const model::AnalysisResult& result, const ReportInput& input
   if (rep.plots_skipped) {
     h += "<p class=\"warn\">" + html_escape(rep.plots_note) + "</p>\n";
   } else {
-    for (const Figure& f : rep.figures) h += figure_html(f);
+    for (const Figure& f : rep.figures) h += figure_html(f, l);
   }
-  h += html_tables(result, input);
+  h += html_tables(result, input, l);
   h += "</section>\n";
 
-  rep.markdown = markdown_summary(result, input);
+  rep.markdown = markdown_summary(result, input, l);
   if (rep.plots_skipped) rep.markdown += "\n" + rep.plots_note + "\n";
   rep.kalibr_yaml = kalibr_imu_yaml(result, input, options.rostopic);
   return rep;
@@ -598,7 +674,9 @@ std::string html_document(std::span<const Report> reports, std::string_view titl
 }
 
 std::string html_document(const Report& report) {
-  return html_document(std::span<const Report>(&report, 1), "foglab report: " + report.title);
+  return html_document(std::span<const Report>(&report, 1),
+                       say(report.language, Text::an_page_title, report.title), {},
+                       report.language);
 }
 
 }  // namespace foglab::report

@@ -35,27 +35,33 @@ inline constexpr const char* kGrey = "#606060";
 /// 4 significant digits; "-" for NaN or infinity.
 std::string g(double v);
 /// The same, "not visible" when there is no reading.
-std::string g(const std::optional<double>& v);
+std::string g(const std::optional<double>& v, Language language);
 
 /// Value and interval of a parameter as the reports show them: a resolved
 /// term "v" and "[lo, hi]"; a term left out "< bound" and "[0, bound]".
 struct ParameterText {
   std::string value, interval;
 };
-ParameterText parameter_text(const model::ParameterEstimate& p);
+ParameterText parameter_text(const model::ParameterEstimate& p, Language language);
 
 /// "a Wiener process (rate random walk), K = ... deg/h/sqrt(s)" etc.
-std::string random_bias_answer(const model::AnalysisResult& r);
+std::string random_bias_answer(const model::AnalysisResult& r, Language language);
 /// "not resolved ..." or "time constant ... s (first-order cut-off ... Hz) ...":
 /// the sensor bandwidth the fit found.
-std::string bandwidth_sentence(const model::BandwidthEstimate& b);
+std::string bandwidth_sentence(const model::BandwidthEstimate& b, Language language);
 /// "none found" or "20.2 Hz (2.85 Hz wide), 882 deg/h rms, ...": the lines.
-std::string lines_sentence(const model::NoiseFitResult& fit);
+std::string lines_sentence(const model::NoiseFitResult& fit, Language language);
 /// "tactical (decided by ...; by bias instability ...; by ARW ...)".
-std::string class_sentence(const model::AnalysisResult& r);
+std::string class_sentence(const model::AnalysisResult& r, Language language);
+/// The name of a class of the manual's Table 1: "tactical", "тактический".
+std::string class_name(AccuracyClass c, Language language);
+/// `text` in the units of `sensor`: in_sensor_units() (core/units.h) for English; for an
+/// accelerometer's Russian text every °/ч becomes м/с², and the rate's random walk the
+/// acceleration's.
+std::string sensor_text(std::string_view text, Sensor sensor, Language language);
 
 /// The report's title, else "file (channel)", else the file name.
-std::string record_title(const ReportInput& input);
+std::string record_title(const ReportInput& input, Language language);
 
 /// <td>/<th> with the text escaped.
 std::string td(std::string_view text);

@@ -60,19 +60,19 @@ Series full_height_band(std::string title, const char* color, double opacity, do
 }
 
 // The gaps of the time axis, shaded over the whole height.
-void mark_gaps(Plot& plot, const model::AnalysisResult& r) {
+void mark_gaps(Plot& plot, const model::AnalysisResult& r, Language l) {
   const std::vector<GapSpan> spans = gap_spans_s(r.gaps, r.sample_rate_hz);
   for (std::size_t i = 0; i < spans.size(); ++i) {
     plot.series.push_back(full_height_band(
-        i == 0 ? fmt::format("gap ({} found, nothing interpolated)", r.gaps.size()) : std::string(),
-        kGrey, 0.25, spans[i].start_s / kSecondsPerHour, spans[i].end_s / kSecondsPerHour, false));
+        i == 0 ? say(l, Text::an_plot_gap, r.gaps.size()) : std::string(), kGrey, 0.25,
+        spans[i].start_s / kSecondsPerHour, spans[i].end_s / kSecondsPerHour, false));
   }
 }
 
 // The bias steps (vertical lines over the rate's span) and spikes (a mark at
 // the edge of their preview block) the analysis found.
 void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const RecordPreview& p,
-                           const std::vector<double>& hours) {
+                           const std::vector<double>& hours, Language l) {
   if (hours.empty() || !(r.sample_rate_hz > 0.0)) return;
   const auto [lo, hi] = [&] {
     double a = 0.0, b = 0.0;
@@ -89,8 +89,7 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
   }();
   for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
     Series step;
-    step.title = i == 0 ? fmt::format("bias step ({} found, levelled)", r.steps.indices.size())
-                        : std::string();
+    step.title = i == 0 ? say(l, Text::an_plot_step, r.steps.indices.size()) : std::string();
     const double t = elapsed_s(r.steps.indices[i], r.gaps, r.sample_rate_hz) / kSecondsPerHour;
     step.x = {t, t};
     step.y = {lo, hi};
@@ -102,7 +101,7 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
   }
   if (r.spikes.indices.empty()) return;
   Series spikes;
-  spikes.title = fmt::format("spike ({} found, replaced)", r.spikes.count);
+  spikes.title = say(l, Text::an_plot_spike, r.spikes.count);
   spikes.style = SeriesStyle::points;
   spikes.color = kPurple;
   spikes.point_type = 9;  // a filled triangle
@@ -122,19 +121,20 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
   plot.series.push_back(std::move(spikes));
 }
 
-Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std::string& title) {
+Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std::string& title,
+               Language l) {
   const RecordPreview& p = in.preview;
   Plot plot;
-  plot.title = title + ": rate and temperature";
-  plot.x_label = "time [h]";
-  plot.y_label = "rate [deg/h]";
-  plot.y2_label = "temperature [degC]";
+  plot.title = say(l, Text::an_plot_time, title);
+  plot.x_label = say(l, Text::an_axis_time);
+  plot.y_label = say(l, Text::an_axis_rate);
+  plot.y2_label = say(l, Text::an_axis_temperature);
   plot.key = "top left";
   std::vector<double> hours(p.time_s.size());
   for (std::size_t k = 0; k < hours.size(); ++k) hours[k] = p.time_s[k] / kSecondsPerHour;
   if (p.block_samples > 1) {
     Series env;
-    env.title = fmt::format("rate, min-max of {} samples", p.block_samples);
+    env.title = say(l, Text::an_legend_envelope, p.block_samples);
     env.style = SeriesStyle::band;
     env.x = hours;
     env.y_low = p.rate_min_deg_h;
@@ -144,7 +144,7 @@ Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std:
     plot.series.push_back(std::move(env));
   }
   Series mean;
-  mean.title = p.block_samples > 1 ? "rate, block mean" : "rate";
+  mean.title = say(l, p.block_samples > 1 ? Text::an_legend_block_mean : Text::an_legend_rate);
   mean.x = hours;
   mean.y = p.rate_mean_deg_h;
   mean.color = kBlue;
@@ -153,8 +153,8 @@ Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std:
   if (!p.temperature_c.empty()) {
     Series t;
     t.title = in.temperature_channel.empty()
-                  ? std::string("temperature (right axis)")
-                  : fmt::format("temperature {} (right axis)", in.temperature_channel);
+                  ? say(l, Text::an_legend_temperature)
+                  : say(l, Text::an_legend_temperature_channel, in.temperature_channel);
     t.x = hours;
     t.y = p.temperature_c;
     t.color = kRed;
@@ -162,18 +162,18 @@ Plot time_plot(const ReportInput& in, const model::AnalysisResult& r, const std:
     t.y2 = true;
     plot.series.push_back(std::move(t));
   }
-  mark_gaps(plot, r);
-  mark_steps_and_spikes(plot, r, p, hours);
+  mark_gaps(plot, r, l);
+  mark_steps_and_spikes(plot, r, p, hours, l);
   return plot;
 }
 
 Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::string& title,
-               std::size_t points) {
+               std::size_t points, Language l) {
   const RecordPreview& p = in.preview;
   Plot plot;
-  plot.title = title + ": bias against temperature";
-  plot.x_label = "temperature [degC]";
-  plot.y_label = "bias (block mean of the rate) [deg/h]";
+  plot.title = say(l, Text::an_plot_bias, title);
+  plot.x_label = say(l, Text::an_axis_temperature);
+  plot.y_label = say(l, Text::an_axis_bias);
   plot.key = "top left";
   // Regroup the preview's blocks into about `points` means.
   const std::size_t n = std::min(p.rate_mean_deg_h.size(), p.temperature_c.size());
@@ -201,7 +201,8 @@ Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::
   }
   const double seconds =
       static_cast<double>(group) * (p.time_s.size() > 1 ? (p.time_s[1] - p.time_s[0]) : 0.0);
-  dots.title = seconds > 0.0 ? fmt::format("block means ({:.3g} s)", seconds) : "block means";
+  dots.title = seconds > 0.0 ? say(l, Text::an_legend_block_means_s, seconds)
+                             : say(l, Text::an_legend_block_means);
   plot.series.push_back(std::move(dots));
   if (!(t_hi >= t_lo)) {
     t_lo = s.temperature_min_c;
@@ -212,8 +213,8 @@ Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::
     t_hi += 0.5;
   }
   Series fit;
-  fit.title = fmt::format("fit: degree {} in (T - {:.4g} degC){}", s.degree, s.t_ref_c,
-                          s.constant_fallback ? ", constant fallback" : "");
+  fit.title = say(l, Text::an_legend_polynomial, s.degree, s.t_ref_c,
+                  s.constant_fallback ? say(l, Text::an_constant_fallback) : "");
   fit.color = kRed;
   fit.line_width = 2.5;
   for (int k = 0; k <= 100; ++k) {
@@ -228,9 +229,10 @@ Plot bias_plot(const model::SystematicFit& s, const ReportInput& in, const std::
 // The lab's graphical reading of a line from the PSD, or the fit's value
 // (resolved terms only) when the PSD shows none, with where it came from.
 std::pair<std::optional<double>, std::string> reading_or_fit(const std::optional<double>& reading,
-                                                             const model::ParameterEstimate& fit) {
-  if (reading) return {reading, "PSD reading"};
-  if (fit.status == model::TermStatus::resolved) return {fit.value, "fit"};
+                                                             const model::ParameterEstimate& fit,
+                                                             Language l) {
+  if (reading) return {reading, say(l, Text::an_source_psd)};
+  if (fit.status == model::TermStatus::resolved) return {fit.value, say(l, Text::an_source_fit)};
   return {std::nullopt, ""};
 }
 
@@ -245,17 +247,18 @@ Series reference_line(std::string title, const char* color) {
   return line;
 }
 
-Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
+Plot psd_plot(const model::AnalysisResult& r, const std::string& title, Language l) {
   const stats::PsdResult& psd = r.psd_smoothed.frequency_hz.empty() ? r.psd : r.psd_smoothed;
   Plot plot;
-  plot.title = title + ": square root of the PSD of the residual (two-sided)";
-  plot.x_label = "frequency [Hz]";
-  plot.y_label = "sqrt(PSD) [deg/h/sqrt(Hz)]";
+  plot.title = say(l, Text::an_plot_psd, title);
+  plot.x_label = say(l, Text::an_axis_frequency);
+  plot.y_label = say(l, Text::an_axis_sqrt_psd);
   plot.log_x = plot.log_y = true;
   plot.equal_decades = true;
   plot.key = "bottom left";
   Series data;
-  data.title = &psd == &r.psd_smoothed ? "Welch estimate, log-smoothed" : "Welch estimate";
+  data.title =
+      say(l, &psd == &r.psd_smoothed ? Text::an_legend_welch_smoothed : Text::an_legend_welch);
   data.style = SeriesStyle::linespoints;
   data.color = kBlue;
   data.line_width = 1.0;
@@ -276,23 +279,20 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
     const auto [low, high] =
         std::minmax_element(line.bin_frequency_hz.begin(), line.bin_frequency_hz.end());
     plot.series.push_back(full_height_band(
-        fmt::format("spectral line {} Hz, {} deg/h rms (in the fit as known noise)",
-                    g(line.frequency_hz), g(std::sqrt(line.variance))),
+        say(l, Text::an_legend_line_band, g(line.frequency_hz), g(std::sqrt(line.variance))),
         kPurple, 0.2, *low - 0.5 * bin_hz, *high + 0.5 * bin_hz, true));
   }
 
-  const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N);
+  const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N, l);
   if (n) {
-    Series white = reference_line(
-        fmt::format("white noise level N = {} deg/h/sqrt(Hz) ({})", g(*n), n_source), kGreen);
+    Series white = reference_line(say(l, Text::an_legend_white_level, g(*n), n_source), kGreen);
     white.x = {f_lo, f_hi};
     white.y = {*n, *n};
     plot.series.push_back(std::move(white));
   }
-  const auto [k, k_source] = reading_or_fit(r.psd_readings.K, r.noise.K);
+  const auto [k, k_source] = reading_or_fit(r.psd_readings.K, r.noise.K, l);
   if (k) {
-    Series walk = reference_line(
-        fmt::format("random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})", g(*k), k_source), kRed);
+    Series walk = reference_line(say(l, Text::an_legend_random_walk, g(*k), k_source), kRed);
     // From the lowest frequency to 1 Hz (where the lab reads it), or to the
     // white level when that is crossed later.
     const NoiseModel walk_model{.K = *k};
@@ -309,24 +309,24 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title) {
 
 struct TermLine {
   NoiseTerm term;
-  const char* label;
+  Text label;
   const char* color;
   int dash;
 };
 
-Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
+Plot adev_plot(const model::AnalysisResult& r, const std::string& title, Language l) {
   const stats::AllanResult& a = r.allan;
   Plot plot;
-  plot.title = title + ": overlapping Allan deviation of the residual";
-  plot.x_label = "tau [s]";
-  plot.y_label = "Allan deviation [deg/h]";
+  plot.title = say(l, Text::an_plot_adev, title);
+  plot.x_label = say(l, Text::an_axis_tau);
+  plot.y_label = say(l, Text::an_axis_adev);
   plot.log_x = plot.log_y = true;
   plot.equal_decades = true;
   plot.headroom_decades = 1;
   plot.key = "top right";
   if (a.ci95_low.size() == a.tau_s.size() && a.ci95_high.size() == a.tau_s.size()) {
     Series band;
-    band.title = "95 % interval";
+    band.title = say(l, Text::interval95);
     band.style = SeriesStyle::band;
     band.color = kLightBlue;
     band.fill_opacity = 0.35;
@@ -345,18 +345,18 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
       end *= 1.05;
     }
     if (end > a.tau_s.front()) {
-      plot.series.push_back(full_height_band("sensor bandwidth (white level lowered > 1 %)", kGrey,
-                                             0.12, a.tau_s.front(), end, true));
+      plot.series.push_back(full_height_band(say(l, Text::an_legend_bandwidth), kGrey, 0.12,
+                                             a.tau_s.front(), end, true));
     }
   }
   if (const auto k = static_cast<std::size_t>(r.noise.first_taus_left_out);
       k > 0 && k < a.tau_s.size()) {
-    plot.series.push_back(full_height_band(
-        fmt::format("first {} tau(s) left out of the fit (no modelled filter follows)", k), kOrange,
-        0.12, a.tau_s.front(), std::sqrt(a.tau_s[k - 1] * a.tau_s[k]), true));
+    plot.series.push_back(full_height_band(say(l, Text::an_legend_first_taus, k), kOrange, 0.12,
+                                           a.tau_s.front(), std::sqrt(a.tau_s[k - 1] * a.tau_s[k]),
+                                           true));
   }
   Series dev;
-  dev.title = "OADEV";
+  dev.title = say(l, Text::an_legend_oadev);
   dev.style = SeriesStyle::linespoints;
   dev.color = kBlue;
   dev.line_width = 1.0;
@@ -369,25 +369,24 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
   const NoiseModel& m = r.noise.model;
   const std::vector<double> taus = log_space(a.tau_s.front(), a.tau_s.back(), 80);
   static const TermLine kTerms[] = {
-      {NoiseTerm::quantisation, "quantisation Q (-1)", kPurple, 4},
-      {NoiseTerm::white, "white noise N (-1/2)", kGreen, 2},
-      {NoiseTerm::flicker, "flicker B (0)", kOrange, 2},
-      {NoiseTerm::random_walk, "random walk K (+1/2)", kRed, 2},
-      {NoiseTerm::ramp, "rate ramp R (+1)", kYellow, 4},
-      {NoiseTerm::gauss_markov, "Gauss-Markov sigma, Tc", kGrey, 5},
+      {NoiseTerm::quantisation, Text::an_legend_term_q, kPurple, 4},
+      {NoiseTerm::white, Text::an_legend_term_n, kGreen, 2},
+      {NoiseTerm::flicker, Text::an_legend_term_b, kOrange, 2},
+      {NoiseTerm::random_walk, Text::an_legend_term_k, kRed, 2},
+      {NoiseTerm::ramp, Text::an_legend_term_r, kYellow, 4},
+      {NoiseTerm::gauss_markov, Text::an_legend_term_gm, kGrey, 5},
   };
   for (const TermLine& t : kTerms) {
     if (!(m.coefficient(t.term) > 0.0)) continue;
     Series line;
-    line.title = t.label;
+    line.title = say(l, t.label);
     line.color = t.color;
     line.dash_type = t.dash;
     line.line_width = 1.5;
     line.sets_range = false;
     line.x = taus;
     if (t.term == NoiseTerm::white && r.noise.bandwidth.resolved) {
-      line.title = fmt::format("white noise N with the sensor bandwidth (f_c {} Hz)",
-                               g(r.noise.bandwidth.cutoff_hz));
+      line.title = say(l, Text::an_legend_white_bandwidth, g(r.noise.bandwidth.cutoff_hz));
     }
     for (double tau : taus) {
       line.y.push_back(std::sqrt(model::fitted_allan_variance(r.noise, t.term, tau)));
@@ -397,8 +396,8 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
   if (!r.noise.lines.empty()) {
     Series line;
     line.title = r.noise.lines.size() == 1
-                     ? fmt::format("spectral line {} Hz", g(r.noise.lines.front().frequency_hz))
-                     : fmt::format("{} spectral lines", r.noise.lines.size());
+                     ? say(l, Text::an_legend_line, g(r.noise.lines.front().frequency_hz))
+                     : say(l, Text::an_legend_lines, r.noise.lines.size());
     line.color = kPurple;
     line.dash_type = 3;
     line.line_width = 1.5;
@@ -408,7 +407,7 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
     plot.series.push_back(std::move(line));
   }
   Series fit;
-  fit.title = fmt::format("fit {}", to_string(r.noise.terms));
+  fit.title = say(l, Text::an_legend_fit, terms_text(r.noise.terms, l));
   fit.color = kBlack;
   fit.line_width = 2.0;
   fit.sets_range = false;
@@ -417,8 +416,8 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title) {
   plot.series.push_back(std::move(fit));
   if (r.bias_instability_tau_s > 0.0 && r.bias_instability_deg_h > 0.0) {
     Series min;
-    min.title = fmt::format("minimum {} deg/h at {} s", g(r.bias_instability_deg_h),
-                            g(r.bias_instability_tau_s));
+    min.title =
+        say(l, Text::an_legend_minimum, g(r.bias_instability_deg_h), g(r.bias_instability_tau_s));
     min.style = SeriesStyle::points;
     min.point_type = 6;
     min.point_size = 1.6;
@@ -500,21 +499,22 @@ RecordPreview preview_record(std::span<const double> rate_deg_h,
 
 std::vector<Plot> report_plots(const model::AnalysisResult& result, const ReportInput& input,
                                const ReportOptions& options) {
-  const std::string title = record_title(input);
+  const Language l = options.language;
+  const std::string title = record_title(input, l);
   std::vector<Plot> plots;
-  plots.push_back(time_plot(input, result, title));
+  plots.push_back(time_plot(input, result, title, l));
   if (result.systematic && !input.preview.temperature_c.empty()) {
-    plots.push_back(bias_plot(*result.systematic, input, title, options.bias_points));
+    plots.push_back(bias_plot(*result.systematic, input, title, options.bias_points, l));
   }
-  plots.push_back(psd_plot(result, title));
-  plots.push_back(adev_plot(result, title));
+  plots.push_back(psd_plot(result, title, l));
+  plots.push_back(adev_plot(result, title, l));
   if (input.sensor != Sensor::gyroscope) {
     // An accelerometer's plots say m/s^2, and its noise terms by their names.
     for (Plot& p : plots) {
       for (std::string* text : {&p.title, &p.x_label, &p.y_label, &p.y2_label}) {
-        *text = in_sensor_units(*text, input.sensor);
+        *text = sensor_text(*text, input.sensor, l);
       }
-      for (Series& s : p.series) s.title = in_sensor_units(s.title, input.sensor);
+      for (Series& s : p.series) s.title = sensor_text(s.title, input.sensor, l);
     }
   }
   return plots;

@@ -125,12 +125,35 @@ TEST(BrowserTest, Lab2ReportPlotsRenderInChromium) {
   EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 16);
 }
 
+TEST(BrowserTest, RussianLab2ReportPlotsRenderInChromium) {
+  // `lab2 --lang ru` (issue 20): Cyrillic titles, axes and legends lay out as the English.
+  ASSERT_TRUE(have_chromium())
+      << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
+  test::TempDir dir;
+  const test::CliRun r = test::run_foglab("lab2 --lang ru --out " + test::quote(dir / "report"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 16);
+}
+
 TEST(BrowserTest, Lab1ReportPlotsRenderInChromium) {
   ASSERT_TRUE(have_chromium())
       << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
   test::TempDir dir;
   const test::CliRun r = test::run_foglab("lab1 --out " + test::quote(dir / "report"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 8);
+}
+
+TEST(BrowserTest, RussianLab1ReportRendersInChromium) {
+  // `lab1 --lang ru` (issue 20): Cyrillic titles, axis labels and legends in all eight SVGs.
+  ASSERT_TRUE(have_chromium())
+      << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
+  test::TempDir dir;
+  const test::CliRun r = test::run_foglab("lab1 --lang ru --out " + test::quote(dir / "report"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = test::read_file(dir / "report" / "report.html");
+  EXPECT_NE(page.find("<html lang=\"ru\">"), std::string::npos);
+  EXPECT_NE(page.find(">действующая угловая скорость [°/с]<"), std::string::npos);
   EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 8);
 }
 
@@ -145,6 +168,25 @@ TEST(BrowserTest, RussianCalibrationReportRendersInChromium) {
             0);
   const test::CliRun r =
       test::run_foglab("calibrate " + run + " --lang ru --report " + test::quote(dir / "ru.html"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(expect_rendered_figures(dir / "ru.html", dir.path()), 4);
+}
+
+TEST(BrowserTest, RussianAnalyzeReportRendersInChromium) {
+  // `analyze --report --lang ru` (issue 20): the record, bias-temperature, PSD and Allan
+  // deviation plots of a generated recording with a temperature ramp, with Cyrillic titles,
+  // axis labels and legends, laid out as the English ones are.
+  ASSERT_TRUE(have_chromium())
+      << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
+  test::TempDir dir;
+  const std::string recording = test::quote(dir / "fog.mat");
+  ASSERT_EQ(test::run_foglab("generate --N 0.5 --B 0.05 --K 0.005 --Q 0.5 --temp-coef 0.8 "
+                             "--temperature ramp:10 --fs 10 --hours 1 --out " +
+                             recording)
+                .exit_code,
+            0);
+  const test::CliRun r = test::run_foglab("analyze " + recording + " --lang ru --report " +
+                                          test::quote(dir / "ru.html"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(expect_rendered_figures(dir / "ru.html", dir.path()), 4);
 }

@@ -503,5 +503,43 @@ TEST(CliAnalyzeInputs, BadTempDegreeIsAUsageError) {
   EXPECT_THAT(r.err, HasSubstr("--temp-degree '5'"));
 }
 
+TEST(CliAnalyzeInputs, AnUnknownLanguageIsAUsageErrorNamingTheChoices) {
+  test::TempDir dir;
+  const test::CliRun r = run_foglab("analyze --lang de --report " + quote(dir / "de.html"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("'en' or 'ru'"));
+  EXPECT_THAT(r.err, HasSubstr("'de'"));
+  EXPECT_FALSE(fs::exists(dir / "de.html"));
+}
+
+TEST(CliAnalyzeInputs, RussianReportAndSummaryOfTheBuiltInSample) {
+  // --lang ru: the page and the terminal's summary in the lab manual's terms; without it,
+  // English as before.
+  test::TempDir dir;
+  const test::CliRun r = run_foglab("analyze --lang ru --report " + quote(dir / "ru.html"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("### Модель шума (составляющие "));
+  EXPECT_THAT(r.out, HasSubstr("нестабильность смещения нуля"));
+  const std::string html = test::read_file(dir / "ru.html");
+  EXPECT_THAT(html, HasSubstr("<html lang=\"ru\">"));
+  EXPECT_THAT(html, HasSubstr("<h3>Класс точности (пособие, таблица 1)</h3>"));
+  const test::CliRun en = run_foglab("analyze --report " + quote(dir / "en.html"));
+  ASSERT_EQ(en.exit_code, 0) << en.err;
+  EXPECT_THAT(en.out, HasSubstr("### Noise model (terms "));
+  EXPECT_THAT(test::read_file(dir / "en.html"), HasSubstr("<html lang=\"en\">"));
+}
+
+TEST(CliAnalyzeInputs, TheImuFormRefusesARussianReport) {
+  // Its report (report/imu.h) is English only: --lang ru says so rather than mixing them.
+  test::TempDir dir;
+  const std::string imu = quote(dir / "imu.csv");
+  ASSERT_EQ(run_foglab("generate --imu --hours 0.01 --out " + imu).exit_code, 0);
+  const test::CliRun r = run_foglab("analyze " + imu + " --lang ru");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--lang ru"));
+  EXPECT_THAT(r.err, HasSubstr("--channel"));
+  EXPECT_EQ(run_foglab("analyze " + imu + " --lang en").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace foglab

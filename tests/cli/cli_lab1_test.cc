@@ -182,5 +182,33 @@ TEST(CliLab1, BadVariantAndOutAreUsageErrors) {
   EXPECT_EQ(test::read_file(dir / "taken"), "keep");
 }
 
+TEST(CliLab1, AnUnknownLanguageIsAUsageErrorBeforeTheWork) {
+  test::TempDir dir;
+  const test::CliRun r = run_foglab("lab1 --lang de --out " + quote(dir / "o"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("'en' or 'ru', got 'de'"));
+  EXPECT_FALSE(fs::exists(dir / "o"));
+}
+
+TEST(CliLab1, RussianReportOnTheTerminalAndInEveryFile) {
+  // `--lang ru`: the Markdown printed and report.md are the Russian report; the CSV and the
+  // JSON, interfaces, keep their English names.
+  test::TempDir dir;
+  const fs::path out = dir / "lab1";
+  const test::CliRun r = run_foglab("lab1 --variant 2 --no-plots --lang RU --out " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("# Лабораторная работа № 1: вариант 2\n"));
+  EXPECT_THAT(r.out, HasSubstr("## Расчёт параметров ВОГ (п. 1.1)"));
+  EXPECT_THAT(r.out, ::testing::Not(HasSubstr("The coil")));
+  const std::string md = test::read_file(out / "report.md");
+  EXPECT_THAT(md, HasSubstr("## Выводы"));
+  EXPECT_THAT(r.out, HasSubstr(md));
+  EXPECT_THAT(test::read_file(out / "report.html"), HasSubstr("<html lang=\"ru\">"));
+  EXPECT_THAT(test::read_file(out / "sweeps.csv"),
+              HasSubstr("scheme,modulation,method,rate_deg_s,output,scale_factor\n"));
+  const json j = json::parse(test::read_file(out / "lab1.json"));
+  EXPECT_NEAR(j["sweeps"]["open_loop_square"]["nonlinearity_percent"].get<double>(), 41.60, 0.01);
+}
+
 }  // namespace
 }  // namespace foglab

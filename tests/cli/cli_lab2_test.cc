@@ -175,6 +175,13 @@ TEST(CliLab2, BadInputIsAClearErrorAndWritesNothing) {
     EXPECT_EQ(test::read_file(dir / "taken"), "keep me");
   }
   {
+    // A report language foglab does not have: exit 2 naming the choices, nothing written.
+    const test::CliRun r = run_foglab("lab2 --lang de --out " + quote(dir / "o5"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("'en' or 'ru'"));
+    EXPECT_FALSE(fs::exists(dir / "o5"));
+  }
+  {
     const test::CliRun r =
         run_foglab("lab2 " + quote(dir / "missing.mat") + " --out " + quote(dir / "o4"));
     EXPECT_NE(r.exit_code, 0);

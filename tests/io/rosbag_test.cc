@@ -194,7 +194,7 @@ TEST_F(RosbagTest, RepeatedAndOutOfOrderStampsAreDropped) {
   // Each dropped message leaves its slot empty.
   EXPECT_THAT(r.gaps, ElementsAre(FieldsAre(300, 1), FieldsAre(599, 1), FieldsAre(698, 1)));
   ASSERT_EQ(r.notes.size(), 1u);
-  EXPECT_THAT(r.notes[0], HasSubstr("3 of the 1000 messages of topic '/imu' dropped"));
+  EXPECT_THAT(r.notes[0].text(), HasSubstr("3 of the 1000 messages of topic '/imu' dropped"));
   expect_values(r, expected);
 }
 
@@ -214,7 +214,7 @@ TEST_F(RosbagTest, ZeroHeaderStampsFallBackToReceiveTimes) {
   EXPECT_THAT(r.gaps, IsEmpty());
   EXPECT_EQ(r.timing.messages, 10000u);
   ASSERT_EQ(r.notes.size(), 1u);
-  EXPECT_THAT(r.notes[0], HasSubstr("receive times"));
+  EXPECT_THAT(r.notes[0].text(), HasSubstr("receive times"));
   expect_values(r, c);
 }
 

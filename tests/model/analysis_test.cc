@@ -19,8 +19,9 @@
 namespace foglab::model {
 namespace {
 
-bool contains(const std::vector<std::string>& notes, const std::string& text) {
-  for (const std::string& n : notes) {
+bool contains(const std::vector<Message>& notes, const std::string& text) {
+  for (const Message& m : notes) {
+    const std::string n = m.text();
     if (n.find(text) != std::string::npos) return true;
   }
   return false;
@@ -117,7 +118,7 @@ TEST(Analysis, WienerRandomBiasIsNamedWithEvidence) {
     if (r.noise.random_bias_process == RandomBiasProcess::wiener) {
       ++wiener;
       EXPECT_LT(r.evidence.criterion_wiener, r.evidence.criterion_none);
-      EXPECT_NE(r.evidence.summary.find("Wiener"), std::string::npos);
+      EXPECT_NE(r.evidence.summary.text().find("Wiener"), std::string::npos);
     }
     EXPECT_TRUE(r.systematic->constant_fallback);
     EXPECT_TRUE(contains(r.notes, "too little"));

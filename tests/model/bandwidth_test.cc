@@ -167,7 +167,7 @@ TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
       SCOPED_TRACE(::testing::Message() << "fs " << c.fs_hz << " Hz, seed " << seed);
       EXPECT_GE(r.noise.first_taus_left_out, 1);
       EXPECT_LE(r.noise.first_taus_left_out, 4);
-      EXPECT_NE(r.noise.first_taus_left_out_why.find("left out"), std::string::npos);
+      EXPECT_NE(r.noise.first_taus_left_out_why.text().find("left out"), std::string::npos);
       EXPECT_NEAR(r.noise.N.value / 0.3, 1.0, 0.01);
       // The interval spans the fits with one and two taus more left out.
       EXPECT_LE(r.noise.N.ci95_low, 0.3);

@@ -136,7 +136,7 @@ TEST(Calibration, RoundTripOverSeedsMeetsTheAccuracyGoals) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const CalibratedRun run = calibrate_run(g, seed);
     const Calibration& c = run.calibration;
-    EXPECT_TRUE(c.noise_covariance) << (c.notes.empty() ? "" : c.notes.front());
+    EXPECT_TRUE(c.noise_covariance) << (c.notes.empty() ? "" : c.notes.front().text());
     coverage.count_all(c, g, run_level_lsb(run, g));
     ASSERT_EQ(c.plateaus.size(), 63u);
     ASSERT_EQ(c.temperatures_c.size(), 3u);
@@ -348,7 +348,7 @@ TEST(Calibration, ShortPlateausAreLeftOutWithANote) {
   const Calibration c = calibrate({100.0, command, output, temperature});
   EXPECT_EQ(c.plateaus.size(), 7u);
   ASSERT_FALSE(c.notes.empty());
-  EXPECT_THAT(c.notes.front(), HasSubstr("the plateau at 50 deg/s"));
+  EXPECT_THAT(c.notes.front().text(), HasSubstr("the plateau at 50 deg/s"));
   EXPECT_NEAR(c.scale_factor.value, 100.0, 1e-6);
 }
 

@@ -156,7 +156,7 @@ TEST(NoiseFit, GaussMarkovWhoseHumpLeavesTheRecordIsTakenForARandomWalk) {
   const Curve c = exact_curve(truth, 900.0, 40.0);
   const NoiseFitResult r = fit_noise_model(c.tau, c.adev, c.edf);
   EXPECT_EQ(r.random_bias_process, RandomBiasProcess::wiener);
-  EXPECT_NE(r.gauss_markov_set_aside.find("does not close below the longest tau"),
+  EXPECT_NE(r.gauss_markov_set_aside.text().find("does not close below the longest tau"),
             std::string::npos)
       << r.message;
   EXPECT_TRUE(r.has_gauss_markov_candidate);

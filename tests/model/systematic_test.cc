@@ -91,8 +91,8 @@ TEST(Systematic, ThermostatRunFallsBackToAConstantAndSaysSo) {
   EXPECT_EQ(fit.degree, 0);
   EXPECT_TRUE(fit.constant_fallback);
   EXPECT_FALSE(fit.lab_constant_meaningful);
-  EXPECT_NE(fit.note.find("degC"), std::string::npos);
-  EXPECT_NE(fit.note.find("degree 2 was asked"), std::string::npos);
+  EXPECT_NE(fit.note.text().find("degC"), std::string::npos);
+  EXPECT_NE(fit.note.text().find("degree 2 was asked"), std::string::npos);
   EXPECT_NEAR(fit.bias_deg_h, 2.0, 0.05);
   // White rate noise of density N has a per-sample sd of N sqrt(fs).
   EXPECT_NEAR(fit.residual_rms_deg_h, 0.5 * std::sqrt(10.0), 0.02 * 0.5 * std::sqrt(10.0));

@@ -16,6 +16,7 @@
 #include "foglab/report/lab2.h"
 #include "foglab/sim/generator.h"
 #include "foglab/sim/lab2_variants.h"
+#include "support/english_left.h"
 
 namespace foglab::report {
 namespace {
@@ -222,6 +223,31 @@ TEST(Lab2Report, PageHoldsEveryPlotWithDistinctIdsAndNoExternalResources) {
   EXPECT_EQ(count(rep.markdown_summary, "| quantity | method |"), 2u);
   EXPECT_GT(rep.markdown.size(), rep.markdown_summary.size());
   EXPECT_EQ(rep.csv, lab2_tables_csv(rep.tables));
+}
+
+TEST(Lab2Report, InRussianEveryWordIsRussianButTheCsvStaysEnglish) {
+  // Issue 20: `lab2 --lang ru`. The tables, the comparison, each run's section with its
+  // notes, and the plots' titles, axes and legends (their SVG text) are in Russian.
+  ReportOptions o;
+  o.language = Language::ru;
+  const Lab2Report rep = make_lab2_report(variant_runs(), "Лабораторная работа 2", "Вступление", o);
+  ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
+  EXPECT_EQ(count(rep.html, "<svg"), 16u);
+  // Latin words allowed: the standard's, the program's and MATLAB's function names, the
+  // gyros' and files' names (FOG1_2.mat).
+  const std::set<std::string> allowed = {"IEEE", "Std", "foglab", "polyfit", "FOG", "mat"};
+  for (const std::string* page : {&rep.html, &rep.markdown}) {
+    for (const std::string& left : test::english_left(*page, allowed)) ADD_FAILURE() << left;
+  }
+  EXPECT_NE(rep.html.find("<html lang=\"ru\">"), std::string::npos);
+  for (const char* term : {"нестабильность смещения нуля", "случайное блуждание угла",
+                           "класс точности", "белый шум ρ"}) {
+    EXPECT_NE(rep.markdown.find(term), std::string::npos) << term;
+  }
+  EXPECT_EQ(count(rep.markdown_summary, "| величина | метод |"), 2u);
+  // The CSV is for programs: the same as the English report's.
+  EXPECT_EQ(rep.csv, lab2_tables_csv(lab2_tables(variant_runs())));
+  EXPECT_NE(rep.csv.find("white noise N"), std::string::npos);
 }
 
 TEST(Lab2Report, WithoutPlotsThePageSaysSo) {

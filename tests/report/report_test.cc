@@ -61,7 +61,7 @@ const Analysed& analysed() {
     out.input.channel = "Y2";
     out.input.temperature_channel = "T2";
     out.input.preview = preview_record(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
-    out.input.notes = {"a caller's note"};
+    out.input.notes = {Message::verbatim("a caller's note")};
     out.result = model::analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
     return out;
   }();

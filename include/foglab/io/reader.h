@@ -60,6 +60,7 @@
 #include <vector>
 
 #include "foglab/core/gaps.h"
+#include "foglab/core/language.h"
 #include "foglab/core/units.h"
 
 namespace foglab::io {
@@ -152,7 +153,7 @@ struct Series {
   /// What a user should know about how the samples were read (a MAT
   /// variable of an integer class converted to double); the CLI prints each
   /// as a note.
-  std::vector<std::string> notes;
+  std::vector<Message> notes;
 };
 
 /// Reads one channel. Checks that the values are finite (a NaN or Inf is a

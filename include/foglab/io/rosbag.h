@@ -57,6 +57,7 @@
 #include <vector>
 
 #include "foglab/core/gaps.h"
+#include "foglab/core/language.h"
 
 namespace foglab::io {
 
@@ -121,7 +122,7 @@ struct ImuRecord {
   std::array<std::vector<double>, 3> linear_acceleration_m_s2;
   /// What a user should know about how the samples were read (duplicates dropped, receive
   /// times used, gaps); the CLI prints each as a note.
-  std::vector<std::string> notes;
+  std::vector<Message> notes;
 };
 
 /// Reads a topic of sensor_msgs/Imu messages (see the top of this header). Needs at least two

@@ -60,7 +60,7 @@ struct RandomBiasEvidence {
   /// Log-log slope of the raw PSD over its lowest decade (-2 Wiener, about 0
   /// on a Gauss-Markov plateau below 1/(2 pi Tc)).
   double psd_low_frequency_slope = 0.0;
-  std::string summary;  ///< one sentence
+  Message summary;  ///< one sentence
 };
 
 struct AnalysisResult {
@@ -84,7 +84,7 @@ struct AnalysisResult {
   OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
   std::vector<Gap> gaps;                   ///< the record's gaps, as given (core/gaps.h)
   ClassVerdict verdict;
-  std::vector<std::string> notes;  ///< what the program decided and why
+  std::vector<Message> notes;  ///< what the program decided and why
 };
 
 /// Analyses a rate record [deg/h] sampled at `sample_rate_hz`, with the

@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "foglab/core/language.h"
 #include "foglab/core/noise_model.h"
 
 namespace foglab::model {
@@ -138,7 +139,7 @@ struct Calibration {
   /// multiplied by it (by max(1, it) with the noise model's covariance).
   double dispersion = 1.0;
   CalibrationBudget budget;
-  std::vector<std::string> notes;
+  std::vector<Message> notes;
 };
 
 /// Finds the plateaus and fits the model. Throws DataError (too few plateaus for the model,

@@ -130,6 +130,7 @@
 #include <string_view>
 #include <vector>
 
+#include "foglab/core/language.h"
 #include "foglab/core/noise_model.h"
 #include "foglab/core/sensor_bandwidth.h"
 #include "foglab/core/spectral_line.h"
@@ -271,8 +272,10 @@ struct CandidateModel {
 
 struct NoiseFitResult {
   FitStatus status = FitStatus::converged;
-  /// One sentence: how the fit ended, with the iterations and the tolerance,
-  /// and how many candidates stopped at the iteration limit.
+  /// How the fit ended, with the iterations and the tolerance, and how many
+  /// candidates stopped at the iteration limit (core/language.h: in any language)...
+  Message outcome;
+  /// ... and in English, followed by the sentences below that are not empty (the JSON's).
   std::string message;
   int iterations = 0;  ///< of the chosen model's final reweighting loop
 
@@ -290,15 +293,15 @@ struct NoiseFitResult {
   /// Why a better-fitting Gauss-Markov model was set aside for the Wiener
   /// one (its Tc's interval does not close inside the record); empty when
   /// none was.
-  std::string gauss_markov_set_aside;
+  Message gauss_markov_set_aside;
   /// Why the models with a rate ramp R were left out (the record's own
   /// slope does not support the ramp the chosen one had;
   /// NoiseFitOptions::record_slope_deg_h_s); empty when they were not.
-  std::string ramp_set_aside;
+  Message ramp_set_aside;
   /// How many of the first taus were left out because no modelled output
   /// filter follows them (0: none), and why.
   int first_taus_left_out = 0;
-  std::string first_taus_left_out_why;
+  Message first_taus_left_out_why;
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;

@@ -73,7 +73,7 @@ struct SystematicFit {
   bool degree_chosen = false;           ///< by the criterion (not forced)
   std::vector<double> criterion;        ///< W_d + 6.63 d, d = 0..max (empty if not chosen)
   double residual_rms_deg_h = 0.0;      ///< [deg/h]
-  std::string note;                     ///< what was done, for the report
+  Message note;                         ///< what was done, for the report
 };
 
 /// What every step of the temperature fit needs from one record, gathered

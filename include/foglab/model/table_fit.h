@@ -51,7 +51,7 @@ struct TableFit {
   double bias_instability_tau_s = 0.0;
   double arw_deg_sqrt_h = 0.0;  ///< from the fitted N (NaN if none)
   ClassVerdict verdict;
-  std::vector<std::string> notes;  ///< what the table could not support, and why
+  std::vector<Message> notes;  ///< what the table could not support, and why
 };
 
 /// Fits the model to `table`. Throws UsageError for mismatched column

@@ -8,7 +8,7 @@
 //   3. the plateau residuals against rate;
 //   4. the plateau residuals against temperature.
 // A triad's report holds one section per gyro after the misalignment matrix. The text is
-// ReportOptions::language's catalogue (report/language.h).
+// ReportOptions::language's catalogue (core/language.h).
 #pragma once
 
 #include <string>

@@ -18,11 +18,15 @@
 //      under the same ramp (output against input rate);
 //   7. square modulation at a fraction of the proper frequency: the
 //      transition spikes.
+// The text is ReportOptions::language's catalogue (core/language.h): in
+// Russian the manual's terms (фаза Саньяка, сигнал демодуляции, открытая
+// схема и схема с обратной связью, масштабный коэффициент, нелинейность).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "foglab/core/language.h"
 #include "foglab/report/report.h"
 #include "foglab/sim/lab1.h"
 
@@ -39,11 +43,15 @@ struct Lab1Report {
 
 /// Draws the plots and writes the page titled `title`; `loop` is the
 /// closed-loop options the result was made with (for the ramp-lag theory).
+/// The text, the figures' captions and the plots' titles, axes and legends
+/// are in options.language (core/language.h); sweep_csv stays English, the
+/// CLI's and the JSON's names.
 Lab1Report make_lab1_report(const sim::Lab1Result& result, std::string_view title,
                             const sim::ClosedLoopOptions& loop = {},
                             const ReportOptions& options = {});
 
-/// The plot descriptions alone (no gnuplot run), in the figures' order.
-std::vector<Plot> lab1_plots(const sim::Lab1Result& result);
+/// The plot descriptions alone (no gnuplot run), in the figures' order, their
+/// text in `language`.
+std::vector<Plot> lab1_plots(const sim::Lab1Result& result, Language language = Language::en);
 
 }  // namespace foglab::report

@@ -36,6 +36,9 @@ namespace foglab::report {
 enum class Lab2Condition { constant, ramp };
 /// "constant temperature" | "temperature ramp".
 std::string_view to_string(Lab2Condition condition);
+/// A run's title: "FOG1, constant temperature (FOG1_1.mat, Y1)", in `language`.
+std::string lab2_run_title(std::string_view gyro, Lab2Condition condition, std::string_view file,
+                           std::string_view channel, Language language = Language::en);
 
 /// What a run should show, when the data were generated (sim/lab2_variants:
 /// computed from the model, not estimated). NaN: not part of the truth.
@@ -82,6 +85,7 @@ struct Lab2Row {
 /// One gyro's table, its classes and the comparison of its two runs.
 struct Lab2Table {
   std::string gyro;
+  Language language = Language::en;      ///< of every text below
   std::array<const Lab2Run*, 2> runs{};  ///< constant, ramp; null when not analysed
   std::vector<Lab2Row> rows;
   bool has_truth = false;
@@ -93,12 +97,13 @@ struct Lab2Table {
 
 /// The tables of the gyros in `runs`, in order of first appearance. The
 /// returned tables point into `runs`.
-std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs);
+std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs, Language language = Language::en);
 
 std::string lab2_tables_markdown(std::span<const Lab2Table> tables);
 std::string lab2_tables_html(std::span<const Lab2Table> tables);
 /// Long format: gyro, quantity, method, unit, condition, value, ci95_low,
-/// ci95_high, truth (one line per cell), with a `#` comment line on top.
+/// ci95_high, truth (one line per cell), with a `#` comment line on top; in the tables'
+/// language (make_lab2_report's CSV is always English).
 std::string lab2_tables_csv(std::span<const Lab2Table> tables);
 
 struct Lab2Report {
@@ -107,13 +112,14 @@ struct Lab2Report {
   std::string html;              ///< the whole self-contained page
   std::string markdown_summary;  ///< tables, classes, comparisons (for the terminal)
   std::string markdown;          ///< the summary followed by every run's Markdown
-  std::string csv;               ///< lab2_tables_csv()
+  std::string csv;               ///< lab2_tables_csv(), in English
   bool plots_skipped = false;
   std::string plots_note;
 };
 
 /// Draws every run's plots (the runs in parallel, one gnuplot each) and
-/// writes the page titled `title`, with `intro` (plain text) under it.
+/// writes the page titled `title`, with `intro` (plain text) under it, in
+/// options.language (core/language.h).
 Lab2Report make_lab2_report(std::span<const Lab2Run> runs, std::string_view title,
                             std::string_view intro, const ReportOptions& options = {});
 

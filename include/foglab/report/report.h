@@ -87,7 +87,7 @@ struct ReportInput {
   /// [deg/h] the constant bias removed when there is no temperature (the
   /// analysis does not keep it).
   std::optional<double> record_mean_deg_h;
-  std::vector<std::string> notes;  ///< the caller's notes (shown with the analysis's)
+  std::vector<Message> notes;  ///< the caller's notes (shown with the analysis's)
 };
 
 struct ReportOptions {
@@ -96,7 +96,8 @@ struct ReportOptions {
   std::string id_prefix = "r";     ///< SVG id prefix (distinct per report inlined in one page)
   std::size_t bias_points = 200;   ///< block means in the bias-temperature plot
   std::string rostopic = "/imu0";  ///< for imu.yaml
-  /// The text's language (report/language.h); reports not yet converted ignore it.
+  /// The text's language (core/language.h): make_report()'s page, plots and Markdown;
+  /// reports not yet converted (imu.h) ignore it.
   Language language = Language::en;
 };
 
@@ -115,7 +116,9 @@ struct Report {
   std::string plots_note;       ///< the sentence saying why, when skipped
   std::string html_section;     ///< <section>…</section> for html_document()
   std::string markdown;         ///< Markdown summary (for the terminal)
-  std::string kalibr_yaml;      ///< imu.yaml
+  std::string kalibr_yaml;      ///< imu.yaml (English, as Kalibr's file)
+  /// The language of its text (ReportOptions::language); html_document() follows it.
+  Language language = Language::en;
 };
 
 /// Draws the plots and writes every text form of the report.
@@ -133,10 +136,12 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
 /// list and the sections (lab 2: its summary tables).
 std::string html_document(std::span<const Report> reports, std::string_view title,
                           std::string_view preface_html = {}, Language language = Language::en);
+/// One report's page, in the report's language.
 std::string html_document(const Report& report);
 
 /// The Markdown summary alone.
-std::string markdown_summary(const model::AnalysisResult& result, const ReportInput& input);
+std::string markdown_summary(const model::AnalysisResult& result, const ReportInput& input,
+                             Language language = Language::en);
 
 /// Kalibr's imu.yaml for the gyroscope (no accelerometer fields: they are
 /// commented out), update_rate = the sample rate.
