@@ -139,7 +139,7 @@ nlohmann::json to_json(const CalibrateCommand& c, const model::TriadCalibration&
     }
     misalignment.push_back(row);
   }
-  return {{"source", {{"paths", c.paths}, {"table_axes", {"x", "y", "z"}}}},
+  return {{"source", {{"paths", c.paths}, {"table_axes", model::kTriadAxes}}},
           {"settle_s", c.options.settle_s},
           {"axes", axes},
           {"misalignment_mrad", misalignment},
@@ -205,7 +205,7 @@ std::string to_table(const CalibrateCommand& c, const model::Calibration& r) {
 }
 
 std::string to_table(const CalibrateCommand& c, const model::TriadCalibration& t) {
-  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  constexpr const auto& kAxis = model::kTriadAxes;
   std::string out;
   for (int i = 0; i < 3; ++i) {
     out += to_table(fmt::format("gyro {} ('{}')", kAxis[i], c.paths[i]), t.axes[i]);
@@ -241,7 +241,7 @@ std::string to_csv(const model::Calibration& r) {
 
 // A triad's plateaus: each gyro on its own mounting, then on the others (the cross-axis fits).
 std::string to_csv(const model::TriadCalibration& t) {
-  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  constexpr const auto& kAxis = model::kTriadAxes;
   std::string out = std::string("gyro,table_axis,") + kPlateauCsvHeader + "\n";
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {

@@ -391,7 +391,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab2_col_answer_key, "ответ"},
     {Text::lab2_table_heading, "{}{}: таблица работы"},
     {Text::lab2_accuracy_class_line, "Класс точности — {}."},
-    {Text::lab2_ramp_changed, "Что изменило изменение температуры"},
+    {Text::lab2_ramp_changed, "Что изменилось при изменении температуры"},
     // ---- analyze's report ----
     {Text::an_not_visible, "не выделяется"},
     {Text::an_no_bound, "без границы"},

@@ -22,7 +22,7 @@ std::string_view to_string(Sensor sensor) {
   return sensor == Sensor::gyroscope ? "gyroscope" : "accelerometer";
 }
 
-std::string in_sensor_units(std::string_view text, Sensor sensor) {
+std::string in_sensor_units(std::string_view text, Sensor sensor, Language language) {
   std::string out(text);
   if (sensor == Sensor::gyroscope) return out;
   auto replace_all = [&out](std::string_view from, std::string_view to) {
@@ -31,6 +31,11 @@ std::string in_sensor_units(std::string_view text, Sensor sensor) {
       out.replace(at, from.size(), to);
     }
   };
+  if (language == Language::ru) {
+    replace_all("случайное блуждание угловой скорости", "случайное блуждание ускорения");
+    replace_all("°/ч", "м/с²");
+    return out;
+  }
   // The words first (they hold units), then the unit.
   replace_all("angle random walk = N/60 deg/sqrt(h)", "velocity random walk = 60 N m/s/sqrt(h)");
   replace_all("white rate noise", "white acceleration noise");

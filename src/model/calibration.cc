@@ -551,6 +551,13 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   const auto rate_unit = [&](const Eigen::VectorXd& q) {  // [LSB/(deg/s)]
     return o.rate_unit_lsb_per_deg_s > 0.0 ? o.rate_unit_lsb_per_deg_s : std::abs(q(0));
   };
+  // The highest degree's plateau covariance, kept for the final fit when that degree is
+  // chosen (the same fit, so the same noise).
+  struct Kept {
+    int degree = -1;
+    std::optional<PlateauCovariance> cov;
+    std::vector<Message> notes;
+  } kept;
   if (o.nonlinearity_degree >= 0) {
     l.q = std::min(o.nonlinearity_degree, rate_limit);
     if (l.q < o.nonlinearity_degree) {
@@ -571,10 +578,11 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
     if (o.noise_covariance && l.q > 0) {
       Eigen::VectorXd highest = start_values(l, x, u);
       gauss_newton(highest, l, x, u, identity);
-      std::vector<Message> unused_notes;  // the final fit's pass says them
-      if (const auto v = plateau_covariance(r, c.plateaus, terms_of(highest, l), rate_unit(highest),
-                                            o.reference_c, unused_notes)) {
-        choice_whiten = v->whiten;
+      kept.degree = l.q;
+      kept.cov = plateau_covariance(r, c.plateaus, terms_of(highest, l), rate_unit(highest),
+                                    o.reference_c, kept.notes);
+      if (kept.cov) {
+        choice_whiten = kept.cov->whiten;
         choice_noise = true;
       }
     }
@@ -605,8 +613,13 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
   Eigen::MatrixXd plateau_cov;        // the plateau means' covariance (empty: white, alike)
   Eigen::MatrixXd stationary_cov;     // its part from the terms with a mean
   if (o.noise_covariance) {
-    const std::optional<PlateauCovariance> v =
-        plateau_covariance(r, c.plateaus, terms_of(p, l), rate_unit(p), o.reference_c, c.notes);
+    std::optional<PlateauCovariance> v;
+    if (kept.degree == l.q) {
+      v = std::move(kept.cov);
+      c.notes.insert(c.notes.end(), kept.notes.begin(), kept.notes.end());
+    } else {
+      v = plateau_covariance(r, c.plateaus, terms_of(p, l), rate_unit(p), o.reference_c, c.notes);
+    }
     if (v) {
       whiten = v->whiten;
       plateau_cov = std::move(v->cov_lsb2);
@@ -740,7 +753,7 @@ Calibration calibrate(const CalibrationRecord& r, const CalibrationOptions& o) {
 
 TriadCalibration calibrate_triad(std::span<const TriadRecord, 3> mountings,
                                  const CalibrationOptions& options) {
-  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  constexpr const auto& kAxis = kTriadAxes;
   const auto fit = [&](int gyro, int mounting, const CalibrationOptions& o) {
     const TriadRecord& m = mountings[mounting];
     try {

@@ -18,7 +18,7 @@ namespace {
 
 constexpr const char* kPalette[] = {kBlue, kOrange, kGreen, kRed, kPurple, kLightBlue, kYellow};
 constexpr double kSameTemperatureC = 0.5;  // as model/calibration.cc groups the plateaus
-constexpr const char* kAxis[] = {"x", "y", "z"};
+constexpr const auto& kAxis = model::kTriadAxes;
 
 // " +c1 X +c2 X^2 ..." of a power series with coefficients c_1, c_2, ...
 std::string series_text(const std::vector<model::CalibratedValue>& coefs, std::string_view x) {

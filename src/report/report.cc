@@ -122,18 +122,7 @@ std::string class_sentence(const model::AnalysisResult& r, Language language) {
 }
 
 std::string sensor_text(std::string_view text, Sensor sensor, Language language) {
-  if (language == Language::en) return in_sensor_units(text, sensor);
-  std::string out(text);
-  if (sensor == Sensor::gyroscope) return out;
-  auto replace_all = [&out](std::string_view from, std::string_view to) {
-    for (std::size_t at = out.find(from); at != std::string::npos;
-         at = out.find(from, at + to.size())) {
-      out.replace(at, from.size(), to);
-    }
-  };
-  replace_all("случайное блуждание угловой скорости", "случайное блуждание ускорения");
-  replace_all("°/ч", "м/с²");
-  return out;
+  return in_sensor_units(text, sensor, language);
 }
 
 std::string td(std::string_view text) { return "<td>" + html_escape(text) + "</td>"; }

@@ -15,6 +15,8 @@
 #include <string>
 #include <string_view>
 
+#include "foglab/core/language.h"
+
 namespace foglab {
 
 /// What a channel measures.
@@ -60,8 +62,10 @@ double to_deg_per_hour(SampleUnit unit);
 /// (m/s^2)^2/Hz, deg/h/s -> m/s^2/s), and the gyroscope's names of the
 /// noise terms become the accelerometer's (white rate noise -> white
 /// acceleration noise, angle random walk N/60 -> velocity random walk 60 N,
-/// rate random walk -> acceleration random walk, ...).
-std::string in_sensor_units(std::string_view text, Sensor sensor);
+/// rate random walk -> acceleration random walk, ...). A Russian text the
+/// same in its words: °/ч -> м/с², случайное блуждание
+/// угловой скорости -> случайное блуждание ускорения.
+std::string in_sensor_units(std::string_view text, Sensor sensor, Language language = Language::en);
 
 /// [m/s^2] The standard acceleration of gravity, 1 g (3rd CGPM, 1901; ISO
 /// 80000-3), by which g and mg are converted.

@@ -147,6 +147,9 @@ struct Calibration {
 /// positive and negative rates for the asymmetry, mismatched columns) naming what is missing.
 Calibration calibrate(const CalibrationRecord& record, const CalibrationOptions& options = {});
 
+/// A triad's body axes' names, in order: gyro i's input axis, mounting j's table axis.
+inline constexpr std::array<const char*, 3> kTriadAxes = {"x", "y", "z"};
+
 /// One mounting of a triad on the rate table (sim/rate_table.h, RateTableTriad): the table
 /// turned about body axis `table_axis`, the three gyros recorded side by side.
 struct TriadRecord {
