@@ -422,7 +422,7 @@ void run_lab1(const Lab1Command& c) {
   report::ReportOptions ro;
   ro.plots = !c.no_plots;
   ro.language = language;
-  const std::string title = fmt::format(fmt::runtime(text(language, Text::lab1_title)), c.variant);
+  const std::string title = Message(Text::lab1_title, c.variant).text(language);
   const report::Lab1Report rep = report::make_lab1_report(result, title, options.loop, ro);
   if (rep.plots_skipped) note(rep.plots_note);
   const sim::CoilNumbers& n = result.numbers;
