@@ -1,14 +1,15 @@
 #include "foglab/core/language.h"
 
+#include <fmt/args.h>
+#include <fmt/format.h>
+
 #include <array>
 #include <cctype>
 #include <string>
+#include <utility>
 
 #include "catalogue.h"
 #include "foglab/core/error.h"
-
-#include <fmt/args.h>
-#include <fmt/format.h>
 
 namespace foglab {
 namespace {

@@ -10,6 +10,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "foglab/core/error.h"
 #include "foglab/model/calibration.h"
@@ -20,8 +21,16 @@
 namespace foglab::report {
 namespace {
 
-int placeholders(std::string_view text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '{'));
+/// The text's fmt placeholders in order, with their format specs: "{}", "{:.4g}", ...
+std::vector<std::string> placeholders(std::string_view text) {
+  std::vector<std::string> found;
+  const std::string s(text);
+  const std::regex placeholder("\\{[^}]*\\}");
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), placeholder);
+       it != std::sregex_iterator(); ++it) {
+    found.push_back(it->str());
+  }
+  return found;
 }
 
 TEST(Language, BothCataloguesHoldEveryTextWithTheSamePlaceholders) {
@@ -30,6 +39,7 @@ TEST(Language, BothCataloguesHoldEveryTextWithTheSamePlaceholders) {
     const std::string_view en = text(Language::en, key), ru = text(Language::ru, key);
     EXPECT_FALSE(en.empty()) << "key " << k;
     EXPECT_FALSE(ru.empty()) << "key " << k;
+    // The same values in the same order and formats: a Message's values fit both.
     EXPECT_EQ(placeholders(en), placeholders(ru)) << "key " << k << ": " << en << " | " << ru;
     // Every Russian text whose English has words (outside its placeholders) and that keeps a
     // Latin word says something in Cyrillic, but for a field's name (header.stamp).
