@@ -459,7 +459,7 @@ std::string lab2_tables_markdown(std::span<const Lab2Table> tables) {
       if (t.has_truth) md += " " + (row.truth.empty() ? std::string("-") : row.truth) + " |";
       md += " " + row.unit + " |\n";
     }
-    md += "\n" + say(l, Text::lab2_accuracy_class_line, t.class_sentence) + "\n\n";
+    md += "\n**" + say(l, Text::lab2_accuracy_class_line, t.class_sentence) + "**\n\n";
     if (!t.comparison.empty()) {
       md += say(l, Text::lab2_ramp_changed) + ":\n\n";
       for (const std::string& s : t.comparison) md += "- " + s + "\n";
