@@ -365,7 +365,6 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   auto mark = [&](NoiseFitResult& result) {
     result.first_taus_left_out = left_out.count;
     result.first_taus_left_out_why = trimmed_why;
-    if (left_out.count > 0) result.message += "; " + trimmed_why.text();
     if (next_n && result.N.status == TermStatus::resolved) {
       result.N.ci95_low = std::min(result.N.ci95_low, next_n->first);
       result.N.ci95_high = std::max(result.N.ci95_high, next_n->second);
@@ -377,15 +376,14 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     r = conclude(p, fits, bandwidth, known_white, lines, options);
     mark(r);
     r.ramp_set_aside = ramp;
-    r.message += "; " + ramp.text();
   }
   if (Message why = set_aside_unresolved_gauss_markov(p, fits, r, options); !why.empty()) {
     r = conclude(p, fits, bandwidth, known_white, lines, options);
     mark(r);
     r.ramp_set_aside = ramp;
     r.gauss_markov_set_aside = why;
-    r.message += (ramp.empty() ? "; " : "; " + ramp.text() + "; ") + why.text();
   }
+  r.message = fit_sentence(r);
   return r;
 }
 
@@ -413,6 +411,15 @@ std::string_view to_string(FitStatus status) {
       return "degenerate";
   }
   return "?";
+}
+
+std::string fit_sentence(const NoiseFitResult& r, Language language) {
+  std::string sentence = r.outcome.text(language);
+  for (const Message* why :
+       {&r.first_taus_left_out_why, &r.ramp_set_aside, &r.gauss_markov_set_aside}) {
+    if (!why->empty()) sentence += "; " + why->text(language);
+  }
+  return sentence;
 }
 
 const ParameterEstimate& NoiseFitResult::estimate(const NoiseParameter& parameter) const {

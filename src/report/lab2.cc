@@ -113,7 +113,7 @@ void build_rows(Lab2Table& t) {
   };
 
   add_row(
-      t, Text::lab2_q_systematic_bias, Text::lab2_m_lab_constant, Text::lab2_unit_deg_h,
+      t, Text::lab2_q_systematic_bias, Text::lab2_m_lab_constant, Text::unit_deg_h,
       [l](const Lab2Run& r) {
         if (!r.result.systematic) return missing_cell();
         const model::SystematicFit& s = *r.result.systematic;
@@ -123,7 +123,7 @@ void build_rows(Lab2Table& t) {
       },
       truth_number(&Lab2Truth::lab_constant_term_deg_h));
   add_row(
-      t, Text::lab2_q_systematic_bias, Text::lab2_m_at_mean_temperature, Text::lab2_unit_deg_h,
+      t, Text::lab2_q_systematic_bias, Text::lab2_m_at_mean_temperature, Text::unit_deg_h,
       [l](const Lab2Run& r) {
         if (!r.result.systematic) return missing_cell();
         const model::SystematicFit& s = *r.result.systematic;
@@ -136,7 +136,7 @@ void build_rows(Lab2Table& t) {
       },
       truth_number(&Lab2Truth::bias_at_t_ref_deg_h));
   add_row(
-      t, Text::lab2_q_c1, Text::lab2_m_polynomial, Text::lab2_unit_deg_h_per_degc,
+      t, Text::lab2_q_c1, Text::lab2_m_polynomial, Text::unit_deg_h_per_degc,
       [l](const Lab2Run& r) {
         if (!r.result.systematic) return missing_cell();
         const model::SystematicFit& s = *r.result.systematic;
@@ -173,40 +173,40 @@ void build_rows(Lab2Table& t) {
   // The Wiener rows always: the lab asks for K "when present", and a reading
   // that finds no -2 slope is the answer that it is not.
   add_row(
-      t, Text::lab2_q_k, Text::lab2_m_psd_k, Text::lab2_unit_deg_h_sqrt_s,
+      t, Text::lab2_q_k, Text::lab2_m_psd_k, Text::unit_deg_h_sqrt_s,
       [l](const Lab2Run& r) { return reading_cell(r.result.psd_readings.K, l); },
       truth_number(&Lab2Truth::K));
   add_row(
-      t, Text::lab2_q_k, Text::lab2_m_allan_k, Text::lab2_unit_deg_h_sqrt_s,
+      t, Text::lab2_q_k, Text::lab2_m_allan_k, Text::unit_deg_h_sqrt_s,
       [l](const Lab2Run& r) { return reading_cell(r.result.adev_readings.K, l); },
       truth_number(&Lab2Truth::K));
   if (wiener || !gauss_markov) {
-    add_row(t, Text::lab2_q_k, Text::lab2_m_fit, Text::lab2_unit_deg_h_sqrt_s,
+    add_row(t, Text::lab2_q_k, Text::lab2_m_fit, Text::unit_deg_h_sqrt_s,
             fit(&model::NoiseFitResult::K), truth_number(&Lab2Truth::K));
   }
   if (gauss_markov) {
-    add_row(t, Text::lab2_q_gm_sigma, Text::lab2_m_fit, Text::lab2_unit_deg_h,
+    add_row(t, Text::lab2_q_gm_sigma, Text::lab2_m_fit, Text::unit_deg_h,
             fit(&model::NoiseFitResult::gm_sigma), truth_number(&Lab2Truth::gm_sigma));
-    add_row(t, Text::lab2_q_gm_tc, Text::lab2_m_fit, Text::lab2_unit_s,
+    add_row(t, Text::lab2_q_gm_tc, Text::lab2_m_fit, Text::unit_s,
             fit(&model::NoiseFitResult::gm_tc), truth_number(&Lab2Truth::gm_tc));
   }
 
   add_row(
-      t, Text::lab2_q_n, Text::lab2_m_psd_n, Text::lab2_unit_deg_h_sqrt_hz,
+      t, Text::lab2_q_n, Text::lab2_m_psd_n, Text::unit_deg_h_sqrt_hz,
       [l](const Lab2Run& r) { return reading_cell(r.result.psd_readings.N, l); },
       truth_number(&Lab2Truth::N));
   add_row(
-      t, Text::lab2_q_n, Text::lab2_m_allan_n, Text::lab2_unit_deg_h_sqrt_hz,
+      t, Text::lab2_q_n, Text::lab2_m_allan_n, Text::unit_deg_h_sqrt_hz,
       [l](const Lab2Run& r) { return reading_cell(r.result.adev_readings.N, l); },
       truth_number(&Lab2Truth::N));
-  add_row(t, Text::lab2_q_n, Text::lab2_m_fit, Text::lab2_unit_deg_h_sqrt_hz,
+  add_row(t, Text::lab2_q_n, Text::lab2_m_fit, Text::unit_deg_h_sqrt_hz,
           fit(&model::NoiseFitResult::N), truth_number(&Lab2Truth::N));
   add_row(
-      t, Text::lab2_q_arw, Text::lab2_m_arw, Text::lab2_unit_deg_sqrt_h,
+      t, Text::lab2_q_arw, Text::lab2_m_arw, Text::unit_deg_sqrt_h,
       [](const Lab2Run& r) { return number_cell(r.result.arw_deg_sqrt_h); },
       [](const Lab2Truth& tr) { return fmt::format("{:.4g}", arw_deg_sqrt_h(tr.N)); });
   add_row(
-      t, Text::lab2_q_bias_instability, Text::lab2_m_allan_minimum, Text::lab2_unit_deg_h,
+      t, Text::lab2_q_bias_instability, Text::lab2_m_allan_minimum, Text::unit_deg_h,
       [l](const Lab2Run& r) { return bias_instability_cell(r.result, l); },
       truth_number(&Lab2Truth::bias_instability_deg_h));
   add_row(
@@ -262,8 +262,8 @@ std::string random_bias_sentence(const model::RunComparison& c, Language l) {
   const std::string text = say(l, Text::lab2_random_bias_both, process_name(c.process_before, l));
   if (c.random_walk) {
     return text + "; " +
-           change_text(say(l, Text::lab2_k_symbol), say(l, Text::lab2_unit_deg_h_sqrt_s),
-                       *c.random_walk, l);
+           change_text(say(l, Text::lab2_k_symbol), say(l, Text::unit_deg_h_sqrt_s), *c.random_walk,
+                       l);
   }
   if (c.gm_sigma && c.gm_tc) {
     return text + say(l, Text::lab2_random_bias_gm, g(c.gm_sigma->before), g(c.gm_sigma->after),
@@ -289,39 +289,22 @@ std::string changed_item_name(model::ChangedItem item, const model::RunCompariso
   return "";
 }
 
-/// The unit of a term's parameter (core/noise_model.h's kNoiseParameters).
-std::string term_unit(NoiseTerm term, Language l) {
-  switch (term) {
-    case NoiseTerm::white:
-      return say(l, Text::lab2_unit_deg_h_sqrt_hz);
-    case NoiseTerm::random_walk:
-      return say(l, Text::lab2_unit_deg_h_sqrt_s);
-    case NoiseTerm::ramp:
-      return say(l, Text::an_unit_deg_h_s);
-    case NoiseTerm::quantisation:
-      return say(l, Text::an_unit_deg_h_times_s);
-    case NoiseTerm::flicker:
-    case NoiseTerm::gauss_markov:
-      break;
-  }
-  return say(l, Text::lab2_unit_deg_h);
-}
-
 std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ramp, Language l) {
   const model::RunComparison c = model::compare_runs(constant.result, ramp.result);
   std::vector<std::string> out;
   if (c.systematic) out = systematic_sentences(*c.systematic, l);
   if (c.white_noise) {
-    out.push_back(change_text(say(l, Text::lab2_white_noise_fit),
-                              say(l, Text::lab2_unit_deg_h_sqrt_hz), *c.white_noise, l));
+    out.push_back(change_text(say(l, Text::lab2_white_noise_fit), say(l, Text::unit_deg_h_sqrt_hz),
+                              *c.white_noise, l));
   }
-  out.push_back(change_text(say(l, Text::lab2_bias_instability_minimum),
-                            say(l, Text::lab2_unit_deg_h), c.bias_instability, l));
+  out.push_back(change_text(say(l, Text::lab2_bias_instability_minimum), say(l, Text::unit_deg_h),
+                            c.bias_instability, l));
   out.push_back(random_bias_sentence(c, l));
   for (const model::TermInOneRun& t : c.terms_in_one_run) {
     out.push_back(say(l, Text::lab2_only_one_run,
                       say(l, t.in_after ? Text::lab2_run_ramp : Text::lab2_run_constant),
-                      terms_text({t.term}, l), g(t.value), term_unit(t.term, l),
+                      terms_text({t.term}, l), g(t.value),
+                      say(l, parameter_unit(static_cast<std::size_t>(t.term))),
                       t.term == NoiseTerm::ramp && t.in_after ? say(l, Text::lab2_ramp_not_removed)
                                                               : std::string()));
   }

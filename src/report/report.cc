@@ -215,8 +215,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string coefficient_unit(std::size_t j, Language language) {
   return j == 0   ? say(language, Text::unit_deg_h)
-         : j == 1 ? say(language, Text::an_unit_deg_h_per_degc)
-                  : say(language, Text::an_unit_deg_h_per_degc_k, j);
+         : j == 1 ? say(language, Text::unit_deg_h_per_degc)
+                  : say(language, Text::unit_deg_h_per_degc_k, j);
 }
 
 // The unit the samples were read in, as the user gave it (English) or in the manual's units.
@@ -227,15 +227,15 @@ std::string input_unit_text(const std::string& unit, Language language) {
       case SampleUnit::deg_per_hour:
         return say(language, Text::unit_deg_h);
       case SampleUnit::deg_per_second:
-        return say(language, Text::an_unit_deg_s);
+        return say(language, Text::unit_deg_s);
       case SampleUnit::rad_per_second:
-        return say(language, Text::an_unit_rad_s);
+        return say(language, Text::unit_rad_s);
       case SampleUnit::m_per_s2:
-        return say(language, Text::an_unit_m_s2);
+        return say(language, Text::unit_m_s2);
       case SampleUnit::standard_gravity:
         return "g";
       case SampleUnit::milli_g:
-        return say(language, Text::an_unit_mg);
+        return say(language, Text::unit_mg);
     }
   } catch (const UsageError&) {
   }
@@ -260,26 +260,21 @@ struct ParameterWords {
   Text name, meaning, meaning_accelerometer, unit;
 };
 constexpr std::array<ParameterWords, kNoiseParameters.size()> kParameterWords = {{
-    {Text::an_sym_n, Text::an_meaning_n, Text::an_meaning_n_accel, Text::an_unit_deg_h_sqrt_hz},
+    {Text::an_sym_n, Text::an_meaning_n, Text::an_meaning_n_accel, Text::unit_deg_h_sqrt_hz},
     {Text::an_sym_b, Text::an_meaning_b, Text::an_meaning_b, Text::unit_deg_h},
-    {Text::an_sym_k, Text::an_meaning_k, Text::an_meaning_k, Text::an_unit_deg_h_sqrt_s},
-    {Text::an_sym_r, Text::an_meaning_r, Text::an_meaning_r, Text::an_unit_deg_h_s},
-    {Text::an_sym_q, Text::an_meaning_q, Text::an_meaning_q, Text::an_unit_deg_h_times_s},
+    {Text::an_sym_k, Text::an_meaning_k, Text::an_meaning_k, Text::unit_deg_h_sqrt_s},
+    {Text::an_sym_r, Text::an_meaning_r, Text::an_meaning_r, Text::unit_deg_h_s},
+    {Text::an_sym_q, Text::an_meaning_q, Text::an_meaning_q, Text::unit_deg_h_times_s},
     {Text::an_param_gm_sigma, Text::an_meaning_gm_sigma, Text::an_meaning_gm_sigma,
      Text::unit_deg_h},
-    {Text::an_param_gm_tc, Text::an_meaning_gm_tc, Text::an_meaning_gm_tc, Text::an_unit_s},
+    {Text::an_param_gm_tc, Text::an_meaning_gm_tc, Text::an_meaning_gm_tc, Text::unit_s},
 }};
 
-// How the noise-model fit ended: the model's English sentence, or its parts in `language`.
-std::string fit_text(const model::NoiseFitResult& n, Language language) {
-  if (language == Language::en || n.outcome.empty()) return n.message;
-  std::string text = n.outcome.text(language);
-  for (const Message* why :
-       {&n.first_taus_left_out_why, &n.ramp_set_aside, &n.gauss_markov_set_aside}) {
-    if (!why->empty()) text += "; " + why->text(language);
-  }
-  return text;
-}
+}  // namespace
+
+Text detail::parameter_unit(std::size_t parameter) { return kParameterWords.at(parameter).unit; }
+
+namespace {
 
 std::vector<Message> all_notes(const model::AnalysisResult& r, const ReportInput& in) {
   std::vector<Message> notes = in.notes;
@@ -306,7 +301,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
       in.temperature_channel.empty() ? say(l, Text::an_none) : in.temperature_channel);
   row(say(l, Text::an_input_unit), say(l, Text::an_analysed_in, input_unit_text(in.input_unit, l)));
   row(say(l, Text::an_samples), fmt::format("{}", r.samples));
-  row(say(l, Text::an_sample_rate), g(r.sample_rate_hz) + " " + say(l, Text::an_unit_hz));
+  row(say(l, Text::an_sample_rate), g(r.sample_rate_hz) + " " + say(l, Text::unit_hz));
   row(say(l, Text::an_duration),
       say(l, Text::an_duration_value, r.duration_s, r.duration_s / kSecondsPerHour));
   h += "</table>\n";
@@ -352,7 +347,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
                        r.noise.dispersion)) +
        "</p>\n";
   h += fmt::format("<p class=\"fit-{}\">{}</p>\n", model::to_string(r.noise.status),
-                   html_escape(say(l, Text::an_fit, fit_text(r.noise, l))));
+                   html_escape(say(l, Text::an_fit, model::fit_sentence(r.noise, l))));
   h += "<table>\n<tr>" + th(say(l, Text::an_parameter)) + th(say(l, Text::an_meaning)) +
        th(say(l, Text::value)) + th(say(l, Text::interval95)) + th(say(l, Text::an_status)) +
        th(say(l, Text::unit)) + "</tr>\n";
@@ -367,10 +362,10 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
   }
   h += "</table>\n<table class=\"meta\">\n";
   if (in.sensor == Sensor::gyroscope) {
-    row(say(l, Text::an_arw), g(r.arw_deg_sqrt_h) + " " + say(l, Text::an_unit_deg_sqrt_h));
+    row(say(l, Text::an_arw), g(r.arw_deg_sqrt_h) + " " + say(l, Text::unit_deg_sqrt_h));
   } else {
-    row(say(l, Text::an_vrw), g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)) + " " +
-                                  say(l, Text::an_unit_m_s_sqrt_h));
+    row(say(l, Text::an_vrw),
+        g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)) + " " + say(l, Text::unit_m_s_sqrt_h));
   }
   row(say(l, Text::an_bandwidth), bandwidth_sentence(r.noise.bandwidth, l));
   row(say(l, Text::an_lines), lines_sentence(r.noise, l));
@@ -406,10 +401,10 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
   };
   h += "<tr>" + td(say(l, Text::an_reading_n)) + td(g(r.adev_readings.N, l)) +
        td(g(r.psd_readings.N, l)) + td(fit_value(r.noise.N)) +
-       td(say(l, Text::an_unit_deg_h_sqrt_hz)) + "</tr>\n";
+       td(say(l, Text::unit_deg_h_sqrt_hz)) + "</tr>\n";
   h += "<tr>" + td(say(l, Text::an_reading_k)) + td(g(r.adev_readings.K, l)) +
-       td(g(r.psd_readings.K, l)) + td(fit_value(r.noise.K)) +
-       td(say(l, Text::an_unit_deg_h_sqrt_s)) + "</tr>\n";
+       td(g(r.psd_readings.K, l)) + td(fit_value(r.noise.K)) + td(say(l, Text::unit_deg_h_sqrt_s)) +
+       "</tr>\n";
   h += "<tr>" + td(say(l, Text::an_reading_bias_instability)) +
        td(say(l, Text::an_value_at, g(r.adev_readings.bias_instability_deg_h),
               g(r.adev_readings.bias_instability_tau_s))) +
@@ -519,7 +514,7 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
   }
 
   md += "### " + say(l, Text::an_md_noise, terms_text(r.noise.terms, l)) + "\n\n" +
-        say(l, Text::an_fit, fit_text(r.noise, l)) + "\n\n";
+        say(l, Text::an_fit, model::fit_sentence(r.noise, l)) + "\n\n";
   md += fmt::format("| {} | {} | {} | {} | {} |\n|---|---:|---|---|---|\n",
                     say(l, Text::an_parameter), say(l, Text::value), say(l, Text::interval95),
                     say(l, Text::an_status), say(l, Text::unit));

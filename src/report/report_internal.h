@@ -55,6 +55,8 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language);
 std::string class_sentence(const model::AnalysisResult& r, Language language);
 /// The name of a class of the manual's Table 1: "tactical", "тактический".
 std::string class_name(AccuracyClass c, Language language);
+/// The catalogue's key for the unit of kNoiseParameters[parameter] (core/noise_model.h).
+Text parameter_unit(std::size_t parameter);
 /// `text` in the units of `sensor`: in_sensor_units() (core/units.h) for English; for an
 /// accelerometer's Russian text every °/ч becomes м/с², and the rate's random walk the
 /// acceleration's.

@@ -41,28 +41,42 @@ enum class Text {
   interval95,     ///< table heading
   unit,           ///< table heading
   // calibrate's report
-  cal_title,            ///< "foglab calibrate: {run}"
-  cal_triad_title,      ///< "foglab calibrate, a triad: {runs}"
-  cal_section,          ///< "Calibration"
-  cal_run,              ///< {plateaus} {temperatures} {full scale} {T_ref}: the run and eq. (10)
-  cal_coefficient,      ///< table heading
-  cal_row_s,            ///< S
-  cal_row_sk,           ///< s_{k}
-  cal_row_ak,           ///< a_{k}
-  cal_row_a,            ///< A
-  cal_row_u0,           ///< u0
-  cal_row_u0_rate,      ///< u0 as a rate
-  cal_row_bk,           ///< b_{k}
-  unit_lsb_per_deg_s,   ///< LSB/(deg/s)
-  unit_ppm_per_degc_k,  ///< ppm/degC^{k}
-  unit_ppm_fs,          ///< ppm of full scale
-  unit_ppm,             ///< ppm
-  unit_lsb,             ///< LSB
-  unit_deg_h,           ///< deg/h
-  unit_lsb_per_degc_k,  ///< LSB/degC^{k}
-  cal_nonlinearity,     ///< {ieee} {lab1} {degree}
-  cal_noise,            ///< {N} {ARW} {rms} {dof}
-  cal_weighting_noise,  ///< {N} {B} {K} {gm sigma} {gm Tc} {chi2}
+  cal_title,              ///< "foglab calibrate: {run}"
+  cal_triad_title,        ///< "foglab calibrate, a triad: {runs}"
+  cal_section,            ///< "Calibration"
+  cal_run,                ///< {plateaus} {temperatures} {full scale} {T_ref}: the run and eq. (10)
+  cal_coefficient,        ///< table heading
+  cal_row_s,              ///< S
+  cal_row_sk,             ///< s_{k}
+  cal_row_ak,             ///< a_{k}
+  cal_row_a,              ///< A
+  cal_row_u0,             ///< u0
+  cal_row_u0_rate,        ///< u0 as a rate
+  cal_row_bk,             ///< b_{k}
+  unit_lsb_per_deg_s,     ///< LSB/(deg/s)
+  unit_ppm_per_degc_k,    ///< ppm/degC^{k}
+  unit_ppm_fs,            ///< ppm of full scale
+  unit_ppm,               ///< ppm
+  unit_lsb,               ///< LSB
+  unit_deg_h,             ///< deg/h
+  unit_lsb_per_degc_k,    ///< LSB/degC^{k}
+  unit_deg_h_per_degc,    ///< "deg/h/degC": the units shared by the reports
+  unit_deg_h_per_degc_k,  ///< {k}
+  unit_s,                 ///< "s"
+  unit_hz,                ///< "Hz"
+  unit_deg_sqrt_h,        ///< "deg/sqrt(h)"
+  unit_deg_h_sqrt_hz,     ///< "deg/h/sqrt(Hz)"
+  unit_deg_h_sqrt_s,      ///< "deg/h/sqrt(s)"
+  unit_deg_h_s,           ///< "deg/h/s"
+  unit_deg_h_times_s,     ///< "deg/h*s"
+  unit_m_s_sqrt_h,        ///< "m/s/sqrt(h)"
+  unit_deg_s,             ///< "deg/s"
+  unit_rad_s,             ///< "rad/s"
+  unit_m_s2,              ///< "m/s^2"
+  unit_mg,                ///< "mg"
+  cal_nonlinearity,       ///< {ieee} {lab1} {degree}
+  cal_noise,              ///< {N} {ARW} {rms} {dof}
+  cal_weighting_noise,    ///< {N} {B} {K} {gm sigma} {gm Tc} {chi2}
   cal_weighting_alike,
   cal_budget,  ///< "Error budget at full scale (eq. 13, 95 %):"
   cal_budget_bias,
@@ -169,8 +183,6 @@ enum class Text {
   lab1_unit_m,             ///< units: m
   lab1_unit_nm,            ///< nm
   lab1_unit_scale_factor,  ///< s (rad per rad/s)
-  lab1_unit_rad_s,         ///< rad/s
-  lab1_unit_deg_s,         ///< deg/s
   lab1_unit_us,            ///< us
   lab1_unit_khz,           ///< kHz
   lab1_col_rate,           ///< the sweeps' tables' headings
@@ -244,12 +256,6 @@ enum class Text {
   lab2_both_criteria,
   lab2_by_arw,
   lab2_by_bias_instability,
-  lab2_unit_deg_h,  ///< the table's units
-  lab2_unit_deg_h_per_degc,
-  lab2_unit_deg_h_sqrt_s,
-  lab2_unit_deg_h_sqrt_hz,
-  lab2_unit_deg_sqrt_h,
-  lab2_unit_s,
   lab2_change,  ///< {what} {before} {after} {unit} {percent}
   lab2_change_changed,
   lab2_change_unchanged,
@@ -320,20 +326,6 @@ enum class Text {
   an_plots_off,                  ///< render_figures(): why there are no plots
   an_gnuplot_missing,            ///< {error}
   an_page_title,                 ///< html_document(report): {title}
-  an_unit_deg_h_per_degc,        ///< units
-  an_unit_deg_h_per_degc_k,      ///< {k}
-  an_unit_s,                     ///< "s"
-  an_unit_hz,                    ///< "Hz"
-  an_unit_deg_sqrt_h,            ///< "deg/sqrt(h)"
-  an_unit_deg_h_sqrt_hz,         ///< "deg/h/sqrt(Hz)"
-  an_unit_deg_h_sqrt_s,          ///< "deg/h/sqrt(s)"
-  an_unit_deg_h_s,               ///< "deg/h/s"
-  an_unit_deg_h_times_s,         ///< "deg/h*s"
-  an_unit_m_s_sqrt_h,            ///< "m/s/sqrt(h)"
-  an_unit_deg_s,                 ///< the input's units
-  an_unit_rad_s,                 ///< "rad/s"
-  an_unit_m_s2,                  ///< "m/s^2"
-  an_unit_mg,                    ///< "mg"
   an_recording,                  ///< heading
   an_file,                       ///< row headings
   an_rate_channel,               ///< "rate channel"

@@ -275,7 +275,8 @@ struct NoiseFitResult {
   /// How the fit ended, with the iterations and the tolerance, and how many
   /// candidates stopped at the iteration limit (core/language.h: in any language)...
   Message outcome;
-  /// ... and in English, followed by the sentences below that are not empty (the JSON's).
+  /// ... and in English, followed by the sentences below that are not empty (the JSON's):
+  /// fit_sentence().
   std::string message;
   int iterations = 0;  ///< of the chosen model's final reweighting loop
 
@@ -322,6 +323,11 @@ struct NoiseFitResult {
   const ParameterEstimate& estimate(const NoiseParameter& parameter) const;
   ParameterEstimate& estimate(const NoiseParameter& parameter);
 };
+
+/// How the fit ended and why terms or taus were set aside, in `language`: the outcome, then
+/// first_taus_left_out_why, ramp_set_aside and gauss_markov_set_aside when not empty, joined
+/// by "; " (NoiseFitResult::message is the English one).
+std::string fit_sentence(const NoiseFitResult& r, Language language = Language::en);
 
 /// The fitted Allan variance [(deg/h)^2] of one term at tau [s]: the
 /// model's, with the bandwidth's factor on the white and flicker terms.
