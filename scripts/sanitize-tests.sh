@@ -9,7 +9,7 @@
 # before ASan's shadow memory; the browser tests, which only render what the
 # other tests checked; and the statistical cases that run a path another
 # kept case runs, only on other numbers (these cost 30-100 s each under ASan
-# and run in the Release half): four of Bandwidth's six (the Butterworth and
+# and run in the Release half): five of Bandwidth's seven (the Butterworth and
 # flicker ones stay, and SensorEffects' filter cases), SpectralLine's broad
 # line, lab2's default and --no-answers runs (the generated variant and the
 # lab's files stay), eight of the nine ADIS16405 channels (imu1_x stays), and

@@ -52,6 +52,8 @@ nlohmann::json systematic_json(const model::AnalysisResult& r, const AnalysisJso
          {"constant_fallback", s.constant_fallback},
          {"degree_chosen", s.degree_chosen},
          {"criterion", numbers(s.criterion)},
+         {"criterion_degree",
+          s.criterion_degree < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.criterion_degree)},
          {"residual_rms_deg_h", number(s.residual_rms_deg_h)},
          {"note", s.note.text()}};
   } else {
@@ -69,6 +71,7 @@ nlohmann::json systematic_json(const model::AnalysisResult& r, const AnalysisJso
          {"constant_fallback", false},
          {"degree_chosen", false},
          {"criterion", nlohmann::json::array()},
+         {"criterion_degree", nullptr},
          {"residual_rms_deg_h", nullptr},
          {"note",
           "no temperature: the systematic part is the record mean; t_ref_c, the lab's "
@@ -162,6 +165,7 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
   if (!b.resolved) {
     return {{"resolved", false},
             {"deviance_drop", number(b.deviance_drop)},
+            {"correlated_deviance_drop", number(b.correlated_deviance_drop)},
             {"at_search_bound", b.at_search_bound}};
   }
   const bool ma = b.bandwidth.moving_average(), bw = b.bandwidth.butterworth();
@@ -178,6 +182,7 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
       {"first_tau_reduction", number(b.first_tau_reduction)},
       {"sample_interval_s", number(b.sample_interval_s)},
       {"deviance_drop", number(b.deviance_drop)},
+      {"correlated_deviance_drop", number(b.correlated_deviance_drop)},
       {"at_search_bound", b.at_search_bound}};
 }
 

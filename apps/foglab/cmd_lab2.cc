@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "analysis_output.h"
+#include "analyze_command.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "foglab/core/error.h"
@@ -36,7 +37,7 @@ struct Lab2Command {
   int variant = 1;
   std::uint64_t seed = sim::kLab2DefaultSeed;
   std::string out = "lab2-report";
-  std::string temp_degree = "auto";
+  std::string temp_degree = "2";  // the manual's step 2.3: polyfit(T, Y, 2)
   bool no_answers = false;
   bool no_plots = false;
   std::string lang = "en";
@@ -64,15 +65,6 @@ struct Output {
 constexpr std::array<const char*, 2> kRateNames = {"Y1", "Y2"};  // their temperatures: io/channels.h
 constexpr std::array<report::Lab2Condition, 2> kConditions = {report::Lab2Condition::constant,
                                                               report::Lab2Condition::ramp};
-
-int parse_degree(const std::string& text) {
-  if (text == "auto") return -1;
-  if (text.size() == 1 && text[0] >= '0' && text[0] <= '3') return text[0] - '0';
-  throw UsageError(
-      fmt::format("--temp-degree '{}': expected auto, 0, 1, 2 or 3 (the degree of the temperature "
-                  "polynomial)",
-                  text));
-}
 
 /// "FOG1" from "…/FOG1_3.mat"; the stem when it has no '_'.
 std::string gyro_name(const std::string& path) {
@@ -225,7 +217,7 @@ void run(const Lab2Command& c) {
         fmt::format("--variant {}: the lab has variants 1 to {}", c.variant, sim::kLab2Variants));
   }
   model::AnalysisOptions options;
-  options.systematic.degree = parse_degree(c.temp_degree);
+  options.systematic.degree = parse_temp_degree(c.temp_degree);
   // Made first, so a bad --out is said before the work; filled at the end.
   OutputFolder folder("--out", c.out);
 
@@ -320,8 +312,9 @@ std::function<void()> register_lab2(CLI::App& app) {
                   "CSV and imu.yaml (created if needed)")
       ->capture_default_str();
   cmd->add_option("--temp-degree", c->temp_degree,
-                  "degree of the temperature polynomial: auto (information criterion), 0, 1, 2 "
-                  "(the lab's polyfit) or 3")
+                  "degree of the temperature polynomial removed: 2 (the manual's polyfit(T, Y, "
+                  "2), with the criterion's verdict beside it), 0, 1, 3, or auto (the "
+                  "criterion's degree, as analyze does)")
       ->capture_default_str();
   cmd->add_flag("--no-answers", c->no_answers,
                 "generated data: leave the answer key out of the report");

@@ -257,14 +257,17 @@ void run_simulate(const SimulateCommand& c) {
   const sim::PeriodSeries& p = r.periods;
   std::string csv;
   if (!c.csv_path.empty()) {
-    csv = closed ? "# foglab simulate closed-loop: per modulation period; error = sin(phi_s + u)\n"
-                   "time_s,rate_deg_s,error,feedback_step_rad,output_deg_s\n"
+    csv = closed ? "# foglab simulate closed-loop: per modulation period; error = sin(phi_s + u); "
+                   "ramp_phase_rad: the feedback phase psi at the period's end, stepping by the "
+                   "feedback step every transit time, reset by 2 pi (the manual's Fig. 11)\n"
+                   "time_s,rate_deg_s,error,feedback_step_rad,ramp_phase_rad,output_deg_s\n"
                  : "# foglab simulate open-loop: per modulation period; S in a.u. (detector "
                    "gain x intensity)\ntime_s,rate_deg_s,demodulated,output_lowpass\n";
     for (std::size_t i = 0; i < p.time_s.size(); ++i) {
-      csv += closed ? fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", p.time_s[i],
+      csv += closed ? fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", p.time_s[i],
                                   p.rate_rad_s[i] * kDegPerRad, p.demodulated[i],
-                                  p.feedback_step_rad[i], p.output[i] * kDegPerRad)
+                                  p.feedback_step_rad[i], p.ramp_phase_rad[i],
+                                  p.output[i] * kDegPerRad)
                     : fmt::format("{:.10g},{:.10g},{:.10g},{:.10g}\n", p.time_s[i],
                                   p.rate_rad_s[i] * kDegPerRad, p.demodulated[i], p.output[i]);
     }

@@ -126,6 +126,8 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab1_plot_ramp_time, "Open loop over the rate ramp: output and rate against time"},
     {Text::lab1_plot_sweep, "The lab's sweep: scale factor against rate"},
     {Text::lab1_plot_closed_ramp, "Rate ramp beyond Omega_pi/2: closed loop against open loop"},
+    {Text::lab1_plot_closed_trace,
+     "Closed loop at {:.4g} deg/s ({:.2g} Omega_pi/2): the feedback phase and the output"},
     {Text::lab1_plot_off_frequency, "Square modulation at {:.3g} f_m: transition spikes"},
     {Text::lab1_axis_total_phase, "total phase phi_s + dphi_m [rad]"},
     {Text::lab1_axis_detector, "detector output [a.u.]"},
@@ -139,6 +141,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab1_axis_closed_scale_factor, "closed-loop scale factor [1]"},
     {Text::lab1_axis_closed_output, "closed-loop output [deg/s]"},
     {Text::lab1_axis_open_output, "open-loop output S [a.u.]"},
+    {Text::lab1_axis_feedback_phase, "feedback phase psi [rad]"},
     {Text::lab1_legend_cosine, "gamma (1 + cos phi)"},
     {Text::lab1_legend_time_simulation, "{}, time simulation"},
     {Text::lab1_legend_steady_state, "analytic steady state"},
@@ -153,6 +156,8 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab1_legend_closed, "closed loop"},
     {Text::lab1_legend_open_square_right, "open loop, square (right axis)"},
     {Text::lab1_legend_range_edge, "+Omega_pi/2"},
+    {Text::lab1_legend_feedback_phase, "phase ramp psi (right axis)"},
+    {Text::lab1_legend_closed_output, "output -u/K_s"},
     {Text::lab1_fig_intensity,
      "Intensity at the detector against the total phase (items 2.5, 2.7, 2.9)."},
     {Text::lab1_fig_output,
@@ -163,6 +168,13 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab1_fig_sweep, "Scale factors of the ten-rate sweeps (items 3.4, 5.3)."},
     {Text::lab1_fig_closed_ramp,
      "The closed loop follows a ramp well beyond Omega_pi/2; the open loop folds (item 4.2)."},
+    {Text::lab1_fig_closed_trace_inside,
+     "The closed loop at a constant rate inside the open loop's range, from u = 0: the phase "
+     "ramp psi steps by u every transit time and is reset by 2 pi whenever it leaves [0, 2 pi) "
+     "(the manual's Fig. 11); the output -u/K_s settles to the rate (item 4.2)."},
+    {Text::lab1_fig_closed_trace_beyond,
+     "The same beyond the open loop's range (phi_s past pi/2, where the open loop folds): the "
+     "steps are larger and psi resets more often; the output still settles to the rate."},
     {Text::lab1_fig_off_frequency, "Square modulation away from the proper frequency."},
     {Text::lab1_coil, "The coil (item 1.1)"},
     {Text::lab1_open_loop, "Open loop: no, square and sine modulation (items 2.4-2.10)"},
@@ -267,6 +279,10 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab2_at_temperature, " at {:.4g} degC"},
     {Text::lab2_q_c1, "temperature coefficient c1"},
     {Text::lab2_m_polynomial, "fit: polynomial in (T - mean)"},
+    {Text::lab2_q_temperature_terms, "temperature terms that stand out"},
+    {Text::lab2_m_criterion, "criterion: W_d + 6.63 d (1 % level)"},
+    {Text::lab2_criterion_cell, "up to degree {}"},
+    {Text::lab2_criterion_cell_none, "none at the 1 % level"},
     {Text::lab2_t_barely_moves, "- (T barely moves)"},
     {Text::lab2_degree_0_chosen, "- (degree 0 chosen)"},
     {Text::lab2_plus_minus, " +- {}"},
@@ -302,7 +318,19 @@ constexpr CatalogueEntry kEntries[] = {
      "Its fitted polynomial (degree {}) moves the bias by {} deg/h over the ramp, "
      "{:.3g} times the bias instability: without removing it the ramp would pass for a "
      "large drift and spoil the Allan deviation at long tau."},
-    {Text::lab2_no_dependence, "The criterion found no temperature dependence in it."},
+    {Text::lab2_no_dependence,
+     "No temperature polynomial was removed from it (degree 0): whatever the temperature did "
+     "stays in the record."},
+    {Text::lab2_verdict_term, "c{} = {} +- {} {} ({:.1f} standard errors{}); "},
+    {Text::lab2_verdict_stands_out, ": stands out of the noise"},
+    {Text::lab2_verdict_in_noise, ", below the criterion's 2.58"},
+    {Text::lab2_verdict_degree,
+     "the criterion (W_d + {:.3g} d: a term must stand out at the 1 % level) would keep "
+     "degree {}."},
+    {Text::lab2_verdict_nothing_stands_out,
+     " No temperature term reaches the criterion's 1 % level in this run: the slope is not "
+     "separated from the random bias with that confidence, which does not show that there is "
+     "no dependence (its 95 % interval above is what the run allows)."},
     {Text::lab2_bias_at_mean,
      "Systematic bias at the mean temperature: {:.5g} deg/h (constant, {:.4g} degC) "
      "and {:.5g} deg/h (ramp, {:.4g} degC), {} deg/h apart"},

@@ -250,6 +250,30 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   return s;
 }
 
+// How far a random drift can pass for a temperature law depends on the
+// random bias: a Wiener process's wanders without limit, a Gauss-Markov
+// process's stay within sigma. On a ramp run the two are often hard to tell
+// apart (the polynomial takes the record's own trend with it), and a
+// Wiener bias taken for a Gauss-Markov one made c1's interval several times
+// too short (on the lab-2 variants, c1 10 standard errors from the key).
+// So while the best Wiener candidate is within the interval window of the
+// best candidate, each coefficient's standard error is the larger of the
+// two models'.
+void widen_over_a_wiener_bias(SystematicFit& fit, const TemperatureRecord& record,
+                              const NoiseFitResult& noise, const NoiseFitOptions& options) {
+  if (noise.random_bias_process == RandomBiasProcess::wiener || !noise.has_wiener_candidate ||
+      noise.candidates.empty() ||
+      !(noise.best_wiener.criterion - noise.candidates.front().criterion <=
+        options.interval_window)) {
+    return;
+  }
+  SystematicFit wiener = fit;
+  set_standard_errors(wiener, record, noise.best_wiener.model);
+  for (std::size_t j = 0; j < fit.standard_errors.size(); ++j) {
+    fit.standard_errors[j] = std::fmax(fit.standard_errors[j], wiener.standard_errors[j]);
+  }
+}
+
 RandomBiasEvidence evidence_of(const Statistics& s) {
   RandomBiasEvidence e;
   const NoiseFitResult& n = s.noise;
@@ -389,6 +413,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       for_errors.K = s.noise.K.upper_95;
     }
     set_standard_errors(*fit, *record, for_errors);
+    widen_over_a_wiener_bias(*fit, *record, s.noise, options.noise_fit);
+    set_criterion_verdict(*fit, *record, for_errors, options.systematic);
     r.notes.push_back(fit->note);
     r.systematic = std::move(fit);
   }

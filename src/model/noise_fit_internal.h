@@ -220,6 +220,10 @@ struct ChosenModel {
 
 ChosenModel chosen_model(const Points& p, const SubsetFit& chosen, double dispersion);
 
+/// The covariance [(deg/h)^4] of the points' Allan variance estimates under
+/// the model `f` (its bandwidth shapes aside); needs p.factors.
+Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f);
+
 /// The scaled gradients a_i = sqrt(v_i/2) d ln mu_i / d theta (rows), theta =
 /// (ln c_j for the linear terms, then ln sigma^2, ln Tc): the Fisher
 /// information of the gamma likelihood is A'A. Without `with_tc`, Tc is

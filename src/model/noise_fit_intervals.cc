@@ -18,6 +18,11 @@ namespace {
 constexpr double kZ95 = 1.959963984540054;
 constexpr double kChi2_95 = 3.841458820694124;
 
+// How closely a near candidate must pin a random-bias coefficient (its 95 %
+// interval within this factor of the value either way) for its interval to
+// bound the process the chosen model leaves out.
+constexpr double kClosedRatio = 10.0;
+
 // The columns of A that carry information: a coefficient fitted at
 // practically zero (a candidate that is really its subset) has a column of
 // zeros, and would make the whole information singular.
@@ -43,44 +48,6 @@ Eigen::MatrixXd inverse_information(const Eigen::MatrixXd& a) {
   if (!lu.isInvertible()) return inverse;
   inverse(informed, informed) = lu.inverse();
   return inverse;
-}
-
-// The covariance [(deg/h)^4] of the points' Allan variance estimates under
-// the model `f`: the exact one for Gaussian noise (allan_covariance.h) of
-// the undetrended model (the fit's coefficients are its). Removing a
-// polynomial scales each estimate roughly as it scales its mean, so point
-// i's row and column are scaled by the ratio of the detrended mean to the
-// undetrended one. A rate ramp is deterministic and has no such
-// covariance, but a fitted one stands for a slow drift the record cannot
-// tell from a ramp: its share of each point gets the variance the fit
-// assumes (2 mu_R^2/v) and the correlation of the steepest noise modelled,
-// a random walk (cross terms with the other terms left out).
-Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
-  const double tau0 = p.tau.front() / static_cast<double>(p.factors.front());
-  NoiseModel model = to_model(f);
-  const double ramp = model.R;
-  model.R = 0.0;
-  Eigen::MatrixXd c = pooled_allan_variance_covariance(model, tau0, p.factors, p.segment_points);
-  const auto n = c.rows();
-  Eigen::VectorXd scale(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const double undetrended = allan_variance(model, p.tau[k]);
-    const double detrended = f.mu[k] - ramp * ramp * p.basis_at(NoiseTerm::ramp, k, f.tc);
-    scale(i) = undetrended > 0 ? detrended / undetrended : 1.0;
-  }
-  c = scale.asDiagonal() * c * scale.asDiagonal();
-  if (ramp > 0) {
-    const Eigen::MatrixXd walk =
-        pooled_allan_variance_covariance({.K = 1.0}, tau0, p.factors, p.segment_points);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const double share = ramp * ramp * p.basis_at(NoiseTerm::ramp, k, f.tc);  // mu_R
-      scale(i) = std::sqrt(2.0 / p.v[k]) * share / std::sqrt(std::max(walk(i, i), 1e-300));
-    }
-    c += scale.asDiagonal() * walk * scale.asDiagonal();
-  }
-  return c;
 }
 
 // Profile-likelihood 95 % intervals of the Gauss-Markov pair. When the hump
@@ -228,6 +195,43 @@ const Eigen::MatrixXd* covariance_of(const ChosenModel& chosen) {
 
 }  // namespace
 
+// The exact covariance for Gaussian noise (allan_covariance.h) of the
+// undetrended model (the fit's coefficients are its). Removing a
+// polynomial scales each estimate roughly as it scales its mean, so point
+// i's row and column are scaled by the ratio of the detrended mean to the
+// undetrended one. A rate ramp is deterministic and has no such
+// covariance, but a fitted one stands for a slow drift the record cannot
+// tell from a ramp: its share of each point gets the variance the fit
+// assumes (2 mu_R^2/v) and the correlation of the steepest noise modelled,
+// a random walk (cross terms with the other terms left out).
+Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
+  const double tau0 = p.tau.front() / static_cast<double>(p.factors.front());
+  NoiseModel model = to_model(f);
+  const double ramp = model.R;
+  model.R = 0.0;
+  Eigen::MatrixXd c = pooled_allan_variance_covariance(model, tau0, p.factors, p.segment_points);
+  const auto n = c.rows();
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double undetrended = allan_variance(model, p.tau[k]);
+    const double detrended = f.mu[k] - ramp * ramp * p.basis_at(NoiseTerm::ramp, k, f.tc);
+    scale(i) = undetrended > 0 ? detrended / undetrended : 1.0;
+  }
+  c = scale.asDiagonal() * c * scale.asDiagonal();
+  if (ramp > 0) {
+    const Eigen::MatrixXd walk =
+        pooled_allan_variance_covariance({.K = 1.0}, tau0, p.factors, p.segment_points);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double share = ramp * ramp * p.basis_at(NoiseTerm::ramp, k, f.tc);  // mu_R
+      scale(i) = std::sqrt(2.0 / p.v[k]) * share / std::sqrt(std::max(walk(i, i), 1e-300));
+    }
+    c += scale.asDiagonal() * walk * scale.asDiagonal();
+  }
+  return c;
+}
+
 Eigen::MatrixXd log_parameter_gradients(const Points& p, const SubsetFit& f,
                                         std::vector<NoiseTerm>& order, TcColumn tc) {
   order.clear();
@@ -350,9 +354,19 @@ void widen_over_near_candidates(const Points& p, const ChosenModel& chosen,
       // interval of a coefficient near zero reaches far up); the random
       // bias left out takes the other process's, when finite (a Gauss-
       // Markov sigma whose Tc may be endless, like a random walk's, has
-      // none).
+      // none). A random walk's interval is a log-scale one: it bounds K
+      // only when the candidate pins K within a factor of kClosedRatio
+      // either way. A candidate that holds it at next to nothing (the
+      // chosen model with a negligible random walk) has an interval that
+      // says nothing of how large K can be (up to 1e25 deg/h/sqrt(s) on
+      // 1 h records, where the profile bound is 1e-3), and the profile
+      // bound already speaks for it. (Sigma's comes from its profile.)
       if (t != NoiseTerm::random_walk && t != NoiseTerm::gauss_markov) continue;
-      if (!std::isfinite(high)) continue;        // no bound from that candidate
+      if (!std::isfinite(high)) continue;  // no bound from that candidate
+      if (t == NoiseTerm::random_walk &&
+          !(low > 0.0 && high / low <= kClosedRatio * kClosedRatio)) {
+        continue;
+      }
       e.upper_95 = std::fmax(e.upper_95, high);  // NaN when it had no bound
       e.ci95_low = 0.0;
       e.ci95_high = e.upper_95;

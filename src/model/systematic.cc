@@ -486,32 +486,41 @@ SystematicFit fit_of(const Sums& s, const SystematicOptions& options) {
   return fit;
 }
 
+// The criterion W_d + p d, d = 0..max_degree, of the fit with the highest
+// degree under `noise` into fit.criterion, and the degree it chooses from
+// `lowest` up into fit.criterion_degree.
+void set_criterion(SystematicFit& fit, const Sums& s, const NoiseModel& noise,
+                   const SystematicOptions& options, int lowest) {
+  const int top = options.max_degree;
+  const Eigen::VectorXd beta = solve_scaled(s.moments, top);
+  const Eigen::MatrixXd cov = scaled_covariance(s, top, noise);
+  const double penalty = options.degree_penalty;
+  fit.criterion.assign(static_cast<std::size_t>(top + 1), 0.0);
+  for (int d = 0; d < top; ++d) {
+    const int k = top - d;
+    const Eigen::VectorXd b = beta.tail(k);
+    const Eigen::MatrixXd v = cov.bottomRightCorner(k, k);
+    fit.criterion[static_cast<std::size_t>(d)] = b.dot(v.ldlt().solve(b)) + penalty * d;
+  }
+  fit.criterion[static_cast<std::size_t>(top)] = penalty * top;
+  fit.criterion_degree =
+      static_cast<int>(std::min_element(fit.criterion.begin() + lowest, fit.criterion.end()) -
+                       fit.criterion.begin());
+}
+
 // choose_temperature_degree() from the sums.
 SystematicFit choose_of(const SystematicFit& first, const Sums& s, const NoiseModel& noise,
                         const SystematicOptions& options) {
   SystematicFit fit = first;
   const Moments& mo = s.moments;
   if (fit.degree_chosen && !fit.constant_fallback) {
-    const int top = options.max_degree;
-    const Eigen::VectorXd beta = solve_scaled(mo, top);
-    const Eigen::MatrixXd cov = scaled_covariance(s, top, noise);
-    const double penalty = options.degree_penalty;
-    fit.criterion.assign(static_cast<std::size_t>(top + 1), 0.0);
-    for (int d = 0; d < top; ++d) {
-      const int k = top - d;
-      const Eigen::VectorXd b = beta.tail(k);
-      const Eigen::MatrixXd v = cov.bottomRightCorner(k, k);
-      fit.criterion[static_cast<std::size_t>(d)] = b.dot(v.ldlt().solve(b)) + penalty * d;
-    }
-    fit.criterion[static_cast<std::size_t>(top)] = penalty * top;
-    const int lowest = std::clamp(options.min_degree, 0, top);
-    const int best =
-        static_cast<int>(std::min_element(fit.criterion.begin() + lowest, fit.criterion.end()) -
-                         fit.criterion.begin());
+    const int lowest = std::clamp(options.min_degree, 0, options.max_degree);
+    set_criterion(fit, s, noise, options, lowest);
+    const int best = fit.criterion_degree;
     fit.degree = best;
     fit.note = Message(
-        Text::temp_chosen, best, penalty, fmt::format("{:.4g}", fmt::join(fit.criterion, ", ")),
-        top,
+        Text::temp_chosen, best, options.degree_penalty,
+        fmt::format("{:.4g}", fmt::join(fit.criterion, ", ")), options.max_degree,
         lowest > 0 ? Message(Text::temp_chosen_from, lowest, fit.temperature_span_c) : Message());
   }
   fit.coefficients = unscale(solve_scaled(mo, fit.degree), s.scale);
@@ -592,6 +601,12 @@ SystematicFit choose_temperature_degree(const SystematicFit& first, const Temper
 void set_standard_errors(SystematicFit& fit, const TemperatureRecord& record,
                          const NoiseModel& noise) {
   set_errors(fit, record.sums(), noise);
+}
+
+void set_criterion_verdict(SystematicFit& fit, const TemperatureRecord& record,
+                           const NoiseModel& noise, const SystematicOptions& options) {
+  if (fit.constant_fallback || fit.degree_chosen) return;
+  set_criterion(fit, record.sums(), noise, options, 0);
 }
 
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "foglab/core/language.h"
@@ -230,6 +231,31 @@ Plot closed_ramp_plot(const sim::Lab1Result& r, Language l) {
   return p;
 }
 
+// The closed loop at a constant rate (Fig. 11): the output (per modulation
+// period) and the phase ramp psi (every sample: its steps and 2 pi resets)
+// against time.
+Plot closed_trace_plot(const sim::Lab1Result& r, std::size_t k, Language l) {
+  const sim::OpticsResult& run = r.closed_traces.at(k);
+  const auto& ps = run.periods;
+  const double rate_deg_s = ps.rate_rad_s.empty() ? NAN : ps.rate_rad_s.back() * kDegPerRad;
+  Plot p;
+  p.title =
+      say(l, Text::lab1_plot_closed_trace, rate_deg_s, rate_deg_s / r.numbers.omega_pi2_deg_s);
+  p.x_label = say(l, Text::lab1_axis_time_us);
+  p.y_label = say(l, Text::lab1_axis_closed_output);
+  p.y2_label = say(l, Text::lab1_axis_feedback_phase);
+  const std::vector<double> t = scaled(ps.time_s, 1e6);
+  p.series.push_back(
+      line(say(l, Text::lab1_legend_ideal), t, scaled(ps.rate_rad_s, kDegPerRad), kGrey, 2));
+  p.series.push_back(
+      line(say(l, Text::lab1_legend_closed_output), t, scaled(ps.output, kDegPerRad), kGreen));
+  p.series.push_back(line(say(l, Text::lab1_legend_feedback_phase), scaled(run.trace.time_s, 1e6),
+                          run.trace.ramp_phase_rad, kBlue, 1, true));
+  p.y2_range = AxisRange{0.0, 2.0 * std::numbers::pi};
+  p.key = "bottom right";
+  return p;
+}
+
 // ---- text: one list of blocks, written as Markdown and as HTML -----------------------------
 
 struct Block {
@@ -348,7 +374,7 @@ std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions
   out.push_back(heading(say(l, Text::lab1_sine_sweep)));
   out.push_back(sweep_table(r.sweep_sine, nullptr, l));
   out.push_back(paragraph(say(l, Text::lab1_sine_nonlinearity, r.sweep_sine.nonlinearity_percent)));
-  out.push_back(heading(say(l, Text::lab1_closed_loop), {5, 6}));
+  out.push_back(heading(say(l, Text::lab1_closed_loop), {5, 6, 7, 8}));
   out.push_back(sweep_table(r.sweep_closed, nullptr, l));
   out.push_back(
       paragraph(say(l, Text::lab1_closed_nonlinearity, r.sweep_closed.nonlinearity_percent * 1e4,
@@ -360,7 +386,7 @@ std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions
   const double ramp_end_rad_s =
       r.closed_ramp.periods.rate_rad_s.empty() ? NAN : r.closed_ramp.periods.rate_rad_s.back();
   const double j1 = si.full_scale / sq.full_scale;
-  out.push_back(heading(say(l, Text::lab1_checks), {7}));
+  out.push_back(heading(say(l, Text::lab1_checks), {9}));
   Block checks;
   checks.kind = Block::Kind::list;
   checks.items = {
@@ -488,6 +514,8 @@ std::vector<Plot> lab1_plots(const sim::Lab1Result& r, Language l) {
   plots.push_back(ramp_time_plot(r, l));
   plots.push_back(sweep_plot(r, l));
   plots.push_back(closed_ramp_plot(r, l));
+  plots.push_back(closed_trace_plot(r, 0, l));
+  plots.push_back(closed_trace_plot(r, 1, l));
   plots.push_back(
       trace_plot(r.off_frequency,
                  say(l, Text::lab1_plot_off_frequency,
@@ -509,6 +537,8 @@ Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
       {"ramp_time", Text::lab1_fig_ramp_time},
       {"sweep", Text::lab1_fig_sweep},
       {"closed_ramp", Text::lab1_fig_closed_ramp},
+      {"closed_trace_inside", Text::lab1_fig_closed_trace_inside},
+      {"closed_trace_beyond", Text::lab1_fig_closed_trace_beyond},
       {"off_frequency", Text::lab1_fig_off_frequency},
   };
   std::vector<FigureSpec> specs;

@@ -156,6 +156,18 @@ void build_rows(Lab2Table& t) {
       },
       truth_number(&Lab2Truth::c1_deg_h_per_c));
   add_row(
+      t, Text::lab2_q_temperature_terms, Text::lab2_m_criterion, kNoUnit,
+      [l](const Lab2Run& r) {
+        if (!r.result.systematic || r.result.systematic->criterion_degree < 0) {
+          return missing_cell();
+        }
+        const int d = r.result.systematic->criterion_degree;
+        return Lab2Cell{
+            static_cast<double>(d), kNaN, kNaN,
+            d == 0 ? say(l, Text::lab2_criterion_cell_none) : say(l, Text::lab2_criterion_cell, d)};
+      },
+      nullptr);
+  add_row(
       t, Text::lab2_q_random_bias, Text::lab2_m_model_choice, kNoUnit,
       [l](const Lab2Run& r) {
         return Lab2Cell{kNaN, kNaN, kNaN, process_name(r.result.noise.random_bias_process, l)};
@@ -235,7 +247,31 @@ std::string change_text(std::string_view what, std::string_view unit, const mode
   return text + say(l, Text::lab2_change_not_comparable);
 }
 
-std::vector<std::string> systematic_sentences(const model::SystematicChange& s, Language l) {
+/// Beside a forced polynomial (the lab's quadratic), the criterion's verdict:
+/// each temperature coefficient with its 95 % interval and whether it stands
+/// out of the noise (|c_j| above sqrt(penalty) standard errors, the 1 %
+/// level the criterion asks), and the degree the data alone would keep.
+std::string temperature_verdict(const model::SystematicFit& s, Language l) {
+  if (s.criterion_degree < 0 || s.degree_chosen) return "";
+  const double penalty = model::SystematicOptions{}.degree_penalty;
+  std::string text = " ";
+  for (std::size_t j = 1; j < s.coefficients.size() && j < s.standard_errors.size(); ++j) {
+    const double se = s.standard_errors[j];
+    if (!(se > 0.0)) continue;
+    const double t = std::fabs(s.coefficients[j]) / se;
+    const std::string unit = j == 1 ? say(l, Text::unit_deg_h_per_degc)
+                                    : say(l, Text::unit_deg_h_per_degc_k, static_cast<int>(j));
+    text += say(
+        l, Text::lab2_verdict_term, static_cast<int>(j), g(s.coefficients[j]), g(1.96 * se), unit,
+        t, say(l, t * t > penalty ? Text::lab2_verdict_stands_out : Text::lab2_verdict_in_noise));
+  }
+  text += say(l, Text::lab2_verdict_degree, penalty, s.criterion_degree);
+  if (s.criterion_degree == 0) text += say(l, Text::lab2_verdict_nothing_stands_out);
+  return text;
+}
+
+std::vector<std::string> systematic_sentences(const model::SystematicChange& s,
+                                              const model::SystematicFit* ramp, Language l) {
   std::string text = say(l, Text::lab2_temperature_spans, s.span_after_c, s.span_before_c);
   if (s.degree_after > 0) {
     text += say(l, Text::lab2_polynomial_moves, s.degree_after, g(s.polynomial_range_deg_h),
@@ -243,6 +279,7 @@ std::vector<std::string> systematic_sentences(const model::SystematicChange& s, 
   } else {
     text += say(l, Text::lab2_no_dependence);
   }
+  if (ramp) text += temperature_verdict(*ramp, l);
   std::string bias = say(l, Text::lab2_bias_at_mean, s.bias_before_deg_h, s.t_ref_before_c,
                          s.bias_after_deg_h, s.t_ref_after_c, g(s.bias_difference_deg_h));
   if (std::isfinite(s.wander_deg_h) && s.wander_deg_h > 0.0) {
@@ -292,7 +329,10 @@ std::string changed_item_name(model::ChangedItem item, const model::RunCompariso
 std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ramp, Language l) {
   const model::RunComparison c = model::compare_runs(constant.result, ramp.result);
   std::vector<std::string> out;
-  if (c.systematic) out = systematic_sentences(*c.systematic, l);
+  if (c.systematic) {
+    out = systematic_sentences(*c.systematic,
+                               ramp.result.systematic ? &*ramp.result.systematic : nullptr, l);
+  }
   if (c.white_noise) {
     out.push_back(change_text(say(l, Text::lab2_white_noise_fit), say(l, Text::unit_deg_h_sqrt_hz),
                               *c.white_noise, l));

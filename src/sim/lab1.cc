@@ -26,11 +26,12 @@ std::int64_t stride_for(std::int64_t samples, int points, int samples_per_transi
 }  // namespace
 
 Lab1Result run_lab1(const Coil& coil, const Lab1Options& o) {
-  if (o.ramp_periods < 10 || o.window_periods < 1 || o.trace_points < 10) {
-    throw UsageError(fmt::format(
-        "lab 1: ramp_periods >= 10, window_periods >= 1 and trace_points >= 10 are needed, got "
-        "{}, {} and {}",
-        o.ramp_periods, o.window_periods, o.trace_points));
+  if (o.ramp_periods < 10 || o.window_periods < 1 || o.trace_points < 10 ||
+      o.closed_trace_periods < 2) {
+    throw UsageError(
+        fmt::format("lab 1: ramp_periods >= 10, window_periods >= 1, trace_points >= 10 and "
+                    "closed_trace_periods >= 2 are needed, got {}, {}, {} and {}",
+                    o.ramp_periods, o.window_periods, o.trace_points, o.closed_trace_periods));
   }
   if (!(o.off_frequency_ratio > 0.0 && o.off_frequency_ratio <= 1.0) ||
       !(o.ramp_range_fraction > 0.0)) {
@@ -103,6 +104,14 @@ Lab1Result run_lab1(const Coil& coil, const Lab1Options& o) {
   const RateInput ramp = RateInput::ramp(0.0, o.ramp_range_fraction * omega, ramp_s);
   r.closed_ramp = simulate_closed_loop(coil, ramp, ramp_s, square, o.loop);
   r.open_ramp = simulate_open_loop(coil, ramp, ramp_s, square);
+  OpticsOptions every_sample = square;  // the staircase's steps, each transit time
+  every_sample.trace_stride = 1;
+  every_sample.trace_limit = static_cast<std::size_t>(o.closed_trace_periods) * 2 * m + 1;
+  for (std::size_t k = 0; k < r.closed_traces.size(); ++k) {
+    r.closed_traces[k] =
+        simulate_closed_loop(coil, RateInput::constant(o.closed_trace_rate_fractions[k] * omega),
+                             o.closed_trace_periods * period_s, every_sample, o.loop);
+  }
 
   // 5.1-5.4: the closed-loop sweep.
   r.sweep_closed = sweep_closed_loop(coil, omega, square, o.loop, o.sweep);

@@ -168,6 +168,7 @@ OpticsResult run(const Coil& coil, const RateInput& rate, double duration_s, con
         ps.demodulated.push_back(e);
         ps.output.push_back(-u / ks);
         ps.feedback_step_rad.push_back(u);
+        ps.ramp_phase_rad.push_back(psi);
         u -= gain * e;
       } else {
         filtered = filter_started ? filtered + alpha * (demodulated - filtered) : demodulated;
@@ -219,6 +220,7 @@ OpticsResult run(const Coil& coil, const RateInput& rate, double duration_s, con
       tr.total_phase_rad.push_back(phi_s + dphi);
       tr.detector.push_back(v);
       tr.reference.push_back(ref);
+      if (loop) tr.ramp_phase_rad.push_back(psi);
     }
   }
   return out;

@@ -141,11 +141,11 @@ TEST(BrowserTest, Lab1ReportPlotsRenderInChromium) {
   test::TempDir dir;
   const test::CliRun r = test::run_foglab("lab1 --out " + test::quote(dir / "report"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 8);
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 10);
 }
 
 TEST(BrowserTest, RussianLab1ReportRendersInChromium) {
-  // `lab1 --lang ru` (issue 20): Cyrillic titles, axis labels and legends in all eight SVGs.
+  // `lab1 --lang ru` (issue 20): Cyrillic titles, axis labels and legends in all ten SVGs.
   ASSERT_TRUE(have_chromium())
       << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
   test::TempDir dir;
@@ -154,7 +154,7 @@ TEST(BrowserTest, RussianLab1ReportRendersInChromium) {
   const std::string page = test::read_file(dir / "report" / "report.html");
   EXPECT_NE(page.find("<html lang=\"ru\">"), std::string::npos);
   EXPECT_NE(page.find(">действующая угловая скорость [°/с]<"), std::string::npos);
-  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 8);
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 10);
 }
 
 TEST(BrowserTest, RussianCalibrationReportRendersInChromium) {

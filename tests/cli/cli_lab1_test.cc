@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
 #include <string>
 
 #include "support/cli.h"
@@ -130,6 +132,26 @@ TEST(CliSimulate, ClosedLoopFollowsARampAndARateFile) {
   EXPECT_NEAR(j["final_output_deg_s"].get<double>(), 445.0, 1e-6 * 445.0);
   const std::string table = test::read_file(csv);
   EXPECT_GE(std::count(table.begin(), table.end(), '\n'), 5000);
+  // The feedback phase psi (the manual's Fig. 11) in [0, 2 pi), reset by
+  // 2 pi as the staircase leaves it: ever more often as the rate grows.
+  std::istringstream rows(table);
+  std::string line;
+  std::getline(rows, line);  // the comment
+  std::getline(rows, line);
+  ASSERT_EQ(line, "time_s,rate_deg_s,error,feedback_step_rad,ramp_phase_rad,output_deg_s");
+  double before = -1.0;
+  int resets = 0;
+  while (std::getline(rows, line)) {
+    std::istringstream fields(line);
+    std::string v;
+    for (int k = 0; k < 5; ++k) std::getline(fields, v, ',');
+    const double psi = std::stod(v);
+    ASSERT_GE(psi, 0.0) << line;
+    ASSERT_LT(psi, 2.0 * std::numbers::pi) << line;
+    if (before >= 0.0 && std::fabs(psi - before) > std::numbers::pi) ++resets;
+    before = psi;
+  }
+  EXPECT_GE(resets, 100);
 
   std::ofstream(dir / "profile.csv") << "t,rate\n0,0\n0.002,100\n0.004,100\n";
   const json p = run_json("simulate closed-loop --variant 1 --rate-file " +
@@ -166,7 +188,7 @@ TEST(CliLab1, WritesTheReportWithEveryPlotAndTheLabsNumbers) {
   for (std::size_t p = html.find("<svg"); p != std::string::npos; p = html.find("<svg", p + 1)) {
     ++svgs;
   }
-  EXPECT_EQ(svgs, 8u);
+  EXPECT_EQ(svgs, 10u);
   EXPECT_EQ(html.find("src="), std::string::npos);  // self-contained
 }
 

@@ -70,14 +70,27 @@ TEST(CliLab2, GeneratedVariantWritesTheReportTablesAndEachAnalysis) {
 // The main job: `foglab lab2` on its default (variant 1, seed 2021, the
 // full 3 h records) must agree with its answer key on the random-bias
 // process and the class, for both gyros and both runs, and hold the ramp
-// runs' temperature coefficient c1 in its interval.
+// runs' temperature coefficient c1 in its interval. It removes the manual's
+// quadratic (step 2.3) with the criterion's verdict beside it: FOG2's slope
+// (key 4.07 deg/h/degC) stands out by about 9 standard errors.
 TEST(CliLab2, TheDefaultAgreesWithItsAnswerKey) {
   test::TempDir dir;
   const test::CliRun r = run_foglab("lab2 --no-plots --out " + quote(dir / "o"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* gyro : {"FOG1", "FOG2"}) {
+    const nlohmann::json j = test::read_json(dir / "o" / (std::string(gyro) + "_1_Y2.json"));
+    EXPECT_EQ(j["systematic"]["degree"], 2) << gyro;
+    EXPECT_EQ(j["systematic"]["degree_requested"], "2") << gyro;
+  }
+  EXPECT_THAT(r.out, HasSubstr("the criterion (W_d + 6.63 d"));
   std::istringstream in(test::read_file(dir / "o" / "lab2_table.csv"));
   int checked = 0;
   for (std::string line; std::getline(in, line);) {
+    if (line.rfind("FOG2,temperature terms that stand out,", 0) == 0 &&
+        line.find(",ramp,") != std::string::npos) {
+      EXPECT_THAT(line, HasSubstr(",ramp,1,,,up to degree 1,")) << line;
+      ++checked;
+    }
     const bool process = line.find(",random bias process,") != std::string::npos;
     const bool cls = line.find(",accuracy class,") != std::string::npos;
     const bool c1 = line.find(",temperature coefficient c1,") != std::string::npos &&
@@ -98,7 +111,7 @@ TEST(CliLab2, TheDefaultAgreesWithItsAnswerKey) {
     }
     ++checked;
   }
-  EXPECT_EQ(checked, 10);  // 2 gyros x (2 processes + 2 classes + 1 c1)
+  EXPECT_EQ(checked, 11);  // 2 gyros x (2 processes + 2 classes + 1 c1), FOG2's verdict
 }
 
 TEST(CliLab2, TheLabsFilesGiveTheTableOfTheSameDataGeneratedInMemory) {

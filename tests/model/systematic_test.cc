@@ -1,15 +1,17 @@
 // The temperature polynomial: exact recovery, the lab's number, the
 // thermostat fallback, and standard errors that match the scatter of the
 // coefficients over many noisy records (Monte Carlo).
+#include "foglab/model/systematic.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "foglab/core/error.h"
-#include "foglab/model/systematic.h"
 #include "foglab/sim/generator.h"
 #include "foglab/stats/allan.h"
 #include "support/expect.h"
@@ -77,6 +79,44 @@ TEST(Systematic, CriterionChoosesTheDegreeTheDataShow) {
   }
   // A spurious cubic enters at the 1 % level.
   EXPECT_GE(right, 4);
+}
+
+TEST(Systematic, AForcedQuadraticCarriesTheCriterionsVerdict) {
+  // The lab's quadratic is removed whatever the data show; beside it the
+  // criterion says which degree the data alone keep, from 0 up: 1 for a
+  // clear slope, 0 where the bias does not follow the temperature (under a
+  // random walk, the lab's FOG1; there the slope's standard error is 0.18
+  // deg/h/degC, so 1.5 stands out by 8 of them). The fit itself is left
+  // as forced.
+  const NoiseModel noise{.N = 1.0, .K = 0.02};
+  int slope_kept = 0, nothing_kept = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    for (const double c1 : {1.5, 0.0}) {
+      sim::ErrorModel m;
+      m.noise.N = noise.N;
+      m.noise.K = noise.K;
+      m.temp_coefs = {c1};
+      const sim::Recording r = record(m, "ramp:10@20", 2.0, 70 + seed);
+      const TemperatureRecord rec(r.rate_deg_h, r.temperature_c, 10.0);
+      SystematicFit fit = fit_temperature(rec, {.degree = 2});
+      const SystematicFit forced = fit;
+      set_standard_errors(fit, rec, noise);
+      set_criterion_verdict(fit, rec, noise, {.degree = 2});
+      EXPECT_EQ(fit.degree, 2);
+      EXPECT_EQ(fit.coefficients, forced.coefficients);
+      ASSERT_EQ(fit.criterion.size(), 4u);
+      const auto best = std::min_element(fit.criterion.begin(), fit.criterion.end());
+      EXPECT_EQ(fit.criterion_degree, best - fit.criterion.begin());
+      if (c1 > 0.0) {
+        slope_kept += fit.criterion_degree == 1;
+      } else {
+        nothing_kept += fit.criterion_degree == 0;
+      }
+    }
+  }
+  // Each spurious term enters at the 1 % level.
+  EXPECT_GE(slope_kept, 4);
+  EXPECT_GE(nothing_kept, 4);
 }
 
 TEST(Systematic, ThermostatRunFallsBackToAConstantAndSaysSo) {

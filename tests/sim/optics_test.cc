@@ -210,6 +210,49 @@ TEST(ClosedLoop, FollowsRampBeyondOmegaPi2WithLagOfPhaseStepOverGain) {
   }
 }
 
+TEST(ClosedLoop, TheFeedbackPhaseIsAStaircaseResetBy2Pi) {
+  // The manual's Fig. 11: the phase ramp psi steps by u every transit time
+  // (two steps a period at the proper frequency) and is reset by 2 pi
+  // whenever it leaves [0, 2 pi); at a constant rate u settles to -phi_s,
+  // so psi resets about every pi / |phi_s| periods.
+  const Coil c = lab1_coil(3);
+  const double f = proper_frequency(c);
+  const double rate = 0.3 * omega_pi2(c);  // phi_s = 0.15 pi
+  ClosedLoopOptions loop;
+  OpticsOptions every_sample;
+  every_sample.trace_stride = 1;
+  every_sample.trace_limit = 1000000;
+  const OpticsResult r =
+      simulate_closed_loop(c, RateInput::constant(rate), 400 / f, every_sample, loop);
+  const PeriodSeries& p = r.periods;
+  ASSERT_EQ(p.ramp_phase_rad.size(), p.output.size());
+  // Sample by sample: psi changes only where a transit time begins.
+  const std::vector<double>& psi_k = r.trace.ramp_phase_rad;
+  ASSERT_EQ(psi_k.size(), r.trace.time_s.size());
+  const int m = every_sample.samples_per_transit;
+  int steps = 0;
+  for (std::size_t k = 1; k < psi_k.size(); ++k) {
+    if (psi_k[k] != psi_k[k - 1]) {
+      EXPECT_EQ(k % static_cast<std::size_t>(m), 0u) << "sample " << k;
+      ++steps;
+    }
+  }
+  EXPECT_GE(steps, 700);  // two a period over 400 periods, once u has moved
+  int resets = 0;
+  for (std::size_t k = 1; k < p.ramp_phase_rad.size(); ++k) {
+    const double psi = p.ramp_phase_rad[k], before = p.ramp_phase_rad[k - 1];
+    EXPECT_GE(psi, 0.0);
+    EXPECT_LT(psi, 2.0 * kPi);
+    // Two steps of this period's u, wrapped into [0, 2 pi).
+    const double step = std::remainder(psi - before - 2.0 * p.feedback_step_rad[k], 2.0 * kPi);
+    EXPECT_NEAR(step, 0.0, 1e-9) << "period " << k;
+    resets += std::fabs(psi - before) > kPi;
+  }
+  // u -> -phi_s = -0.15 pi: psi falls 0.3 pi a period, a reset every 6.7 periods.
+  const double expected = 0.3 * kPi * static_cast<double>(p.ramp_phase_rad.size() - 1) / (2 * kPi);
+  EXPECT_NEAR(resets, expected, 0.05 * expected + 2.0);
+}
+
 TEST(OpenLoop, RampOutputFoldsAfterOmegaPi2) {
   const Coil c = lab1_coil(1);
   const double f = proper_frequency(c);

@@ -128,6 +128,7 @@ enum class Text {
   lab1_plot_ramp_time,
   lab1_plot_sweep,
   lab1_plot_closed_ramp,
+  lab1_plot_closed_trace,   ///< {rate deg/s} {rate / Omega_pi/2}
   lab1_plot_off_frequency,  ///< {f / f_m}
   lab1_axis_total_phase,    ///< axis labels
   lab1_axis_detector,
@@ -141,6 +142,7 @@ enum class Text {
   lab1_axis_closed_scale_factor,
   lab1_axis_closed_output,
   lab1_axis_open_output,
+  lab1_axis_feedback_phase,
   lab1_legend_cosine,           ///< the curve gamma (1 + cos phi)
   lab1_legend_time_simulation,  ///< "{modulation}, time simulation"
   lab1_legend_steady_state,     ///< legend entries
@@ -155,13 +157,17 @@ enum class Text {
   lab1_legend_closed,
   lab1_legend_open_square_right,
   lab1_legend_range_edge,  ///< "+Omega_pi/2"
-  lab1_fig_intensity,      ///< figure captions
+  lab1_legend_feedback_phase,
+  lab1_legend_closed_output,
+  lab1_fig_intensity,  ///< figure captions
   lab1_fig_output,
   lab1_fig_trace_square,
   lab1_fig_trace_sine,
   lab1_fig_ramp_time,
   lab1_fig_sweep,
   lab1_fig_closed_ramp,
+  lab1_fig_closed_trace_inside,
+  lab1_fig_closed_trace_beyond,
   lab1_fig_off_frequency,
   lab1_coil,  ///< headings
   lab1_open_loop,
@@ -232,6 +238,10 @@ enum class Text {
   lab2_at_temperature,  ///< {t}
   lab2_q_c1,
   lab2_m_polynomial,
+  lab2_q_temperature_terms,
+  lab2_m_criterion,
+  lab2_criterion_cell,  ///< {degree}
+  lab2_criterion_cell_none,
   lab2_t_barely_moves,
   lab2_degree_0_chosen,
   lab2_plus_minus,  ///< {half width}
@@ -263,6 +273,11 @@ enum class Text {
   lab2_temperature_spans,  ///< {ramp span} {constant span}
   lab2_polynomial_moves,   ///< {degree} {range} {times the bias instability}
   lab2_no_dependence,
+  lab2_verdict_term,  ///< {j} {value} {half width} {unit} {standard errors} {verdict}
+  lab2_verdict_stands_out,
+  lab2_verdict_in_noise,
+  lab2_verdict_degree,  ///< {penalty} {degree}
+  lab2_verdict_nothing_stands_out,
   lab2_bias_at_mean,  ///< {bias} {t} {bias} {t} {difference}
   lab2_bias_wander,   ///< {times} {wander}
   lab2_bias_end,

@@ -36,7 +36,8 @@
 // Butterworth is taken only when it fits better by more than one
 // parameter's penalty) with a large
 // model without a Gauss-Markov term; when the data resolve it (the deviance
-// drops by more than two parameters' penalty) it is held for every
+// drops by more than two parameters' penalty, both as the independent
+// points count it and with their correlation across tau) it is held for every
 // candidate (on the white term and, with the same phi, on the flicker term:
 // the filter acts on the output's flicker noise too, which matters where
 // it has cut the white noise by an order of magnitude), N stays the white level, the Gauss-Markov
@@ -229,6 +230,10 @@ struct BandwidthEstimate {
   /// The drop of the deviance of the largest model without a random bias
   /// when the bandwidth is added (two parameters).
   double deviance_drop = 0.0;
+  /// The same drop measured with the points' correlation across tau (the
+  /// generalised-least-squares distance under the exact covariance of the
+  /// points; NaN where it is unknown). Both must pass two parameters' cost.
+  double correlated_deviance_drop = std::numeric_limits<double>::quiet_NaN();
   /// The best time constant sat at the longest the search allows (10 tau0):
   /// the correlation is longer than a filter's and is left to the other
   /// terms; the bandwidth is then not resolved.

@@ -71,7 +71,14 @@ struct SystematicFit {
   bool lab_constant_meaningful = true;  ///< false when the span is below min_span_c
   bool constant_fallback = false;       ///< the span was too small for a slope
   bool degree_chosen = false;           ///< by the criterion (not forced)
-  std::vector<double> criterion;        ///< W_d + 6.63 d, d = 0..max (empty if not chosen)
+  /// W_d + 6.63 d, d = 0..max: for a chosen degree, and beside a forced one
+  /// as its verdict (empty when the temperature barely moves).
+  std::vector<double> criterion;
+  /// The degree the criterion chooses: the degree used when chosen (from
+  /// min_degree up); beside a forced degree, what the data alone would keep
+  /// (from 0 up: whether any temperature term stands out of the noise).
+  /// -1 when the criterion was not evaluated.
+  int criterion_degree = -1;
   double residual_rms_deg_h = 0.0;      ///< [deg/h]
   Message note;                         ///< what was done, for the report
 };
@@ -134,6 +141,14 @@ SystematicFit choose_temperature_degree(const SystematicFit& first, const Temper
 /// the record's).
 void set_standard_errors(SystematicFit& fit, const TemperatureRecord& record,
                          const NoiseModel& noise);
+
+/// Beside a forced degree (the lab's quadratic), the criterion's verdict
+/// under `noise` (the final residual's model): fit.criterion and
+/// fit.criterion_degree from degree 0 up, the degree and coefficients
+/// untouched. Nothing for a chosen degree (it has them) or a
+/// constant fallback.
+void set_criterion_verdict(SystematicFit& fit, const TemperatureRecord& record,
+                           const NoiseModel& noise, const SystematicOptions& options = {});
 
 /// Subtracts the fitted polynomial from `rate_deg_h` in place.
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,

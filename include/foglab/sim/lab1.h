@@ -12,7 +12,10 @@
 //         nonlinearity is 30 % (bisection to 0.1 %), by the time simulation
 //         and by the analytic steady state;
 //   4.2   the closed loop under a rate ramp to 3 Omega_pi/2 beside the open
-//         loop under the same ramp (the open loop folds);
+//         loop under the same ramp (the open loop folds), and at a constant
+//         rate inside and one beyond the open loop's range: the feedback
+//         phase psi (the staircase with its 2 pi resets, Fig. 11) and the
+//         output against time;
 //   5.1-4 the closed-loop sweep and its nonlinearity;
 //   and, beyond the manual, square modulation at half the proper frequency
 //   (the transition spikes and the loss of signal, against theory).
@@ -34,6 +37,11 @@ struct Lab1Options {
   int window_periods = 4;             ///< the time traces' window [modulation periods]
   double window_rate_fraction = 0.5;  ///< its constant rate [Omega_pi/2]
   double ramp_range_fraction = 3.0;   ///< the closed-loop ramp's end [Omega_pi/2]
+  /// The closed loop's time traces: their constant rates [Omega_pi/2], one
+  /// inside the open loop's range and one beyond it, and their length
+  /// [modulation periods], from u = 0 (the loop settling, then psi's resets).
+  std::array<double, 2> closed_trace_rate_fractions = {0.5, 1.5};
+  int closed_trace_periods = 40;
   double off_frequency_ratio = 0.5;   ///< off-frequency experiment: f / f_m, in (0, 1]
   /// Its constant rate [Omega_pi/2] (0.2: the detector's three levels, at
   /// dphi_m = +pi/2, 0 and -pi/2, are far apart).
@@ -63,6 +71,9 @@ struct Lab1Result {
   std::optional<double> range_30_analytic_rad_s;  ///< analytic [rad/s]
   OpticsResult closed_ramp;  ///< closed loop, rate 0 .. ramp_range_fraction Omega_pi/2
   OpticsResult open_ramp;    ///< open loop (square) under the same ramp
+  /// The closed loop at closed_trace_rate_fractions: per modulation period,
+  /// and every sample traced (psi's steps).
+  std::array<OpticsResult, 2> closed_traces;
   /// Square modulation at off_frequency_ratio f_m, constant rate, every sample.
   OpticsResult off_frequency;
   double off_frequency_signal_ratio = 0.0;  ///< S(f) / S(f_m), simulated

@@ -159,6 +159,9 @@ struct SampleTrace {
   std::vector<double> total_phase_rad;   ///< phi_s + modulation [rad]
   std::vector<double> detector;          ///< v = G I [a.u.]
   std::vector<double> reference;         ///< the demodulation reference (0: gated)
+  /// Closed loop: the feedback phase psi [rad], the staircase in [0, 2 pi);
+  /// empty in open loop.
+  std::vector<double> ramp_phase_rad;
 };
 
 /// One value per modulation period.
@@ -172,6 +175,11 @@ struct PeriodSeries {
   /// -u/K_s [rad/s] (u as applied during the period).
   std::vector<double> output;
   std::vector<double> feedback_step_rad;  ///< closed loop: u [rad]; empty in open loop
+  /// Closed loop: the feedback phase psi [rad] at the period's end, the
+  /// staircase that steps by u every transit time and is reset by 2 pi
+  /// whenever it leaves [0, 2 pi) (the sawtooth of the manual's Fig. 11);
+  /// empty in open loop.
+  std::vector<double> ramp_phase_rad;
 };
 
 struct OpticsResult {
