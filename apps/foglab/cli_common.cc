@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <mutex>
 #include <regex>
@@ -390,6 +391,25 @@ void progress(const std::string& step) {
   if (!terminal || collected_notes != nullptr) return;
   const std::lock_guard<std::mutex> lock(stderr_lines);
   std::cerr << "foglab: " << step << " ...\n";
+}
+
+void add_title_options(CLI::App* cmd, TitleOptions& t) {
+  cmd->add_option("--student", t.student,
+                  "the report's title block: the student's name (the manual's title page)");
+  cmd->add_option("--group", t.group, "the report's title block: the student's group");
+  cmd->add_option("--date", t.date, "the report's title block: the date (default: today)");
+}
+
+report::TitleBlock title_block(const TitleOptions& t, int lab, std::optional<int> variant) {
+  std::string date = t.date;
+  if (date.empty()) {
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    char text[16];
+    if (std::strftime(text, sizeof text, "%Y-%m-%d", &local) > 0) date = text;
+  }
+  return {lab, variant, t.student, t.group, date};
 }
 
 }  // namespace foglab::cli

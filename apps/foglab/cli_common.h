@@ -15,6 +15,7 @@
 #include "foglab/core/error.h"
 #include "foglab/core/units.h"
 #include "foglab/io/reader.h"
+#include "foglab/report/report.h"
 #include "foglab/sim/error_model.h"
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/stats/tau_grid.h"
@@ -146,5 +147,18 @@ class CollectNotes {
  private:
   std::vector<std::string>* previous_;
 };
+
+/// The labs' title block options (the manual's title page): --student,
+/// --group, --date.
+struct TitleOptions {
+  std::string student, group, date;
+};
+
+/// Adds --student, --group and --date to a lab command.
+void add_title_options(CLI::App* cmd, TitleOptions& t);
+
+/// The title block of lab `lab` (variant when known), the date today's
+/// (YYYY-MM-DD, local time) unless --date gave one.
+report::TitleBlock title_block(const TitleOptions& t, int lab, std::optional<int> variant);
 
 }  // namespace foglab::cli

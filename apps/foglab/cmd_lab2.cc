@@ -43,6 +43,7 @@ struct Lab2Command {
   std::string lang = "en";
   Language language = Language::en;  // from lang, before the run
   std::optional<double> hours;  // hidden: shorter generated runs (tests)
+  TitleOptions title;
 };
 
 /// One run to analyse: the record and what the report needs besides.
@@ -254,6 +255,8 @@ void run(const Lab2Command& c) {
   report::ReportOptions report_options;
   report_options.plots = !c.no_plots;
   report_options.language = c.language;
+  report_options.title_block =
+      title_block(c.title, 2, c.files.empty() ? std::optional<int>(c.variant) : std::nullopt);
   const std::string title = c.files.empty() ? Message(Text::lab2_title, c.variant).text(c.language)
                                             : Message(Text::lab2_title_files).text(c.language);
   const report::Lab2Report rep =
@@ -323,6 +326,7 @@ std::function<void()> register_lab2(CLI::App& app) {
                   "the report's language: en, or ru (the lab manual's terms and units; the "
                   "CSV and JSON stay English)")
       ->capture_default_str();
+  add_title_options(cmd, c->title);
   cmd->add_option("--hours", c->hours, "")->group("");  // hidden: shorter generated runs
   return [c] {
     c->language = language_from_string(c->lang);

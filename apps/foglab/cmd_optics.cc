@@ -412,6 +412,7 @@ struct Lab1Command {
   std::string out = "lab1-report";
   bool no_plots = false;
   std::string language = "en";
+  TitleOptions title;
 };
 
 void run_lab1(const Lab1Command& c) {
@@ -425,6 +426,7 @@ void run_lab1(const Lab1Command& c) {
   report::ReportOptions ro;
   ro.plots = !c.no_plots;
   ro.language = language;
+  ro.title_block = title_block(c.title, 1, c.variant);
   const std::string title = Message(Text::lab1_title, c.variant).text(language);
   const report::Lab1Report rep = report::make_lab1_report(result, title, options.loop, ro);
   if (rep.plots_skipped) note(rep.plots_note);
@@ -550,6 +552,7 @@ std::function<void()> register_lab1(CLI::App& app) {
   cmd->add_option("--lang", c->language,
                   "the report's language: en, or ru (the lab manual's terms and units)")
       ->capture_default_str();
+  add_title_options(cmd, c->title);
   return [c] { run_lab1(*c); };
 }
 

@@ -176,6 +176,27 @@ constexpr CatalogueEntry kEntries[] = {
      "The same beyond the open loop's range (phi_s past pi/2, where the open loop folds): the "
      "steps are larger and psi resets more often; the output still settles to the rate."},
     {Text::lab1_fig_off_frequency, "Square modulation away from the proper frequency."},
+    {Text::title_university, "ITMO University"},
+    {Text::title_lab, "Lab work {}: {}"},
+    {Text::title_lab1_name, "Linearity of the output signal of a fibre-optic gyroscope"},
+    {Text::title_lab2_name,
+     "Identification of the error-model components of a fibre-optic gyroscope's output "
+     "signal"},
+    {Text::title_variant, "Variant {}"},
+    {Text::title_student, "Student: {}"},
+    {Text::title_group, "Group: {}"},
+    {Text::title_date, "Date: {}"},
+    {Text::title_aim_heading, "Aim of the work"},
+    {Text::title_aim_lab1,
+     "To study how phase modulation makes a fibre-optic gyroscope sensitive to small rates, "
+     "in the open-loop scheme and in the closed loop with a phase ramp, and to measure how "
+     "linear the output characteristic of each scheme is; here on foglab's model of the "
+     "optical signal chain in place of the Simulink models."},
+    {Text::title_aim_lab2,
+     "To identify the components of the error model of two fibre-optic gyroscopes of "
+     "different accuracy classes from their static output, at constant temperature and "
+     "during a 10 degC change, by the power spectral density and the Allan variance, and to "
+     "compare their values and the accuracy classes they give."},
     {Text::lab1_coil, "The coil (item 1.1)"},
     {Text::lab1_open_loop, "Open loop: no, square and sine modulation (items 2.4-2.10)"},
     {Text::lab1_square_sweep, "Open loop, square modulation: the ten-rate sweep (items 3.1-3.6)"},

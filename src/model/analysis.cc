@@ -258,19 +258,28 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
 // too short (on the lab-2 variants, c1 10 standard errors from the key).
 // So while the best Wiener candidate is within the interval window of the
 // best candidate, each coefficient's standard error is the larger of the
-// two models'.
-void widen_over_a_wiener_bias(SystematicFit& fit, const TemperatureRecord& record,
-                              const NoiseFitResult& noise, const NoiseFitOptions& options) {
+// two models', and the criterion's verdict beside a forced degree (under
+// `chosen`) the lower of the two models' degrees: a term stands out only if
+// it does under both.
+void finish_temperature_errors(SystematicFit& fit, const TemperatureRecord& record,
+                               const NoiseFitResult& noise, const NoiseModel& chosen,
+                               const AnalysisOptions& options) {
+  set_criterion_verdict(fit, record, chosen, options.systematic);
   if (noise.random_bias_process == RandomBiasProcess::wiener || !noise.has_wiener_candidate ||
       noise.candidates.empty() ||
       !(noise.best_wiener.criterion - noise.candidates.front().criterion <=
-        options.interval_window)) {
+        options.noise_fit.interval_window)) {
     return;
   }
   SystematicFit wiener = fit;
   set_standard_errors(wiener, record, noise.best_wiener.model);
+  set_criterion_verdict(wiener, record, noise.best_wiener.model, options.systematic);
   for (std::size_t j = 0; j < fit.standard_errors.size(); ++j) {
     fit.standard_errors[j] = std::fmax(fit.standard_errors[j], wiener.standard_errors[j]);
+  }
+  if (wiener.criterion_degree >= 0 && wiener.criterion_degree < fit.criterion_degree) {
+    fit.criterion = wiener.criterion;
+    fit.criterion_degree = wiener.criterion_degree;
   }
 }
 
@@ -413,8 +422,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       for_errors.K = s.noise.K.upper_95;
     }
     set_standard_errors(*fit, *record, for_errors);
-    widen_over_a_wiener_bias(*fit, *record, s.noise, options.noise_fit);
-    set_criterion_verdict(*fit, *record, for_errors, options.systematic);
+    finish_temperature_errors(*fit, *record, s.noise, for_errors, options);
     r.notes.push_back(fit->note);
     r.systematic = std::move(fit);
   }

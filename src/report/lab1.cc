@@ -416,8 +416,9 @@ std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions
   return out;
 }
 
-std::string to_markdown(const std::vector<Block>& bs, std::string_view title) {
-  std::string md = fmt::format("# {}\n\n", title);
+std::string to_markdown(const std::vector<Block>& bs, std::string_view title,
+                        std::string_view title_block) {
+  std::string md = fmt::format("# {}\n\n{}", title, title_block);
   for (const Block& b : bs) {
     switch (b.kind) {
       case Block::Kind::heading:
@@ -549,14 +550,15 @@ Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
   rep.plots_note = std::move(drawn.note);
 
   const std::vector<Block> text = blocks(r, loop, l);
-  rep.markdown = to_markdown(text, title);
+  rep.markdown = to_markdown(text, title, title_block_markdown(options.title_block, l));
   if (rep.plots_skipped) rep.markdown += rep.plots_note + "\n";
   rep.sweep_csv = sweep_csv(r);
   Report page;
   page.title = std::string(title);
   page.html_section = to_html(text, rep.figures, l);
   const std::string preface =
-      rep.plots_skipped ? "<p class=\"warn\">" + html_escape(rep.plots_note) + "</p>\n" : "";
+      title_block_html(options.title_block, l) +
+      (rep.plots_skipped ? "<p class=\"warn\">" + html_escape(rep.plots_note) + "</p>\n" : "");
   rep.html = html_document(std::span<const Report>(&page, 1), title, preface, l);
   return rep;
 }

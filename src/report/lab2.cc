@@ -566,13 +566,16 @@ Lab2Report make_lab2_report(std::span<const Lab2Run> runs, std::string_view titl
     }
   }
 
-  std::string preface = "<p>" + html_escape(intro) + "</p>\n";
+  std::string preface = title_block_html(options.title_block, options.language) + "<p>" +
+                        html_escape(intro) + "</p>\n";
   if (out.plots_skipped) preface += "<p class=\"warn\">" + html_escape(out.plots_note) + "</p>\n";
   preface += lab2_tables_html(out.tables);
   out.html = html_document(out.runs, title, preface, options.language);
 
   out.markdown_summary =
-      fmt::format("# {}\n\n{}\n\n", title, intro) + lab2_tables_markdown(out.tables);
+      fmt::format("# {}\n\n{}{}\n\n", title,
+                  title_block_markdown(options.title_block, options.language), intro) +
+      lab2_tables_markdown(out.tables);
   if (out.plots_skipped) out.markdown_summary += out.plots_note + "\n\n";
   out.markdown = out.markdown_summary;
   for (const Report& r : out.runs) out.markdown += r.markdown + "\n";

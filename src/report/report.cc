@@ -156,6 +156,8 @@ figcaption{font-size:.9em;color:#444}
 td.truth{background:#f3f8f3;color:#333}
 table.lab2 td:first-child{font-weight:600}
 nav ul{columns:2;font-size:.95em}
+.title-block{border:1px solid #ccc;padding:.4em 1em;margin:1em 0;text-align:center}
+.title-block p{margin:.25em 0}
 footer{margin-top:3em;font-size:.85em;color:#777})";
 
 RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector<FigureSpec>& specs,
@@ -655,6 +657,42 @@ std::string html_document(std::span<const Report> reports, std::string_view titl
   h += "<footer>" + html_escape(say(language, Text::footer, version())) + "</footer>\n";
   h += "</body>\n</html>\n";
   return h;
+}
+
+namespace {
+
+/// The title block's lines and the aim, in `language`.
+std::pair<std::vector<std::string>, std::string> title_block_text(const TitleBlock& b, Language l) {
+  std::vector<std::string> lines;
+  if (b.lab != 1 && b.lab != 2) return {};
+  lines.push_back(say(l, Text::title_university));
+  lines.push_back(say(l, Text::title_lab, b.lab,
+                      say(l, b.lab == 1 ? Text::title_lab1_name : Text::title_lab2_name)));
+  if (b.variant) lines.push_back(say(l, Text::title_variant, *b.variant));
+  if (!b.student.empty()) lines.push_back(say(l, Text::title_student, b.student));
+  if (!b.group.empty()) lines.push_back(say(l, Text::title_group, b.group));
+  if (!b.date.empty()) lines.push_back(say(l, Text::title_date, b.date));
+  return {lines, say(l, b.lab == 1 ? Text::title_aim_lab1 : Text::title_aim_lab2)};
+}
+
+}  // namespace
+
+std::string title_block_html(const TitleBlock& block, Language language) {
+  const auto [lines, aim] = title_block_text(block, language);
+  if (lines.empty()) return "";
+  std::string h = "<div class=\"title-block\">\n";
+  for (const std::string& line : lines) h += "<p>" + html_escape(line) + "</p>\n";
+  h += "</div>\n<h2>" + html_escape(say(language, Text::title_aim_heading)) + "</h2>\n<p>" +
+       html_escape(aim) + "</p>\n";
+  return h;
+}
+
+std::string title_block_markdown(const TitleBlock& block, Language language) {
+  const auto [lines, aim] = title_block_text(block, language);
+  if (lines.empty()) return "";
+  std::string md;
+  for (const std::string& line : lines) md += line + "  \n";
+  return md + "\n## " + say(language, Text::title_aim_heading) + "\n\n" + aim + "\n\n";
 }
 
 std::string html_document(const Report& report) {

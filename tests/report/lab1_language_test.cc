@@ -40,6 +40,7 @@ class Lab1Language : public ::testing::Test {
     ReportOptions options;
     options.language = language;
     options.plots = plots;
+    options.title_block = {1, 1, "Петров П.", "R3241", "2026-11-27"};  // issue 23's title page
     const std::string title = fmt::format(fmt::runtime(text(language, Text::lab1_title)), 1);
     return make_lab1_report(result(), title, {}, options);
   }
@@ -76,6 +77,14 @@ TEST_F(Lab1Language, RussianReportHasNoEnglishLeftInItsTextOrPlots) {
   }
   EXPECT_NE(rep.html.find("<html lang=\"ru\">"), std::string::npos);
   EXPECT_NE(markdown.find("# Лабораторная работа № 1: вариант 1\n"), std::string::npos);
+  // The title page and the aim, before the first section.
+  for (const std::string* page : {&html, &markdown}) {
+    for (const char* part : {"Университет ИТМО", "Лабораторная работа 1: Исследование линейности",
+                             "Вариант 1", "Петров П.", "R3241", "Цель работы"}) {
+      EXPECT_NE(page->find(part), std::string::npos) << part;
+    }
+    EXPECT_LT(page->find("Цель работы"), page->find("фаза Саньяка"));
+  }
   // The manual's terms.
   for (const char* term : {"фаза Саньяка", "сигнал демодуляции", "масштабный коэффициент",
                            "Нелинейность выходной характеристики", "Открытая схема",

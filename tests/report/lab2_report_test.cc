@@ -230,6 +230,7 @@ TEST(Lab2Report, InRussianEveryWordIsRussianButTheCsvStaysEnglish) {
   // notes, and the plots' titles, axes and legends (their SVG text) are in Russian.
   ReportOptions o;
   o.language = Language::ru;
+  o.title_block = {2, 1, "Иванова А.", "", "2026-11-27"};  // its words are checked too
   const Lab2Report rep = make_lab2_report(variant_runs(), "Лабораторная работа 2", "Вступление", o);
   ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
   EXPECT_EQ(count(rep.html, "<svg"), 16u);
@@ -248,6 +249,37 @@ TEST(Lab2Report, InRussianEveryWordIsRussianButTheCsvStaysEnglish) {
   // The CSV is for programs: the same as the English report's.
   EXPECT_EQ(rep.csv, lab2_tables_csv(lab2_tables(variant_runs())));
   EXPECT_NE(rep.csv.find("white noise N"), std::string::npos);
+}
+
+TEST(Lab2Report, TheTitleBlockAndTheAimComeFirstInBothLanguages) {
+  // Issue 23: the manual's title page (university, lab number and title, variant, the
+  // student's name and group, the date) and the aim, before the tables.
+  ReportOptions o;
+  o.plots = false;
+  o.title_block = {2, 3, "Ivanova A.", "R3241", "2026-11-27"};
+  const Lab2Report en = make_lab2_report(variant_runs(), "t", "intro", o);
+  o.language = Language::ru;
+  const Lab2Report ru = make_lab2_report(variant_runs(), "t", "intro", o);
+  for (const Lab2Report* rep : {&en, &ru}) {
+    const bool russian = rep == &ru;
+    for (const std::string* page : {&rep->html, &rep->markdown_summary}) {
+      for (const char* part :
+           {russian ? "Университет ИТМО" : "ITMO University",
+            russian ? "Лабораторная работа 2: Идентификация" : "Lab work 2: Identification",
+            russian ? "Вариант 3" : "Variant 3", "Ivanova A.", "R3241", "2026-11-27",
+            russian ? "Цель работы" : "Aim of the work"}) {
+        EXPECT_NE(page->find(part), std::string::npos) << part;
+      }
+      const std::size_t aim = page->find(russian ? "Цель работы" : "Aim of the work");
+      EXPECT_LT(aim, page->find("intro"));
+    }
+    EXPECT_NE(rep->html.find("class=\"title-block\""), std::string::npos);
+  }
+  // Without a lab number there is no title block.
+  ReportOptions plain;
+  plain.plots = false;
+  const Lab2Report none = make_lab2_report(variant_runs(), "t", "intro", plain);
+  EXPECT_EQ(none.html.find("title-block\""), std::string::npos);
 }
 
 TEST(Lab2Report, WithoutPlotsThePageSaysSo) {

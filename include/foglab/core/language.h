@@ -169,6 +169,17 @@ enum class Text {
   lab1_fig_closed_trace_inside,
   lab1_fig_closed_trace_beyond,
   lab1_fig_off_frequency,
+  title_university,  ///< the labs' title block
+  title_lab,         ///< {number} {title}
+  title_lab1_name,
+  title_lab2_name,
+  title_variant,  ///< {variant}
+  title_student,  ///< {name}
+  title_group,    ///< {group}
+  title_date,     ///< {date}
+  title_aim_heading,
+  title_aim_lab1,
+  title_aim_lab2,
   lab1_coil,  ///< headings
   lab1_open_loop,
   lab1_square_sweep,

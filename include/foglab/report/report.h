@@ -90,6 +90,22 @@ struct ReportInput {
   std::vector<Message> notes;  ///< the caller's notes (shown with the analysis's)
 };
 
+/// The title page the manual asks of a lab report (its section on reports:
+/// the lab's number and title, the variant, the student's name and group),
+/// with the university and the date, followed by the aim of the work.
+/// Fields left empty are left out; lab 0: no title block.
+struct TitleBlock {
+  int lab = 0;  ///< 1 or 2
+  std::optional<int> variant;
+  std::string student, group;
+  std::string date;  ///< as given, e.g. "2026-11-27"
+};
+
+/// The title block and the aim as HTML (a <div class="title-block">, then
+/// the aim under its heading) and as Markdown; empty for lab 0.
+std::string title_block_html(const TitleBlock& block, Language language);
+std::string title_block_markdown(const TitleBlock& block, Language language);
+
 struct ReportOptions {
   bool plots = true;               ///< false: no gnuplot at all (the report says so)
   PlotOptions plot;                ///< the gnuplot executable, size, font
@@ -99,6 +115,7 @@ struct ReportOptions {
   /// The text's language (core/language.h): make_report()'s page, plots and Markdown;
   /// reports not yet converted (imu.h) ignore it.
   Language language = Language::en;
+  TitleBlock title_block;  ///< the labs' reports: their title page and aim
 };
 
 /// One figure: its SVG, or why it is missing.
