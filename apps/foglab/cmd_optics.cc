@@ -93,8 +93,10 @@ nlohmann::json coil_json(const sim::Coil& coil, const sim::CoilNumbers& n) {
           {"foglab_version", std::string(version())}};
 }
 
-/// A sweep in the CLI's units: rates [deg/s]; outputs S [a.u.] (open loop)
-/// or the output rate [deg/s] (closed loop); scale factors output/rate.
+/// A sweep in the CLI's units: rates [deg/s]; outputs S [a.u.] (open loop),
+/// the output rate [deg/s] (closed loop) or the feedback phase [rad] (the
+/// closed loop in the manual's form); scale factors output/rate, the phase
+/// form's per rad/s [s] (-K_s).
 struct SweepInDegrees {
   std::vector<double> rates_deg_s, outputs, scale_factors;
 };
@@ -103,6 +105,11 @@ SweepInDegrees in_degrees(const sim::SweepResult& s) {
   SweepInDegrees d;
   for (std::size_t i = 0; i < s.rates_rad_s.size(); ++i) {
     d.rates_deg_s.push_back(s.rates_rad_s[i] * kDegPerRad);
+    if (s.phase_form) {
+      d.outputs.push_back(s.outputs[i]);
+      d.scale_factors.push_back(s.scale_factors[i]);
+      continue;
+    }
     d.outputs.push_back(s.closed_loop ? s.outputs[i] * kDegPerRad : s.outputs[i]);
     d.scale_factors.push_back(d.outputs.back() / d.rates_deg_s.back());
   }
@@ -285,6 +292,8 @@ void run_simulate(const SimulateCommand& c) {
   j["final_rate_deg_s"] = number(last_rate * kDegPerRad);
   if (closed) {
     j["final_output_deg_s"] = number(last_output * kDegPerRad);
+    j["final_feedback_step_rad"] =
+        number(p.feedback_step_rad.empty() ? NAN : p.feedback_step_rad.back());
   } else {
     j["final_output"] = number(last_output);
     j["steady_state_output"] = number(sim::steady_state_output(coil, last_rate, o));
@@ -299,8 +308,11 @@ void run_simulate(const SimulateCommand& c) {
       coil_name(c.coil), duration_s, r.samples, r.sample_interval_s * 1e9, p.time_s.size(),
       r.modulation_frequency_hz * 1e-3);
   if (closed) {
-    std::cout << fmt::format("final rate {:.6g} deg/s, output {:.6g} deg/s\n",
-                             last_rate * kDegPerRad, last_output * kDegPerRad);
+    std::cout << fmt::format(
+        "final rate {:.6g} deg/s, output {:.6g} deg/s (the manual's output, the feedback phase "
+        "step: {:.6g} rad = -K_s x rate)\n",
+        last_rate * kDegPerRad, last_output * kDegPerRad,
+        p.feedback_step_rad.empty() ? NAN : p.feedback_step_rad.back());
   } else {
     std::cout << fmt::format(
         "final rate {:.6g} deg/s, output (low-passed) {:.6g} a.u., analytic steady state "
@@ -317,8 +329,24 @@ struct SweepCommand {
   std::string modulation = "square";
   std::optional<double> range_deg_s;
   std::string method = "time";
+  std::string output = "rate";
   std::string json_path, csv_path;
 };
+
+/// The closed loop's --output: "rate" (foglab's, deg/s) or "phase" (the
+/// manual's feedback phase, rad); the open loop has only its signal S.
+bool phase_output(const std::string& output, bool closed) {
+  if (output == "rate") return false;
+  if (output != "phase") {
+    throw UsageError(fmt::format("--output '{}': expected rate or phase", output));
+  }
+  if (!closed) {
+    throw UsageError(
+        "--output phase: the feedback phase is the closed loop's output; the open loop's is the "
+        "demodulated signal S");
+  }
+  return true;
+}
 
 void run_sweep(const SweepCommand& c) {
   const RunPath written[] = {{"--json", c.json_path}, {"--csv", c.csv_path}};
@@ -347,8 +375,10 @@ void run_sweep(const SweepCommand& c) {
     throw UsageError(fmt::format("--range must be in (0, {:g}] deg/s, got {}",
                                  sim::kMaxInputRateRadS * kDegPerRad, *c.range_deg_s));
   }
-  const sim::SweepResult s = closed ? sim::sweep_closed_loop(coil, range, o, {}, so)
-                                    : sim::sweep_open_loop(coil, range, o, so);
+  const bool phase = phase_output(c.output, closed);
+  const sim::SweepResult rate_form = closed ? sim::sweep_closed_loop(coil, range, o, {}, so)
+                                            : sim::sweep_open_loop(coil, range, o, so);
+  const sim::SweepResult s = phase ? sim::feedback_phase_form(rate_form) : rate_form;
   std::optional<double> range30;
   if (!closed) range30 = sim::range_for_nonlinearity(coil, 30.0, o, so);
 
@@ -360,14 +390,18 @@ void run_sweep(const SweepCommand& c) {
   j.update({{"scheme", c.scheme},
             {"modulation", closed ? "square" : c.modulation},
             {"method", c.method},
+            {"output", closed ? c.output : "signal"},
             {"range_for_30_percent_deg_s",
              range30 ? nlohmann::json(*range30 * kDegPerRad) : nlohmann::json(nullptr)},
             {"omega_pi2_deg_s", n.omega_pi2_deg_s},
             {"units",
              {{"rates_deg_s", "deg/s"},
-              {"outputs", closed ? "deg/s (the feedback converted to rate)"
-                                 : "a.u. (demodulated signal S, detector gain x intensity)"},
-              {"scale_factors", closed ? "1 (output / rate)" : "a.u. per deg/s"},
+              {"outputs", phase    ? "rad (the feedback phase step u, the manual's output)"
+                          : closed ? "deg/s (the feedback converted to rate)"
+                                   : "a.u. (demodulated signal S, detector gain x intensity)"},
+              {"scale_factors", phase    ? "s (u / rate in rad/s: -K_s)"
+                                : closed ? "1 (output / rate)"
+                                         : "a.u. per deg/s"},
               {"nonlinearity_percent", "% ((max - min) / mean scale factor)"},
               {"range_for_30_percent_deg_s", "deg/s (open loop only)"}}},
             {"foglab_version", std::string(version())}});
@@ -375,7 +409,12 @@ void run_sweep(const SweepCommand& c) {
   if (!c.csv_path.empty()) {
     csv = fmt::format(
         "# foglab sweep {}: output {}, scale factor {}\nrate_deg_s,output,scale_factor\n", c.scheme,
-        closed ? "deg/s" : "a.u.", closed ? "1" : "a.u. per deg/s");
+        phase    ? "rad (feedback phase)"
+        : closed ? "deg/s"
+                 : "a.u.",
+        phase    ? "s (per rad/s)"
+        : closed ? "1"
+                 : "a.u. per deg/s");
     for (std::size_t i = 0; i < rates_deg.size(); ++i) {
       csv += fmt::format("{:.10g},{:.10g},{:.10g}\n", rates_deg[i], outputs[i], sfs[i]);
     }
@@ -389,8 +428,12 @@ void run_sweep(const SweepCommand& c) {
       c.scheme, closed ? "square bias modulation" : c.modulation + " modulation", coil_name(c.coil),
       c.method, range * kDegPerRad, n.omega_pi2_deg_s);
   std::cout << fmt::format("  {:>12}  {:>16}  {:>16}\n", "rate [deg/s]",
-                           closed ? "output [deg/s]" : "output [a.u.]",
-                           closed ? "SF [1]" : "SF [a.u./(deg/s)]");
+                           phase    ? "phase u [rad]"
+                           : closed ? "output [deg/s]"
+                                    : "output [a.u.]",
+                           phase    ? "SF [s]"
+                           : closed ? "SF [1]"
+                                    : "SF [a.u./(deg/s)]");
   for (std::size_t i = 0; i < rates_deg.size(); ++i) {
     std::cout << fmt::format("  {:>12.6g}  {:>16.9g}  {:>16.9g}\n", rates_deg[i], outputs[i],
                              sfs[i]);
@@ -398,6 +441,13 @@ void run_sweep(const SweepCommand& c) {
   std::cout << fmt::format(
       "nonlinearity {:.6g} %{}\n", s.nonlinearity_percent,
       closed ? fmt::format(" ({:.3g} ppm)", s.nonlinearity_percent * 1e4) : "");
+  if (closed) {
+    // The manual's output is the feedback phase (scale factor -K_s); foglab's the rate (1).
+    std::cout << fmt::format(
+        "the manual's form (--output phase): scale factor -K_s = {:.6g} s; foglab's (--output "
+        "rate): 1; the nonlinearity is the same number in both\n",
+        -n.scale_factor_s);
+  }
   if (!closed) {
     std::cout << (range30 ? fmt::format("range with 30 % nonlinearity: +-{:.6g} deg/s\n",
                                         *range30 * kDegPerRad)
@@ -412,12 +462,14 @@ struct Lab1Command {
   std::string out = "lab1-report";
   bool no_plots = false;
   std::string language = "en";
+  std::string output = "rate";
   TitleOptions title;
 };
 
 void run_lab1(const Lab1Command& c) {
   const Language language = language_from_string(c.language);
   const sim::Coil coil = sim::lab1_coil(c.variant);
+  const bool phase = phase_output(c.output, true);
   OutputFolder folder("--out", c.out);  // a bad --out is said before the work
   progress(fmt::format("running lab 1 on Table 4 variant {}", c.variant));
   sim::Lab1Options options;
@@ -427,6 +479,7 @@ void run_lab1(const Lab1Command& c) {
   ro.plots = !c.no_plots;
   ro.language = language;
   ro.title_block = title_block(c.title, 1, c.variant);
+  ro.loop_output_phase = phase;
   const std::string title = Message(Text::lab1_title, c.variant).text(language);
   const report::Lab1Report rep = report::make_lab1_report(result, title, options.loop, ro);
   if (rep.plots_skipped) note(rep.plots_note);
@@ -443,6 +496,8 @@ void run_lab1(const Lab1Command& c) {
                                      : nlohmann::json();
   sweeps["open_loop_sine"] = sweep_json(result.sweep_sine);
   sweeps["closed_loop"] = sweep_json(result.sweep_closed);
+  // The manual's form whatever --output: the feedback phase and -K_s.
+  sweeps["closed_loop_phase"] = sweep_json(sim::feedback_phase_form(result.sweep_closed));
   const nlohmann::json j = {
       {"variant", c.variant},
       {"coil", coil_j},
@@ -461,6 +516,8 @@ void run_lab1(const Lab1Command& c) {
         {"sweeps.open_loop_*.scale_factors", "a.u. per deg/s"},
         {"sweeps.closed_loop.outputs", "deg/s"},
         {"sweeps.closed_loop.scale_factors", "1"},
+        {"sweeps.closed_loop_phase.outputs", "rad (the feedback phase step u)"},
+        {"sweeps.closed_loop_phase.scale_factors", "s (u / rate in rad/s: -K_s)"},
         {"sweeps.*.nonlinearity_percent", "%"},
         {"checks.*", "1 (fractions)"}}},
       {"foglab_version", std::string(version())}};
@@ -534,6 +591,10 @@ std::function<void()> register_sweep(CLI::App& app) {
   cmd->add_option("--range", c->range_deg_s, "sweep +-RANGE [deg/s] (default Omega_pi/2)");
   cmd->add_option("--method", c->method, "time (simulation) or analytic (steady state)")
       ->capture_default_str();
+  cmd->add_option("--output", c->output,
+                  "closed loop: rate (foglab's output in deg/s, scale factor 1) or phase (the "
+                  "manual's feedback phase in rad, scale factor -K_s in s)")
+      ->capture_default_str();
   cmd->add_option("--json", c->json_path, "write the sweep as JSON ('-' for stdout)");
   cmd->add_option("--csv", c->csv_path, "write the sweep as CSV ('-' for stdout)");
   return [c] { run_sweep(*c); };
@@ -551,6 +612,10 @@ std::function<void()> register_lab1(CLI::App& app) {
   cmd->add_flag("--no-plots", c->no_plots, "write the report without plots (no gnuplot)");
   cmd->add_option("--lang", c->language,
                   "the report's language: en, or ru (the lab manual's terms and units)")
+      ->capture_default_str();
+  cmd->add_option("--output", c->output,
+                  "the closed loop's table: rate (foglab's output in deg/s, scale factor 1) or "
+                  "phase (the manual's feedback phase in rad, scale factor -K_s in s)")
       ->capture_default_str();
   add_title_options(cmd, c->title);
   return [c] { run_lab1(*c); };

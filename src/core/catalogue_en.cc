@@ -405,7 +405,79 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab2_col_answer_key, "answer key"},
     {Text::lab2_table_heading, "{}{}: the lab's table"},
     {Text::lab2_accuracy_class_line, "Accuracy class — {}."},
+    {Text::lab2_scale_factor_note,
+     "Table 1 also grades the scale factor's stability; a static record (zero rate) cannot "
+     "measure it: run the gyro on a rate table and give the runs to `foglab calibrate` "
+     "(eq. 10: the scale factor, its temperature dependence and nonlinearity)."},
     {Text::lab2_ramp_changed, "What the temperature ramp changed"},
+    {Text::lab1_plot_closed_ramp_time,
+     "Closed loop over the rate ramp: rate and output against time (item 4.2)"},
+    {Text::lab1_axis_feedback_step, "feedback phase step u [rad]"},
+    {Text::lab1_legend_rate, "input rate"},
+    {Text::lab1_legend_feedback_step, "u, the manual's output (right axis)"},
+    {Text::lab1_fig_closed_ramp_time,
+     "Item 4.2's figure (rate and output signal): the rate ramps to 3 Omega_pi/2, far past the "
+     "open loop's range (red), and the closed loop's output follows it, as the rate -u/K_s "
+     "(foglab's output, left axis) and as the feedback phase step u = -K_s Omega (the manual's, "
+     "right axis, which runs downwards)."},
+    {Text::lab1_col_feedback_phase_rad, "output: feedback phase step u [rad]"},
+    {Text::lab1_col_scale_factor_s, "scale factor u/Omega [s]"},
+    {Text::lab1_phase_convention,
+     "The manual reads the closed loop's output as the feedback phase step u (items 4.2, 5.2): "
+     "its scale factor is then -K_s, {:.6g} s over this sweep (-K_s = {:.6g} s from the coil). "
+     "foglab's output is the rate -u/K_s, scale factor 1; `--output phase` gives this table in "
+     "the manual's form. The nonlinearity is the same in both forms, since the factor -K_s "
+     "cancels in (max - min)/mean: {:.3g} ppm (phase) and {:.3g} ppm (rate), apart only by the "
+     "arithmetic's rounding. See docs/manual_notes.md."},
+    {Text::lab1_phase_convention_shown,
+     "This table is in the manual's form (`--output phase`): the output is the feedback phase "
+     "step u (items 4.2, 5.2), its scale factor -K_s, {:.6g} s over this sweep (-K_s = {:.6g} s "
+     "from the coil). foglab's default is the rate -u/K_s, scale factor 1. The nonlinearity is "
+     "the same in both forms, since the factor -K_s cancels in (max - min)/mean: {:.3g} ppm "
+     "(phase) and {:.3g} ppm (rate), apart only by the arithmetic's rounding. See "
+     "docs/manual_notes.md."},
+    {Text::lab2_k_convention,
+     "K read the manual's way (docs/manual_notes.md): the +1/2 line read at tau = 1 s gives "
+     "K/sqrt(3) = {} (constant) and {} (ramp); the -2 line's level at 1 Hz gives K/(2 pi) = {} "
+     "and {} deg/h/sqrt(s). The table reads the +1/2 line at tau = 3 s, where it equals K (eq. "
+     "20: K^2 tau/3), and the PSD line as K^2/(2 pi f)^2."},
+    {Text::lab2_gyros_heading, "{} against {}"},
+    {Text::lab2_gyros_value,
+     "{} at constant temperature: {} {}, {} {} {} — {}'s is {:.3g} times {}'s"},
+    {Text::lab2_gyros_apart, "; the 95 % intervals do not overlap."},
+    {Text::lab2_gyros_overlap,
+     "; the 95 % intervals overlap: this record does not tell them apart."},
+    {Text::lab2_gyros_process, "Random bias at constant temperature: {} in {}, {} in {}."},
+    {Text::lab2_gyros_class, "Accuracy class at constant temperature (Table 1): {} {}, {} {}."},
+    {Text::lab2_question_18,
+     "Review question 18: how does temperature affect the output of a FOG?"},
+    {Text::lab2_answer_slope,
+     "over the ramp's {:.3g} degC its bias follows c1 = {} +- {} deg/h/degC ({:.1f} standard "
+     "errors{}); the fitted polynomial moves the bias by {} deg/h, {:.3g} times its bias "
+     "instability."},
+    {Text::lab2_answer_stands_out, ", out of the noise at the 1 % level"},
+    {Text::lab2_answer_not_separated, ", not separated from the random bias at the 1 % level"},
+    {Text::lab2_answer_no_slope, "its ramp run shows no temperature slope."},
+    {Text::lab2_answer_noise_unchanged,
+     " Its noise terms are unchanged within the 95 % intervals."},
+    {Text::lab2_answer_noise_changed, " The ramp also changed {} beyond the uncertainty."},
+    {Text::lab2_answer_general,
+     "Temperature acts on the systematic part of the output: the bias follows the temperature "
+     "and a polynomial in T removes it; left in, it passes for a large drift and spoils the "
+     "Allan deviation at long tau. Gyros of the better classes are therefore calibrated against "
+     "temperature (the manual: temperature errors can make up 30-40 % of the drift)."},
+    {Text::lab2_conclusions, "Conclusions"},
+    {Text::lab2_conclusion_widest,
+     "{} against {}, the largest difference — {}: {:.3g} times ({} over {})."},
+    {Text::lab2_conclusion_temperature,
+     "{} is the more temperature-sensitive over its ramp: |c1| = {} against {} deg/h/degC for {}."},
+    {Text::an_manual_k,
+     "K read the manual's way (docs/manual_notes.md): the +1/2 line read at tau = 1 s gives "
+     "K/sqrt(3) = {}, the -2 line's level at 1 Hz K/(2 pi) = {} deg/h/sqrt(s); this table reads "
+     "the line at tau = 3 s (eq. 20: K^2 tau/3) and the PSD as K^2/(2 pi f)^2, both equal to K."},
+    {Text::an_manual_q,
+     "Quantisation: the manual's eq. 20 writes C^2/tau^2 with C = sqrt(3) Q = {} deg/h*s; IEEE "
+     "Std 952 and this report write 3 Q^2/tau^2, Q = {} deg/h*s (docs/manual_notes.md)."},
     // ---- analyze's report ----
     {Text::an_not_visible, "not visible"},
     {Text::an_no_bound, "no bound"},

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <utility>
 
 #include "foglab/core/language.h"
@@ -231,6 +232,38 @@ Plot closed_ramp_plot(const sim::Lab1Result& r, Language l) {
   return p;
 }
 
+// Item 4.2's figure ("Скорость и выходной сигнал"): the rate ramp and the
+// closed loop's output against time, in foglab's form (the rate -u/K_s,
+// left) and the manual's (the feedback phase step u, right), with the open
+// loop's range edge.
+Plot closed_ramp_time_plot(const sim::Lab1Result& r, Language l) {
+  Plot p;
+  p.title = say(l, Text::lab1_plot_closed_ramp_time);
+  p.x_label = say(l, Text::lab1_axis_time_ms);
+  p.y_label = say(l, Text::lab1_axis_closed_output);
+  p.y2_label = say(l, Text::lab1_axis_feedback_step);
+  const auto& c = r.closed_ramp.periods;
+  const std::vector<double> t = thin(c.time_s, 1e3);
+  p.series.push_back(
+      line(say(l, Text::lab1_legend_rate), t, thin(c.rate_rad_s, kDegPerRad), kGrey, 2));
+  p.series.push_back(
+      line(say(l, Text::lab1_legend_closed_output), t, thin(c.output, kDegPerRad), kGreen));
+  p.series.push_back(
+      line(say(l, Text::lab1_legend_feedback_step), t, thin(c.feedback_step_rad), kBlue, 1, true));
+  const double w = r.numbers.omega_pi2_deg_s;
+  Series edge = line(say(l, Text::lab1_legend_range_edge),
+                     {t.empty() ? 0.0 : t.front(), t.empty() ? 0.0 : t.back()}, {w, w}, kRed, 3);
+  edge.sets_range = false;
+  p.series.push_back(std::move(edge));
+  // u = -K_s rate: the right axis runs the other way, so both curves rise and fall together
+  // only in magnitude; its range is the left one's times -K_s.
+  const double top = c.rate_rad_s.empty() ? w : c.rate_rad_s.back() * kDegPerRad;
+  p.y_range = AxisRange{0.0, 1.15 * top};
+  p.y2_range = AxisRange{-1.15 * top / kDegPerRad * r.numbers.scale_factor_s, 0.0};
+  p.key = "top left";
+  return p;
+}
+
 // The closed loop at a constant rate (Fig. 11): the output (per modulation
 // period) and the phase ramp psi (every sample: its steps and 2 pi resets)
 // against time.
@@ -284,7 +317,10 @@ Block paragraph(std::string text) {
 Block sweep_table(const sim::SweepResult& s, const sim::SweepResult* analytic, Language l) {
   Block b;
   b.kind = Block::Kind::table;
-  if (s.closed_loop) {
+  if (s.phase_form) {
+    b.rows.push_back({say(l, Text::lab1_col_rate), say(l, Text::lab1_col_feedback_phase_rad),
+                      say(l, Text::lab1_col_scale_factor_s)});
+  } else if (s.closed_loop) {
     b.rows.push_back({say(l, Text::lab1_col_rate), say(l, Text::lab1_col_output_deg_s),
                       say(l, Text::lab1_col_scale_factor_1)});
   } else if (analytic) {
@@ -297,7 +333,10 @@ Block sweep_table(const sim::SweepResult& s, const sim::SweepResult* analytic, L
   }
   for (std::size_t i = 0; i < s.rates_rad_s.size(); ++i) {
     const double rate_deg = s.rates_rad_s[i] * kDegPerRad;
-    if (s.closed_loop) {
+    if (s.phase_form) {
+      b.rows.push_back({fmt::format("{:.5g}", rate_deg), fmt::format("{:.9g}", s.outputs[i]),
+                        fmt::format("{:.9g}", s.scale_factors[i])});
+    } else if (s.closed_loop) {
       b.rows.push_back({fmt::format("{:.5g}", rate_deg),
                         fmt::format("{:.9g}", s.outputs[i] * kDegPerRad),
                         fmt::format("{:.9f}", s.scale_factors[i])});
@@ -332,7 +371,7 @@ Tracking ramp_tracking(const sim::Lab1Result& r, const sim::ClosedLoopOptions& l
 }
 
 std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions& loop,
-                          Language l) {
+                          bool phase_output, Language l) {
   const sim::CoilNumbers& n = r.numbers;
   std::vector<Block> out;
   out.push_back(heading(say(l, Text::lab1_coil)));
@@ -374,11 +413,22 @@ std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions
   out.push_back(heading(say(l, Text::lab1_sine_sweep)));
   out.push_back(sweep_table(r.sweep_sine, nullptr, l));
   out.push_back(paragraph(say(l, Text::lab1_sine_nonlinearity, r.sweep_sine.nonlinearity_percent)));
-  out.push_back(heading(say(l, Text::lab1_closed_loop), {5, 6, 7, 8}));
-  out.push_back(sweep_table(r.sweep_closed, nullptr, l));
+  out.push_back(heading(say(l, Text::lab1_closed_loop), {5, 6, 7, 8, 9}));
+  const sim::SweepResult closed_phase = sim::feedback_phase_form(r.sweep_closed);
+  out.push_back(sweep_table(phase_output ? closed_phase : r.sweep_closed, nullptr, l));
   out.push_back(
       paragraph(say(l, Text::lab1_closed_nonlinearity, r.sweep_closed.nonlinearity_percent * 1e4,
                     r.sweep_closed.nonlinearity_percent)));
+  // The manual's form beside foglab's, with both numbers (docs/manual_notes.md).
+  const double mean_phase_sf = closed_phase.scale_factors.empty()
+                                   ? NAN
+                                   : std::accumulate(closed_phase.scale_factors.begin(),
+                                                     closed_phase.scale_factors.end(), 0.0) /
+                                         static_cast<double>(closed_phase.scale_factors.size());
+  out.push_back(paragraph(
+      say(l, phase_output ? Text::lab1_phase_convention_shown : Text::lab1_phase_convention,
+          mean_phase_sf, -n.scale_factor_s, closed_phase.nonlinearity_percent * 1e4,
+          r.sweep_closed.nonlinearity_percent * 1e4)));
 
   const sim::Lab1OpenLoopRun& sq = r.open_loop[1];
   const sim::Lab1OpenLoopRun& si = r.open_loop[2];
@@ -386,7 +436,7 @@ std::vector<Block> blocks(const sim::Lab1Result& r, const sim::ClosedLoopOptions
   const double ramp_end_rad_s =
       r.closed_ramp.periods.rate_rad_s.empty() ? NAN : r.closed_ramp.periods.rate_rad_s.back();
   const double j1 = si.full_scale / sq.full_scale;
-  out.push_back(heading(say(l, Text::lab1_checks), {9}));
+  out.push_back(heading(say(l, Text::lab1_checks), {10}));
   Block checks;
   checks.kind = Block::Kind::list;
   checks.items = {
@@ -515,6 +565,7 @@ std::vector<Plot> lab1_plots(const sim::Lab1Result& r, Language l) {
   plots.push_back(ramp_time_plot(r, l));
   plots.push_back(sweep_plot(r, l));
   plots.push_back(closed_ramp_plot(r, l));
+  plots.push_back(closed_ramp_time_plot(r, l));
   plots.push_back(closed_trace_plot(r, 0, l));
   plots.push_back(closed_trace_plot(r, 1, l));
   plots.push_back(
@@ -538,6 +589,7 @@ Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
       {"ramp_time", Text::lab1_fig_ramp_time},
       {"sweep", Text::lab1_fig_sweep},
       {"closed_ramp", Text::lab1_fig_closed_ramp},
+      {"closed_ramp_time", Text::lab1_fig_closed_ramp_time},
       {"closed_trace_inside", Text::lab1_fig_closed_trace_inside},
       {"closed_trace_beyond", Text::lab1_fig_closed_trace_beyond},
       {"off_frequency", Text::lab1_fig_off_frequency},
@@ -549,7 +601,7 @@ Lab1Report make_lab1_report(const sim::Lab1Result& r, std::string_view title,
   rep.plots_skipped = drawn.skipped;
   rep.plots_note = std::move(drawn.note);
 
-  const std::vector<Block> text = blocks(r, loop, l);
+  const std::vector<Block> text = blocks(r, loop, options.loop_output_phase, l);
   rep.markdown = to_markdown(text, title, title_block_markdown(options.title_block, l));
   if (rep.plots_skipped) rep.markdown += rep.plots_note + "\n";
   rep.sweep_csv = sweep_csv(r);

@@ -8,6 +8,7 @@
 #include <functional>
 #include <future>
 #include <limits>
+#include <numbers>
 
 #include "foglab/core/error.h"
 #include "foglab/model/run_comparison.h"
@@ -368,6 +369,28 @@ std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ra
   return out;
 }
 
+/// The manual's readings of K beside the table's (docs/manual_notes.md): the
+/// +1/2 line read at tau = 1 s is K / sqrt(3), the -2 line's level at 1 Hz
+/// K / (2 pi). Empty when no run reads a K.
+std::string k_convention(const Lab2Table& t) {
+  const Language l = t.language;
+  std::array<std::string, 2> allan{"-", "-"}, psd{"-", "-"};
+  bool any = false;
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (!t.runs[k]) continue;
+    if (const auto& v = t.runs[k]->result.adev_readings.K) {
+      allan[k] = g(*v / std::sqrt(3.0));
+      any = true;
+    }
+    if (const auto& v = t.runs[k]->result.psd_readings.K) {
+      psd[k] = g(*v / (2.0 * std::numbers::pi));
+      any = true;
+    }
+  }
+  if (!any) return "";
+  return say(l, Text::lab2_k_convention, allan[0], allan[1], psd[0], psd[1]);
+}
+
 std::string class_text(const Lab2Table& t) {
   const Language l = t.language;
   std::string text = t.gyro + ":";
@@ -385,6 +408,87 @@ std::string class_text(const Lab2Table& t) {
     first = false;
   }
   return text;
+}
+
+// ---- the closing part: two gyros compared, the review question, the conclusions --------
+
+/// One quantity of two gyros: both values with their 95 % intervals.
+struct GyroValues {
+  Text what;
+  Text unit;
+  model::ValueChange values;  ///< "before" the first gyro, "after" the second
+};
+
+std::optional<GyroValues> fitted_pair(Text what, Text unit, const model::ParameterEstimate& a,
+                                      const model::ParameterEstimate& b) {
+  if (a.status != model::TermStatus::resolved || b.status != model::TermStatus::resolved) {
+    return std::nullopt;
+  }
+  return GyroValues{
+      what, unit,
+      model::compare_values(a.value, a.ci95_low, a.ci95_high, b.value, b.ci95_low, b.ci95_high)};
+}
+
+GyroValues bias_instability_pair(const model::AnalysisResult& a, const model::AnalysisResult& b) {
+  const auto [alo, ahi] = model::adev_interval_at(a.allan, a.bias_instability_tau_s);
+  const auto [blo, bhi] = model::adev_interval_at(b.allan, b.bias_instability_tau_s);
+  return {Text::lab2_bias_instability_minimum, Text::unit_deg_h,
+          model::compare_values(a.bias_instability_deg_h, alo, ahi, b.bias_instability_deg_h, blo,
+                                bhi)};
+}
+
+std::string gyro_value_sentence(const GyroValues& v, std::string_view first,
+                                std::string_view second, Language l) {
+  const std::string unit = say(l, v.unit);
+  std::string text =
+      say(l, Text::lab2_gyros_value, say(l, v.what), first, g(v.values.before), second,
+          g(v.values.after), unit, second, v.values.after / v.values.before, first);
+  switch (v.values.verdict) {
+    case model::Change::changed:
+      return text + say(l, Text::lab2_gyros_apart);
+    case model::Change::unchanged:
+      return text + say(l, Text::lab2_gyros_overlap);
+    case model::Change::not_comparable:
+      break;
+  }
+  return text + ".";
+}
+
+/// The ramp run's c1 and its standard error (NaN without a slope).
+std::pair<double, double> ramp_slope(const Lab2Table& t) {
+  if (!t.runs[1] || !t.runs[1]->result.systematic) return {kNaN, kNaN};
+  const model::SystematicFit& s = *t.runs[1]->result.systematic;
+  if (s.coefficients.size() < 2 || s.standard_errors.size() < 2) return {kNaN, kNaN};
+  return {s.coefficients[1], s.standard_errors[1]};
+}
+
+/// Review question 18 for one gyro: its temperature law over the ramp and
+/// what the ramp did to its noise.
+std::string temperature_answer(const Lab2Table& t, Language l) {
+  if (!t.runs[0] || !t.runs[1]) return "";
+  const model::RunComparison c = model::compare_runs(t.runs[0]->result, t.runs[1]->result);
+  std::string text = t.gyro + ": ";
+  const auto [c1, se] = ramp_slope(t);
+  if (c.systematic && std::isfinite(c1) && se > 0.0) {
+    const double penalty = model::SystematicOptions{}.degree_penalty;
+    const double z = std::fabs(c1) / se;
+    text += say(
+        l, Text::lab2_answer_slope, c.systematic->span_after_c, g(c1), g(1.96 * se), z,
+        say(l, z * z > penalty ? Text::lab2_answer_stands_out : Text::lab2_answer_not_separated),
+        g(c.systematic->polynomial_range_deg_h), c.systematic->range_over_bias_instability);
+  } else {
+    text += say(l, Text::lab2_answer_no_slope);
+  }
+  if (c.changed.empty()) return text + say(l, Text::lab2_answer_noise_unchanged);
+  std::string list;
+  std::size_t term = 0;
+  for (std::size_t k = 0; k < c.changed.size(); ++k) {
+    list += (k == 0                      ? std::string()
+             : k + 1 == c.changed.size() ? say(l, Text::lab2_and)
+                                         : std::string(", ")) +
+            changed_item_name(c.changed[k], c, term, l);
+  }
+  return text + say(l, Text::lab2_answer_noise_changed, list);
 }
 
 std::string csv_field(std::string_view text) {
@@ -407,6 +511,83 @@ std::string file_of(const Lab2Table& t) {
 }
 
 }  // namespace
+
+Lab2Closing lab2_closing(std::span<const Lab2Table> tables) {
+  Lab2Closing out;
+  if (tables.empty()) return out;
+  const Language l = tables.front().language;
+  std::vector<const Lab2Table*> with_constant;
+  for (const Lab2Table& t : tables) {
+    if (t.runs[0]) with_constant.push_back(&t);
+  }
+  std::optional<GyroValues> widest;  // the quantity the gyros differ most in
+  if (with_constant.size() >= 2) {
+    const Lab2Table& a = *with_constant[0];
+    const Lab2Table& b = *with_constant[1];
+    const model::AnalysisResult& ra = a.runs[0]->result;
+    const model::AnalysisResult& rb = b.runs[0]->result;
+    out.heading = say(l, Text::lab2_gyros_heading, a.gyro, b.gyro);
+    std::vector<GyroValues> pairs;
+    if (auto n = fitted_pair(Text::lab2_white_noise_fit, Text::unit_deg_h_sqrt_hz, ra.noise.N,
+                             rb.noise.N)) {
+      pairs.push_back(*n);
+    }
+    pairs.push_back(bias_instability_pair(ra, rb));
+    if (ra.noise.random_bias_process == rb.noise.random_bias_process) {
+      if (auto k = fitted_pair(Text::lab2_q_k, Text::unit_deg_h_sqrt_s, ra.noise.K, rb.noise.K)) {
+        pairs.push_back(*k);
+      }
+      if (auto s = fitted_pair(Text::lab2_q_gm_sigma, Text::unit_deg_h, ra.noise.gm_sigma,
+                               rb.noise.gm_sigma)) {
+        pairs.push_back(*s);
+      }
+    }
+    for (const GyroValues& v : pairs) {
+      out.comparison.push_back(gyro_value_sentence(v, a.gyro, b.gyro, l));
+      const double spread = std::fabs(std::log(v.values.after / v.values.before));
+      if (std::isfinite(spread) &&
+          (!widest || spread > std::fabs(std::log(widest->values.after / widest->values.before)))) {
+        widest = v;
+      }
+    }
+    out.comparison.push_back(say(l, Text::lab2_gyros_process,
+                                 process_name(ra.noise.random_bias_process, l), a.gyro,
+                                 process_name(rb.noise.random_bias_process, l), b.gyro));
+    out.comparison.push_back(say(l, Text::lab2_gyros_class, a.gyro,
+                                 class_name(ra.verdict.accuracy_class, l), b.gyro,
+                                 class_name(rb.verdict.accuracy_class, l)));
+  }
+
+  for (const Lab2Table& t : tables) {
+    const std::string answer = temperature_answer(t, l);
+    if (answer.empty()) continue;
+    out.temperature_answer += (out.temperature_answer.empty() ? "" : " ") + answer;
+  }
+  if (!out.temperature_answer.empty()) {
+    out.temperature_question = say(l, Text::lab2_question_18);
+    out.temperature_answer += " " + say(l, Text::lab2_answer_general);
+  }
+
+  for (const Lab2Table& t : tables) out.conclusions.push_back(t.class_sentence + ".");
+  if (widest && with_constant.size() >= 2) {
+    const std::string& a = with_constant[0]->gyro;
+    const std::string& b = with_constant[1]->gyro;
+    out.conclusions.push_back(say(l, Text::lab2_conclusion_widest, a, b, say(l, widest->what),
+                                  widest->values.after / widest->values.before, b, a));
+  }
+  if (with_constant.size() >= 2) {
+    const auto [ca, sa] = ramp_slope(*with_constant[0]);
+    const auto [cb, sb] = ramp_slope(*with_constant[1]);
+    if (std::isfinite(ca) && std::isfinite(cb)) {
+      const bool first = std::fabs(ca) > std::fabs(cb);
+      out.conclusions.push_back(say(l, Text::lab2_conclusion_temperature,
+                                    with_constant[first ? 0 : 1]->gyro,
+                                    g(std::fabs(first ? ca : cb)), g(std::fabs(first ? cb : ca)),
+                                    with_constant[first ? 1 : 0]->gyro));
+    }
+  }
+  return out;
+}
 
 std::string_view to_string(Lab2Condition condition) {
   return text(Language::en, condition == Lab2Condition::constant ? Text::lab2_constant_temperature
@@ -482,12 +663,28 @@ std::string lab2_tables_markdown(std::span<const Lab2Table> tables) {
       if (t.has_truth) md += " " + (row.truth.empty() ? std::string("-") : row.truth) + " |";
       md += " " + row.unit + " |\n";
     }
-    md += "\n**" + say(l, Text::lab2_accuracy_class_line, t.class_sentence) + "**\n\n";
+    md += "\n**" + say(l, Text::lab2_accuracy_class_line, t.class_sentence) + "**\n\n" +
+          say(l, Text::lab2_scale_factor_note) + "\n\n";
+    if (const std::string k = k_convention(t); !k.empty()) md += k + "\n\n";
     if (!t.comparison.empty()) {
       md += say(l, Text::lab2_ramp_changed) + ":\n\n";
       for (const std::string& s : t.comparison) md += "- " + s + "\n";
       md += "\n";
     }
+  }
+  const Lab2Closing closing = lab2_closing(tables);
+  if (!closing.heading.empty()) {
+    md += "## " + closing.heading + "\n\n";
+    for (const std::string& s : closing.comparison) md += "- " + s + "\n";
+    md += "\n";
+  }
+  if (!closing.temperature_question.empty()) {
+    md += "### " + closing.temperature_question + "\n\n" + closing.temperature_answer + "\n\n";
+  }
+  if (!closing.conclusions.empty()) {
+    md += "## " + say(tables.front().language, Text::lab2_conclusions) + "\n\n";
+    for (const std::string& s : closing.conclusions) md += "- " + s + "\n";
+    md += "\n";
   }
   return md;
 }
@@ -512,13 +709,36 @@ std::string lab2_tables_html(std::span<const Lab2Table> tables) {
       h += td(row.unit) + "</tr>\n";
     }
     h += "</table>\n<p class=\"verdict\">" +
-         html_escape(say(l, Text::lab2_accuracy_class_line, t.class_sentence)) + "</p>\n";
+         html_escape(say(l, Text::lab2_accuracy_class_line, t.class_sentence)) +
+         "</p>\n<p class=\"note\">" + html_escape(say(l, Text::lab2_scale_factor_note)) + "</p>\n";
+    if (const std::string k = k_convention(t); !k.empty()) {
+      h += "<p class=\"note\">" + html_escape(k) + "</p>\n";
+    }
     if (!t.comparison.empty()) {
       h += "<h3>" + html_escape(say(l, Text::lab2_ramp_changed)) + "</h3>\n<ul>\n";
       for (const std::string& s : t.comparison) h += "<li>" + html_escape(s) + "</li>\n";
       h += "</ul>\n";
     }
     h += "</section>\n";
+  }
+  const Lab2Closing closing = lab2_closing(tables);
+  auto list = [](const std::vector<std::string>& items) {
+    std::string u = "<ul>\n";
+    for (const std::string& s : items) u += "<li>" + html_escape(s) + "</li>\n";
+    return u + "</ul>\n";
+  };
+  if (!closing.heading.empty()) {
+    h += "<section id=\"comparison\">\n<h2>" + html_escape(closing.heading) + "</h2>\n" +
+         list(closing.comparison) + "</section>\n";
+  }
+  if (!closing.temperature_question.empty()) {
+    h += "<section id=\"temperature-question\">\n<h3>" + html_escape(closing.temperature_question) +
+         "</h3>\n<p>" + html_escape(closing.temperature_answer) + "</p>\n</section>\n";
+  }
+  if (!closing.conclusions.empty()) {
+    h += "<section id=\"conclusions\">\n<h2>" +
+         html_escape(say(tables.front().language, Text::lab2_conclusions)) + "</h2>\n" +
+         list(closing.conclusions) + "</section>\n";
   }
   return h;
 }

@@ -50,6 +50,23 @@ ParameterText parameter_text(const model::ParameterEstimate& p, Language languag
   return t;
 }
 
+/// The manual's way of reading K and writing the quantisation term beside
+/// foglab's, with both numbers (docs/manual_notes.md): a sentence each,
+/// where the record shows them.
+std::vector<std::string> manual_conventions(const model::AnalysisResult& r, Language language) {
+  std::vector<std::string> out;
+  if (r.adev_readings.K || r.psd_readings.K) {
+    out.push_back(say(language, Text::an_manual_k,
+                      r.adev_readings.K ? g(*r.adev_readings.K / std::sqrt(3.0)) : "-",
+                      r.psd_readings.K ? g(*r.psd_readings.K / (2.0 * std::numbers::pi)) : "-"));
+  }
+  if (r.noise.Q.status == model::TermStatus::resolved) {
+    out.push_back(
+        say(language, Text::an_manual_q, g(std::sqrt(3.0) * r.noise.Q.value), g(r.noise.Q.value)));
+  }
+  return out;
+}
+
 std::string random_bias_answer(const model::AnalysisResult& r, Language language) {
   switch (r.noise.random_bias_process) {
     case RandomBiasProcess::wiener:
@@ -412,6 +429,11 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
               g(r.adev_readings.bias_instability_tau_s))) +
        td("-") + td(fit_value(r.noise.B)) + td(deg_h) + "</tr>\n";
   h += "</table>\n";
+  if (in.sensor == Sensor::gyroscope) {
+    for (const std::string& line : manual_conventions(r, l)) {
+      h += "<p class=\"note\">" + html_escape(line) + "</p>\n";
+    }
+  }
 
   // Random bias.
   const model::RandomBiasEvidence& ev = r.evidence;
@@ -544,6 +566,9 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
             g(r.adev_readings.bias_instability_deg_h), g(r.psd_readings.N, l),
             g(r.psd_readings.K, l)) +
         "\n";
+  if (in.sensor == Sensor::gyroscope) {
+    for (const std::string& line : manual_conventions(r, l)) md += "  " + line + "\n";
+  }
   md += "- " + say(l, Text::an_bandwidth) + ": " + bandwidth_sentence(r.noise.bandwidth, l) + "\n";
   md += "- " + say(l, Text::an_lines) + ": " + lines_sentence(r.noise, l) + "\n";
   md += "- " + say(l, Text::an_md_random_bias) + ": " + random_bias_answer(r, l) + "\n";

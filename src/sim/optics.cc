@@ -243,6 +243,7 @@ SweepResult sweep(const Coil& coil, double range_rad_s, const OpticsOptions& opt
                                                          : c.modulation_frequency_hz;
   for (const double rate : r.rates_rad_s) {
     double out = 0.0;
+    double feedback_rad = -c.scale_factor_s * rate;
     if (s.method == SweepMethod::analytic) {
       out = loop ? rate : steady_state_output(coil, rate, options);
     } else {
@@ -259,7 +260,12 @@ SweepResult sweep(const Coil& coil, double range_rad_s, const OpticsOptions& opt
                                     : simulate_open_loop(coil, input, total_s, o);
       out = detail::mean_of_last(loop ? sim.periods.output : sim.periods.demodulated,
                                  static_cast<std::size_t>(s.average_periods));
+      if (loop) {
+        feedback_rad = detail::mean_of_last(sim.periods.feedback_step_rad,
+                                            static_cast<std::size_t>(s.average_periods));
+      }
     }
+    if (loop) r.feedback_steps_rad.push_back(feedback_rad);
     r.outputs.push_back(out);
     r.scale_factors.push_back(out / rate);
   }
@@ -466,6 +472,24 @@ SweepResult sweep_open_loop(const Coil& coil, double range_rad_s, const OpticsOp
 SweepResult sweep_closed_loop(const Coil& coil, double range_rad_s, const OpticsOptions& options,
                               const ClosedLoopOptions& loop, const SweepOptions& sweep_options) {
   return sweep(coil, range_rad_s, options, &loop, sweep_options);
+}
+
+SweepResult feedback_phase_form(const SweepResult& closed_loop) {
+  if (!closed_loop.closed_loop ||
+      closed_loop.feedback_steps_rad.size() != closed_loop.rates_rad_s.size()) {
+    throw UsageError(
+        "the feedback phase form is the closed loop's: an open-loop sweep has no feedback phase");
+  }
+  if (closed_loop.phase_form) return closed_loop;
+  SweepResult r = closed_loop;
+  r.phase_form = true;
+  r.outputs = closed_loop.feedback_steps_rad;
+  r.scale_factors.clear();
+  for (std::size_t i = 0; i < r.rates_rad_s.size(); ++i) {
+    r.scale_factors.push_back(r.outputs[i] / r.rates_rad_s[i]);
+  }
+  r.nonlinearity_percent = nonlinearity_percent(r.rates_rad_s, r.outputs);
+  return r;
 }
 
 std::optional<double> range_for_nonlinearity(const Coil& coil, double target_percent,

@@ -42,7 +42,16 @@ window.addEventListener('load', () => {
   const pre = document.createElement('pre');
   pre.id = 'foglab-measure';
   pre.textContent = lines.join('\n');
+  // The sections asked for (window.foglabSections): "selector height", 0 when absent.
+  const sections = (window.foglabSections || []).map(sel => {
+    const e = document.querySelector(sel);
+    return sel + ' ' + (e ? Math.round(e.getBoundingClientRect().height) : 0);
+  });
+  const spre = document.createElement('pre');
+  spre.id = 'foglab-sections';
+  spre.textContent = sections.join('\n');
   document.body.appendChild(pre);
+  document.body.appendChild(spre);
 });
 </script>
 )";
@@ -61,16 +70,24 @@ std::string chromium(const fs::path& profile, const std::string& what, const fs:
   return test::read_file(output);
 }
 
+/// The lab-2 page's parts beside its plots (issue 23).
+const std::vector<std::string> kLab2Sections = {".title-block", "#comparison",
+                                                "#temperature-question", "#conclusions"};
+
 bool have_chromium() { return std::system("command -v chromium > /dev/null 2>&1") == 0; }
 
 /// Opens `report` (a copy with the measuring script) in Chromium and
-/// checks every figure's SVG as laid out; returns how many there were.
-int expect_rendered_figures(const fs::path& report, const fs::path& dir) {
+/// checks every figure's SVG as laid out, and that each of `sections` (CSS
+/// selectors) is laid out with a height; returns how many figures there were.
+int expect_rendered_figures(const fs::path& report, const fs::path& dir,
+                            const std::vector<std::string>& sections = {}) {
   std::string page = test::read_file(report);
   const std::size_t body_end = page.rfind("</body>");
   EXPECT_NE(body_end, std::string::npos);
   if (body_end == std::string::npos) return 0;
-  page.insert(body_end, kMeasure);
+  std::string selectors = "<script>window.foglabSections = [";
+  for (const std::string& s : sections) selectors += "'" + s + "',";
+  page.insert(body_end, selectors + "];</script>\n" + kMeasure);
   const fs::path measured = dir / "measured.html";
   std::ofstream(measured) << page;
 
@@ -80,6 +97,22 @@ int expect_rendered_figures(const fs::path& report, const fs::path& dir) {
   EXPECT_NE(start, std::string::npos) << "the measuring script did not run:\n"
                                       << dom.substr(0, 500);
   if (start == std::string::npos) return 0;
+  const std::string sections_open = "<pre id=\"foglab-sections\">";
+  const std::size_t sections_at = dom.find(sections_open);
+  EXPECT_NE(sections_at, std::string::npos);
+  if (sections_at != std::string::npos) {
+    std::istringstream laid(
+        dom.substr(sections_at + sections_open.size(),
+                   dom.find("</pre>", sections_at) - sections_at - sections_open.size()));
+    std::size_t seen = 0;
+    for (std::string selector; laid >> selector;) {
+      int height = 0;
+      laid >> height;
+      ++seen;
+      EXPECT_GT(height, 10) << selector << " is not laid out";
+    }
+    EXPECT_EQ(seen, sections.size());
+  }
   const std::size_t end = dom.find("</pre>", start);
   std::istringstream lines(dom.substr(start + open.size(), end - start - open.size()));
   int figures = 0;
@@ -119,10 +152,17 @@ TEST(BrowserTest, Lab2ReportPlotsRenderInChromium) {
   ASSERT_TRUE(have_chromium())
       << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
   test::TempDir dir;
-  const test::CliRun r = test::run_foglab("lab2 --out " + test::quote(dir / "report"));
+  const test::CliRun r = test::run_foglab("lab2 --student 'Ivanov I.' --group R3241 --out " +
+                                          test::quote(dir / "report"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // Two gyros x two runs x four plots.
-  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 16);
+  // Two gyros x two runs x four plots, and the report's required parts (issue 23): the title
+  // page, FOG1 against FOG2, review question 18 answered, the conclusions.
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path(), kLab2Sections), 16);
+  const std::string page = test::read_file(dir / "report" / "report.html");
+  for (const char* heading : {"<h2>Aim of the work</h2>", "<h2>FOG1 against FOG2</h2>",
+                              "<h3>Review question 18", "<h2>Conclusions</h2>", "Ivanov I."}) {
+    EXPECT_NE(page.find(heading), std::string::npos) << heading;
+  }
 }
 
 TEST(BrowserTest, RussianLab2ReportPlotsRenderInChromium) {
@@ -130,9 +170,15 @@ TEST(BrowserTest, RussianLab2ReportPlotsRenderInChromium) {
   ASSERT_TRUE(have_chromium())
       << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
   test::TempDir dir;
-  const test::CliRun r = test::run_foglab("lab2 --lang ru --out " + test::quote(dir / "report"));
+  const test::CliRun r = test::run_foglab(
+      "lab2 --lang ru --student 'Иванов И.' --group R3241 --out " + test::quote(dir / "report"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 16);
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path(), kLab2Sections), 16);
+  const std::string page = test::read_file(dir / "report" / "report.html");
+  for (const char* heading : {"<h2>Цель работы</h2>", "<h2>Сравнение FOG1 и FOG2</h2>",
+                              "<h3>Контрольный вопрос 18", "<h2>Выводы</h2>", "Иванов И."}) {
+    EXPECT_NE(page.find(heading), std::string::npos) << heading;
+  }
 }
 
 TEST(BrowserTest, Lab1ReportPlotsRenderInChromium) {
@@ -141,20 +187,25 @@ TEST(BrowserTest, Lab1ReportPlotsRenderInChromium) {
   test::TempDir dir;
   const test::CliRun r = test::run_foglab("lab1 --out " + test::quote(dir / "report"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 10);
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 11);
 }
 
 TEST(BrowserTest, RussianLab1ReportRendersInChromium) {
-  // `lab1 --lang ru` (issue 20): Cyrillic titles, axis labels and legends in all ten SVGs.
+  // `lab1 --lang ru` (issue 20): Cyrillic titles, axis labels and legends in all eleven SVGs.
   ASSERT_TRUE(have_chromium())
       << "chromium is not installed: run 'bash scripts/install-deps.sh --tests'";
   test::TempDir dir;
-  const test::CliRun r = test::run_foglab("lab1 --lang ru --out " + test::quote(dir / "report"));
+  const test::CliRun r =
+      test::run_foglab("lab1 --lang ru --student 'Петров П.' --out " + test::quote(dir / "report"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string page = test::read_file(dir / "report" / "report.html");
   EXPECT_NE(page.find("<html lang=\"ru\">"), std::string::npos);
   EXPECT_NE(page.find(">действующая угловая скорость [°/с]<"), std::string::npos);
-  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path()), 10);
+  for (const char* part : {"<h2>Цель работы</h2>", "<h2>Выводы</h2>", "Петров П."}) {
+    EXPECT_NE(page.find(part), std::string::npos) << part;
+  }
+  EXPECT_EQ(expect_rendered_figures(dir / "report" / "report.html", dir.path(), {".title-block"}),
+            11);
 }
 
 TEST(BrowserTest, RussianCalibrationReportRendersInChromium) {

@@ -101,6 +101,54 @@ TEST(CliSweep, ClosedLoopIsLinearWithin10Ppm) {
   }
 }
 
+TEST(CliSweep, OutputPhaseGivesTheManualsFormWithScaleFactorMinusKs) {
+  // Variant 3's -K_s is the manual's -4.040 s; the nonlinearity is the rate form's.
+  const json coil = run_json("coil --variant 3 --json -");
+  const double ks = coil["scale_factor_s"].get<double>();
+  const json rate = run_json("sweep closed-loop --variant 3 --json -");
+  const json phase = run_json("sweep closed-loop --variant 3 --output phase --json -");
+  EXPECT_EQ(phase["output"], "phase");
+  EXPECT_EQ(rate["output"], "rate");
+  EXPECT_THAT(phase["units"]["outputs"].get<std::string>(), HasSubstr("rad"));
+  ASSERT_EQ(phase["scale_factors"].size(), 10u);
+  for (std::size_t i = 0; i < 10; ++i) {
+    EXPECT_NEAR(phase["scale_factors"][i].get<double>(), -4.040, 5e-4) << i;
+    EXPECT_NEAR(phase["outputs"][i].get<double>(),
+                -ks * phase["rates_deg_s"][i].get<double>() * kPi / 180.0, 1e-5)
+        << i;
+  }
+  EXPECT_NEAR(phase["nonlinearity_percent"].get<double>(),
+              rate["nonlinearity_percent"].get<double>(), 1e-9);
+  const test::CliRun open = run_foglab("sweep open-loop --variant 3 --output phase");
+  EXPECT_EQ(open.exit_code, 2);
+  EXPECT_THAT(open.err, HasSubstr("closed loop"));
+  const test::CliRun bad = run_foglab("sweep closed-loop --variant 3 --output angle");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("angle"));
+}
+
+TEST(CliLab1, OutputPhaseShowsTheClosedLoopTableInTheManualsForm) {
+  test::TempDir dir;
+  const fs::path out = dir / "lab1";
+  const test::CliRun r =
+      run_foglab("lab1 --variant 3 --no-plots --output phase --out " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = test::read_file(out / "report.md");
+  EXPECT_THAT(md, HasSubstr("| rate [deg/s] | output: feedback phase step u [rad] | scale factor "
+                            "u/Omega [s] |"));
+  EXPECT_THAT(md, HasSubstr("| 22.276 | -1.57079633 | -4.040"));
+  EXPECT_THAT(md, HasSubstr("This table is in the manual's form"));
+  // lab1.json keeps the rate form and adds the manual's whatever --output.
+  const json j = json::parse(test::read_file(out / "lab1.json"));
+  EXPECT_NEAR(j["sweeps"]["closed_loop"]["scale_factors"][0].get<double>(), 1.0, 1e-5);
+  EXPECT_NEAR(j["sweeps"]["closed_loop_phase"]["scale_factors"][0].get<double>(), -4.040, 5e-4);
+  // The default report says the same in one line beside its rate table.
+  const test::CliRun d = run_foglab("lab1 --variant 3 --no-plots --out " + quote(dir / "d"));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_THAT(test::read_file(dir / "d" / "report.md"),
+              HasSubstr("its scale factor is then -K_s, -4.04018 s over this sweep"));
+}
+
 TEST(CliSweep, WithoutModulationThereIsNothingToSweep) {
   const test::CliRun r = run_foglab("sweep open-loop --variant 1 --modulation none");
   EXPECT_EQ(r.exit_code, 2);
@@ -188,7 +236,7 @@ TEST(CliLab1, WritesTheReportWithEveryPlotAndTheLabsNumbers) {
   for (std::size_t p = html.find("<svg"); p != std::string::npos; p = html.find("<svg", p + 1)) {
     ++svgs;
   }
-  EXPECT_EQ(svgs, 10u);
+  EXPECT_EQ(svgs, 11u);
   EXPECT_EQ(html.find("src="), std::string::npos);  // self-contained
 }
 

@@ -235,8 +235,10 @@ TEST(Lab2Report, InRussianEveryWordIsRussianButTheCsvStaysEnglish) {
   ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
   EXPECT_EQ(count(rep.html, "<svg"), 16u);
   // Latin words allowed: the standard's, the program's and MATLAB's function names, the
-  // gyros' and files' names (FOG1_2.mat).
-  const std::set<std::string> allowed = {"IEEE", "Std", "foglab", "polyfit", "FOG", "mat"};
+  // gyros' and files' names (FOG1_2.mat), the command the scale factor's note names and the
+  // notes on the manual the convention lines cite (docs/manual_notes.md).
+  const std::set<std::string> allowed = {"IEEE", "Std",       "foglab", "polyfit", "FOG",
+                                         "mat",  "calibrate", "docs",   "manual",  "notes"};
   for (const std::string* page : {&rep.html, &rep.markdown}) {
     for (const std::string& left : test::english_left(*page, allowed)) ADD_FAILURE() << left;
   }
@@ -267,7 +269,8 @@ TEST(Lab2Report, TheTitleBlockAndTheAimComeFirstInBothLanguages) {
            {russian ? "Университет ИТМО" : "ITMO University",
             russian ? "Лабораторная работа 2: Идентификация" : "Lab work 2: Identification",
             russian ? "Вариант 3" : "Variant 3", "Ivanova A.", "R3241", "2026-11-27",
-            russian ? "Цель работы" : "Aim of the work"}) {
+            russian ? "Цель работы" : "Aim of the work",
+            russian ? "по неподвижной записи" : "a static record (zero rate) cannot"}) {
         EXPECT_NE(page->find(part), std::string::npos) << part;
       }
       const std::size_t aim = page->find(russian ? "Цель работы" : "Aim of the work");
@@ -280,6 +283,90 @@ TEST(Lab2Report, TheTitleBlockAndTheAimComeFirstInBothLanguages) {
   plain.plots = false;
   const Lab2Report none = make_lab2_report(variant_runs(), "t", "intro", plain);
   EXPECT_EQ(none.html.find("title-block\""), std::string::npos);
+}
+
+TEST(Lab2Report, TheClosingPartComparesTheGyrosAndAnswersTheTemperatureQuestion) {
+  // Issue 23: the manual's report ends with the analysis of the tables (FOG1 against FOG2),
+  // the answer to review question 18 with this run's numbers, and the conclusions.
+  const std::vector<Lab2Run>& runs = variant_runs();
+  const std::vector<Lab2Table> tables = lab2_tables(runs);
+  const Lab2Closing c = lab2_closing(tables);
+  EXPECT_EQ(c.heading, "FOG1 against FOG2");
+  const model::AnalysisResult& a = runs[0].result;  // FOG1 constant
+  const model::AnalysisResult& b = runs[2].result;  // FOG2 constant
+  ASSERT_EQ(runs[2].gyro, "FOG2");
+  ASSERT_EQ(runs[2].condition, Lab2Condition::constant);
+  auto said = [&](const std::string& part) {
+    for (const std::string& s : c.comparison) {
+      if (s.find(part) != std::string::npos) return true;
+    }
+    return false;
+  };
+  // The ratios are the second gyro's estimates over the first's.
+  if (a.noise.N.status == model::TermStatus::resolved &&
+      b.noise.N.status == model::TermStatus::resolved) {
+    const std::string n =
+        fmt::format("FOG2's is {:.3g} times FOG1's", b.noise.N.value / a.noise.N.value);
+    EXPECT_TRUE(said(n)) << n;
+  }
+  const std::string bi = fmt::format("FOG2's is {:.3g} times FOG1's",
+                                     b.bias_instability_deg_h / a.bias_instability_deg_h);
+  EXPECT_TRUE(said("Bias instability (ADEV minimum) at constant temperature: FOG1 " +
+                   fmt::format("{:.4g}", a.bias_instability_deg_h)));
+  EXPECT_TRUE(said(bi)) << bi;
+  EXPECT_TRUE(said("Random bias at constant temperature: Gauss-Markov in FOG1") ||
+              a.noise.random_bias_process != RandomBiasProcess::gauss_markov);
+  // Review question 18: each gyro's ramp slope with its interval, from the ramp runs.
+  EXPECT_EQ(c.temperature_question,
+            "Review question 18: how does temperature affect the output of a FOG?");
+  for (const std::size_t k : {std::size_t{1}, std::size_t{3}}) {
+    ASSERT_TRUE(runs[k].result.systematic.has_value());
+    const model::SystematicFit& s = *runs[k].result.systematic;
+    ASSERT_GE(s.coefficients.size(), 2u);
+    const std::string slope = fmt::format(
+        "{}: over the ramp's {:.3g} degC its bias follows c1 = {:.4g} +- {:.4g}", runs[k].gyro,
+        s.temperature_span_c, s.coefficients[1], 1.96 * s.standard_errors[1]);
+    EXPECT_NE(c.temperature_answer.find(slope), std::string::npos) << slope << "\n"
+                                                                   << c.temperature_answer;
+  }
+  // The conclusions: each gyro's classes, the largest difference, the more sensitive gyro.
+  ASSERT_EQ(c.conclusions.size(), 4u);
+  EXPECT_EQ(c.conclusions[0], tables[0].class_sentence + ".");
+  EXPECT_EQ(c.conclusions[1], tables[1].class_sentence + ".");
+  const double c1a = std::fabs(runs[1].result.systematic->coefficients[1]);
+  const double c1b = std::fabs(runs[3].result.systematic->coefficients[1]);
+  EXPECT_EQ(c.conclusions[3].rfind(c1a > c1b ? "FOG1 is the more" : "FOG2 is the more", 0), 0u)
+      << c.conclusions[3];
+
+  // On the page, in both languages: after the tables, before the runs' own sections.
+  ReportOptions o;
+  o.plots = false;
+  for (const Language l : {Language::en, Language::ru}) {
+    o.language = l;
+    const Lab2Report rep = make_lab2_report(runs, "t", "intro", o);
+    const bool ru = l == Language::ru;
+    const std::size_t last_table = rep.html.rfind("class=\"lab2\"");
+    std::size_t previous = last_table;
+    for (const char* part : {ru ? "<h2>Сравнение FOG1 и FOG2</h2>" : "<h2>FOG1 against FOG2</h2>",
+                             ru ? "Контрольный вопрос 18" : "Review question 18",
+                             ru ? "<h2>Выводы</h2>" : "<h2>Conclusions</h2>"}) {
+      const std::size_t at = rep.html.find(part);
+      EXPECT_NE(at, std::string::npos) << part;
+      EXPECT_GT(at, previous) << part;
+      previous = at;
+      const std::string md_part = std::regex_replace(part, std::regex("</?h2>"), "");
+      EXPECT_NE(rep.markdown_summary.find(md_part), std::string::npos) << md_part;
+    }
+    EXPECT_LT(previous, rep.html.rfind(rep.runs.front().title));
+  }
+
+  // One gyro: nothing to compare, the question still answered.
+  const std::vector<Lab2Run> one(runs.begin(), runs.begin() + 2);
+  const Lab2Closing single = lab2_closing(lab2_tables(one));
+  EXPECT_TRUE(single.heading.empty());
+  EXPECT_TRUE(single.comparison.empty());
+  EXPECT_NE(single.temperature_answer.find("FOG1: "), std::string::npos);
+  EXPECT_EQ(single.conclusions.size(), 1u);
 }
 
 TEST(Lab2Report, WithoutPlotsThePageSaysSo) {

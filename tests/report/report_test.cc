@@ -1,6 +1,7 @@
 // The report of one analysis: plots, self-contained HTML, Markdown, Kalibr.
 #include "foglab/report/report.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -218,6 +219,67 @@ TEST(Report, HtmlNamesEveryParameterWithItsUnit) {
   EXPECT_NE(html.find(std::string(to_string(a.result.verdict.accuracy_class))), std::string::npos);
   EXPECT_NE(rep.markdown.find("plots were skipped"), std::string::npos);
   EXPECT_NE(html.find("plotting was turned off"), std::string::npos);
+}
+
+/// The page's text with html_escape() undone (its five entities).
+std::string html_unescape(std::string text) {
+  for (const auto& [entity, c] :
+       {std::pair{"&lt;", "<"}, std::pair{"&gt;", ">"}, std::pair{"&quot;", "\""},
+        std::pair{"&#39;", "'"}, std::pair{"&amp;", "&"}}) {
+    const std::string e = entity;
+    for (std::size_t at = text.find(e); at != std::string::npos; at = text.find(e, at + 1)) {
+      text.replace(at, e.size(), c);
+    }
+  }
+  return text;
+}
+
+TEST(Report, TheManualsReadingsOfKAndQStandBesideFoglabs) {
+  // Issue 23: where the manual's text reads differently (K on the +1/2 line at tau = 1 s, its
+  // PSD line at 1 Hz; C = sqrt(3) Q), the report says so with the number the text would give.
+  sim::ErrorModel m;
+  m.noise.N = 0.5;
+  m.noise.K = 0.05;
+  m.noise.Q = 0.5;
+  sim::GeneratorOptions g;
+  g.sample_rate_hz = 10.0;
+  g.duration_s = 7200.0;
+  g.seed = 12;
+  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, g);
+  const model::AnalysisResult r =
+      model::analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
+  ASSERT_TRUE(r.adev_readings.K.has_value());
+  ASSERT_TRUE(r.psd_readings.K.has_value());
+  ASSERT_EQ(r.noise.Q.status, model::TermStatus::resolved);
+  ReportOptions o;
+  o.plots = false;
+  ReportInput in;
+  in.file_name = "kq.mat";
+  const Report rep = make_report(r, in, o);
+  const std::string k = fmt::format(
+      "K/sqrt(3) = {:.4g}, the -2 line's level at 1 Hz K/(2 pi) = {:.4g} deg/h/sqrt(s)",
+      *r.adev_readings.K / std::sqrt(3.0), *r.psd_readings.K / (2.0 * std::numbers::pi));
+  const std::string q =
+      fmt::format("C = sqrt(3) Q = {:.4g} deg/h*s", std::sqrt(3.0) * r.noise.Q.value);
+  for (const std::string& page : {html_unescape(rep.html_section), rep.markdown}) {
+    EXPECT_NE(page.find(k), std::string::npos) << k;
+    EXPECT_NE(page.find(q), std::string::npos) << q;
+    EXPECT_NE(page.find("docs/manual_notes.md"), std::string::npos);
+  }
+  // The readings the manual's way are what the lines give there: K/sqrt(3) is within the
+  // truth's factor of the true K/sqrt(3) as the reading is of K.
+  EXPECT_NEAR(*r.adev_readings.K / m.noise.K, 1.0, 0.5);
+
+  // White noise alone: a line only for what the record shows.
+  sim::ErrorModel white;
+  white.noise.N = 0.5;
+  sim::Recording w = sim::generate(white, sim::TemperatureProfile{}, g);
+  const model::AnalysisResult rw = model::analyze(w.rate_deg_h, w.temperature_c, w.sample_rate_hz);
+  const Report plain = make_report(rw, in, o);
+  EXPECT_EQ(plain.html_section.find("K/sqrt(3)") != std::string::npos,
+            rw.adev_readings.K || rw.psd_readings.K);
+  EXPECT_EQ(plain.html_section.find("C = sqrt(3) Q") != std::string::npos,
+            rw.noise.Q.status == model::TermStatus::resolved);
 }
 
 TEST(Report, MissingGnuplotStillGivesTheReport) {

@@ -480,6 +480,32 @@ TEST(Sweep, ClosedLoopNonlinearityOverOmegaPi2IsBelow10Ppm) {
   }
 }
 
+TEST(Sweep, TheManualsFormOfTheClosedLoopIsTheFeedbackPhaseWithScaleFactorMinusKs) {
+  // Items 5.2-5.4 read the feedback phase step u: its scale factor u / Omega is -K_s (the
+  // manual's -4.040 s for variant 3), and the nonlinearity is the rate form's (the factor
+  // cancels). The phase is averaged from the simulated u, not converted from the output.
+  const Coil c = lab1_coil(3);
+  const double ks = scale_factor(c);
+  EXPECT_NEAR(-ks, -4.040, 5e-4);
+  const SweepResult rate = sweep_closed_loop(c, omega_pi2(c));
+  ASSERT_EQ(rate.feedback_steps_rad.size(), rate.rates_rad_s.size());
+  const SweepResult phase = feedback_phase_form(rate);
+  EXPECT_TRUE(phase.phase_form);
+  for (std::size_t i = 0; i < phase.rates_rad_s.size(); ++i) {
+    EXPECT_NEAR(phase.outputs[i], -ks * rate.rates_rad_s[i], 1e-6 * ks * omega_pi2(c)) << i;
+    EXPECT_NEAR(phase.scale_factors[i], -ks, 1e-6 * ks) << i;
+    EXPECT_NEAR(phase.outputs[i], -ks * rate.outputs[i], 1e-12 * ks * omega_pi2(c)) << i;
+  }
+  EXPECT_NEAR(phase.nonlinearity_percent, rate.nonlinearity_percent, 1e-10);
+  // The analytic sweep's phase is -K_s Omega exactly.
+  SweepOptions analytic;
+  analytic.method = SweepMethod::analytic;
+  const SweepResult a = feedback_phase_form(sweep_closed_loop(c, omega_pi2(c), {}, {}, analytic));
+  for (const double sf : a.scale_factors) EXPECT_NEAR(sf, -ks, 1e-12 * ks);
+  // The open loop has no feedback phase.
+  EXPECT_THROW(feedback_phase_form(sweep_open_loop(c, omega_pi2(c))), UsageError);
+}
+
 // --- 5. bad options and rate inputs ----------------------------------------------------
 
 TEST(Optics, BadOptionsThrowUsageError) {

@@ -128,7 +128,8 @@ enum class Text {
   lab1_plot_ramp_time,
   lab1_plot_sweep,
   lab1_plot_closed_ramp,
-  lab1_plot_closed_trace,   ///< {rate deg/s} {rate / Omega_pi/2}
+  lab1_plot_closed_trace,  ///< {rate deg/s} {rate / Omega_pi/2}
+  lab1_plot_closed_ramp_time,
   lab1_plot_off_frequency,  ///< {f / f_m}
   lab1_axis_total_phase,    ///< axis labels
   lab1_axis_detector,
@@ -143,6 +144,7 @@ enum class Text {
   lab1_axis_closed_output,
   lab1_axis_open_output,
   lab1_axis_feedback_phase,
+  lab1_axis_feedback_step,
   lab1_legend_cosine,           ///< the curve gamma (1 + cos phi)
   lab1_legend_time_simulation,  ///< "{modulation}, time simulation"
   lab1_legend_steady_state,     ///< legend entries
@@ -159,6 +161,8 @@ enum class Text {
   lab1_legend_range_edge,  ///< "+Omega_pi/2"
   lab1_legend_feedback_phase,
   lab1_legend_closed_output,
+  lab1_legend_rate,
+  lab1_legend_feedback_step,
   lab1_fig_intensity,  ///< figure captions
   lab1_fig_output,
   lab1_fig_trace_square,
@@ -166,6 +170,7 @@ enum class Text {
   lab1_fig_ramp_time,
   lab1_fig_sweep,
   lab1_fig_closed_ramp,
+  lab1_fig_closed_ramp_time,
   lab1_fig_closed_trace_inside,
   lab1_fig_closed_trace_beyond,
   lab1_fig_off_frequency,
@@ -205,6 +210,8 @@ enum class Text {
   lab1_col_rate,           ///< the sweeps' tables' headings
   lab1_col_output_deg_s,
   lab1_col_scale_factor_1,
+  lab1_col_feedback_phase_rad,
+  lab1_col_scale_factor_s,
   lab1_col_s_time,
   lab1_col_s_analytic,
   lab1_col_sf_time,
@@ -215,6 +222,10 @@ enum class Text {
   lab1_range_30,             ///< {deg/s} {fraction of Omega_pi/2} {analytic deg/s}
   lab1_sine_nonlinearity,    ///< {%}
   lab1_closed_nonlinearity,  ///< {ppm} {%}
+  /// The manual's closed-loop output beside foglab's: {mean phase SF s} {-K_s s} {phase ppm}
+  /// {rate ppm}; _shown when the table is in the phase form
+  lab1_phase_convention,
+  lab1_phase_convention_shown,
   lab1_check_square,         ///< {% of full scale}
   lab1_check_sine,           ///< {% of full scale} {J1(1.8)}
   lab1_check_closed,         ///< {ppm} {ramp end deg/s} {its Omega_pi/2} {lag} {theory}
@@ -324,8 +335,29 @@ enum class Text {
   lab2_col_answer_key,
   lab2_table_heading,        ///< {gyro} {file}: the HTML table's heading
   lab2_accuracy_class_line,  ///< {class sentence}
+  lab2_scale_factor_note,    ///< Table 1's scale-factor column: static data cannot tell; calibrate
+  lab2_k_convention,         ///< K read the manual's way: {allan c} {allan r} {psd c} {psd r}
+  lab2_gyros_heading,        ///< the closing part: {gyro} {gyro}
+  lab2_gyros_value,          ///< {what} {g1} {a} {g2} {b} {unit} {g2} {ratio} {g1}
+  lab2_gyros_apart,
+  lab2_gyros_overlap,
+  lab2_gyros_process,  ///< {process} {gyro} {process} {gyro}
+  lab2_gyros_class,    ///< {gyro} {class} {gyro} {class}
+  lab2_question_18,
+  lab2_answer_slope,  ///< {span} {c1} {ci} {z} {stands} {range deg/h} {range / BI}
+  lab2_answer_stands_out,
+  lab2_answer_not_separated,
+  lab2_answer_no_slope,
+  lab2_answer_noise_unchanged,
+  lab2_answer_noise_changed,  ///< {list}
+  lab2_answer_general,
+  lab2_conclusions,
+  lab2_conclusion_widest,       ///< {g1} {g2} {what} {ratio} {g2} {g1}
+  lab2_conclusion_temperature,  ///< {gyro} {|c1|} {|c1| other} {other gyro}
   lab2_ramp_changed,
   // ---- analyze's report ----
+  an_manual_k,                   ///< {K/sqrt3} {K/2pi}: K read the manual's way
+  an_manual_q,                   ///< {C = sqrt3 Q} {Q}
   an_not_visible,                ///< g(): no reading
   an_no_bound,                   ///< parameter_text(): no upper bound
   an_random_bias_wiener,         ///< random_bias_answer(): {K}

@@ -95,10 +95,29 @@ struct Lab2Table {
   std::vector<std::string> comparison;
 };
 
+/// The report's closing part (the manual's report contents: the analysis of
+/// the tables and the conclusions), in the tables' language: two gyros
+/// compared at constant temperature (each quantity with the ratio and
+/// whether the 95 % intervals tell them apart), the manual's review question
+/// on temperature answered with the run's numbers, and the conclusions.
+struct Lab2Closing {
+  std::string heading;                  ///< e.g. "FOG1 against FOG2"; empty: no two gyros
+  std::vector<std::string> comparison;  ///< a sentence per quantity
+  std::string temperature_question;     ///< review question 18 (empty without a ramp run)
+  std::string temperature_answer;
+  std::vector<std::string> conclusions;
+};
+
+/// The closing part of `tables` (the first two gyros with a constant-temperature run are
+/// compared); everything empty when there is nothing to compare or conclude.
+Lab2Closing lab2_closing(std::span<const Lab2Table> tables);
+
 /// The tables of the gyros in `runs`, in order of first appearance. The
 /// returned tables point into `runs`.
 std::vector<Lab2Table> lab2_tables(std::span<const Lab2Run> runs, Language language = Language::en);
 
+/// The tables, each with its class line, notes and the ramp's comparison,
+/// then the closing part (lab2_closing()).
 std::string lab2_tables_markdown(std::span<const Lab2Table> tables);
 std::string lab2_tables_html(std::span<const Lab2Table> tables);
 /// Long format: gyro, quantity, method, unit, condition, value, ci95_low,

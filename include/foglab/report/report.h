@@ -116,6 +116,9 @@ struct ReportOptions {
   /// reports not yet converted (imu.h) ignore it.
   Language language = Language::en;
   TitleBlock title_block;  ///< the labs' reports: their title page and aim
+  /// Lab 1: the closed loop's table in the manual's form (the feedback phase
+  /// [rad], scale factor -K_s [s]) instead of foglab's rate (deg/s, 1).
+  bool loop_output_phase = false;
 };
 
 /// One figure: its SVG, or why it is missing.

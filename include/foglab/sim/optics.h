@@ -241,7 +241,21 @@ struct SweepResult {
   std::vector<double> outputs;        ///< open loop S [a.u.]; closed loop the output rate [rad/s]
   std::vector<double> scale_factors;  ///< outputs / rates: [a.u. per rad/s] | dimensionless
   double nonlinearity_percent = 0.0;
+  /// Closed loop: the feedback phase step u [rad], averaged over the same
+  /// periods as the outputs (analytic: -K_s rate): the manual's output
+  /// (items 4.2 and 5.2); empty in open loop.
+  std::vector<double> feedback_steps_rad;
+  /// true: outputs are the feedback phase u [rad] and scale factors u / rate
+  /// [s] (-K_s), feedback_phase_form()'s; false: the rate form above.
+  bool phase_form = false;
 };
+
+/// A closed-loop sweep in the manual's form (lab 1, items 5.2-5.4): its
+/// outputs are the feedback phase steps u [rad], its scale factors u / rate
+/// [s] (-K_s), and its nonlinearity is recomputed from them (the same
+/// number: the phase is -K_s times the rate output). Throws UsageError for
+/// an open-loop sweep.
+SweepResult feedback_phase_form(const SweepResult& closed_loop);
 
 /// The lab's sweep over +-range_rad_s (the manual: Omega_pi/2).
 SweepResult sweep_open_loop(const Coil& coil, double range_rad_s, const OpticsOptions& options = {},
