@@ -107,7 +107,17 @@ nlohmann::json allan_json(const model::AnalysisResult& r) {
           {"alpha", a.alpha},
           {"edf", numbers(a.edf)},
           {"model_adev_deg_h", numbers(model_adev(r))},
+          {"psd_adev_deg_h", numbers(r.psd_allan.adev_deg_h)},
           {"of", "the residual after the systematic part"}};
+}
+
+/// The manual's eq. (17): the fitted PSD's Allan deviation against the measured one.
+nlohmann::json psd_allan_json(const model::PsdAllanCheck& c) {
+  return {{"compared", c.compared},
+          {"inside_95", c.inside_95},
+          {"worst_tau_s", number(c.worst_tau_s)},
+          {"worst_ratio", number(c.worst_ratio)},
+          {"worst_half_widths", number(c.worst_half_widths)}};
 }
 
 nlohmann::json psd_json(const model::AnalysisResult& r, double bins_per_decade) {
@@ -307,6 +317,11 @@ nlohmann::json units_json() {
       {"allan.ci68_low", "deg/h"},
       {"allan.ci68_high", "deg/h"},
       {"allan.model_adev_deg_h", "deg/h"},
+      {"allan.psd_adev_deg_h", "deg/h (eq. 17 on the fitted PSD)"},
+      {"psd_allan_check.worst_tau_s", "s"},
+      {"psd_allan_check.worst_ratio", "eq. 17 / measured ADEV (dimensionless)"},
+      {"psd_allan_check.worst_half_widths",
+       "log distance over the 95 % half-width (dimensionless)"},
       {"psd.frequency_hz", "Hz"},
       {"psd.sqrt_psd_deg_h_per_sqrt_hz", "deg/h/sqrt(Hz)"},
       {"psd.psd_deg2_h2_per_hz", "(deg/h)^2/Hz"},
@@ -368,6 +383,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"noise_model", noise},
           {"sensor_bandwidth", bandwidth_json(r.noise.bandwidth)},
           {"spectral_lines", lines_json(r.noise)},
+          {"psd_allan_check", psd_allan_json(r.psd_allan)},
           {"output_quantisation", quantisation_json(r)},
           {"spikes", spikes_json(r)},
           {"steps", steps_json(r)},

@@ -36,6 +36,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::unit_ppm_per_degc_k, "ppm/degC^{}"},
     {Text::unit_ppm_fs, "ppm of full scale"},
     {Text::unit_ppm, "ppm"},
+    {Text::unit_percent, "%"},
     {Text::unit_lsb, "LSB"},
     {Text::unit_deg_h, "deg/h"},
     {Text::unit_lsb_per_degc_k, "LSB/degC^{}"},
@@ -344,7 +345,7 @@ constexpr CatalogueEntry kEntries[] = {
      "stays in the record."},
     {Text::lab2_verdict_term, "c{} = {} +- {} {} ({:.1f} standard errors{}); "},
     {Text::lab2_verdict_stands_out, ": stands out of the noise"},
-    {Text::lab2_verdict_in_noise, ", below the criterion's 2.58"},
+    {Text::lab2_verdict_in_noise, ", below the criterion's {:.3g}"},
     {Text::lab2_verdict_degree,
      "the criterion (W_d + {:.3g} d: a term must stand out at the 1 % level) would keep "
      "degree {}."},
@@ -425,12 +426,12 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::lab1_phase_convention,
      "The manual reads the closed loop's output as the feedback phase step u (items 4.2, 5.2): "
      "its scale factor is then -K_s, {:.6g} s over this sweep (-K_s = {:.6g} s from the coil). "
-     "foglab's output is the rate -u/K_s, scale factor 1; `--output phase` gives this table in "
+     "foglab's output is the rate -u/K_s, scale factor 1; its phase output gives this table in "
      "the manual's form. The nonlinearity is the same in both forms, since the factor -K_s "
      "cancels in (max - min)/mean: {:.3g} ppm (phase) and {:.3g} ppm (rate), apart only by the "
      "arithmetic's rounding. See docs/manual_notes.md."},
     {Text::lab1_phase_convention_shown,
-     "This table is in the manual's form (`--output phase`): the output is the feedback phase "
+     "This table is in the manual's form (the phase output): the output is the feedback phase "
      "step u (items 4.2, 5.2), its scale factor -K_s, {:.6g} s over this sweep (-K_s = {:.6g} s "
      "from the coil). foglab's default is the rate -u/K_s, scale factor 1. The nonlinearity is "
      "the same in both forms, since the factor -K_s cancels in (max - min)/mean: {:.3g} ppm "
@@ -478,7 +479,17 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_manual_q,
      "Quantisation: the manual's eq. 20 writes C^2/tau^2 with C = sqrt(3) Q = {} deg/h*s; IEEE "
      "Std 952 and this report write 3 Q^2/tau^2, Q = {} deg/h*s (docs/manual_notes.md)."},
+    {Text::lab2_q_eq17, "Allan deviation from the PSD"},
+    {Text::lab2_m_eq17, "eq. (17) on the fit's PSD: largest disagreement"},
+    {Text::lab2_eq17_cell, "{:+.1f} at {} s ({} of {} taus within 95 %)"},
     // ---- analyze's report ----
+    {Text::an_eq17, "Allan deviation from the PSD (eq. 17)"},
+    {Text::an_eq17_value,
+     "the fitted model's PSD through the manual's eq. (17) lies inside the measured 95 % "
+     "intervals at {} of {} taus; largest disagreement {:+.1f} % at tau = {} s ({:.2g} times the "
+     "interval's half-width)"},
+    {Text::an_eq17_none, "not compared (no fit or no intervals)"},
+    {Text::an_legend_eq17, "eq. (17): from the fitted PSD"},
     {Text::an_not_visible, "not visible"},
     {Text::an_no_bound, "no bound"},
     {Text::an_random_bias_wiener, "a Wiener process (rate random walk), K = {} deg/h/sqrt(s)"},

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdint>
 #include <limits>
 #include <numbers>
@@ -111,6 +112,29 @@ std::array<double, 5> butterworth_coefficients(double cutoff_hz, double sample_i
   const double b0 = k * k * norm;
   return {b0, 2.0 * b0, b0, 2.0 * (k * k - 1.0) * norm,
           (1.0 - std::numbers::sqrt2 * k + k * k) * norm};
+}
+
+double power_response(const SensorBandwidth& bandwidth, double frequency_hz,
+                      double sample_interval_s) {
+  if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
+  const double w = 2.0 * std::numbers::pi * frequency_hz * sample_interval_s;  // [rad/sample]
+  double h2 = 1.0;
+  if (bandwidth.moving_average()) {
+    const double k = bandwidth.moving_average_samples;
+    const double s = std::sin(0.5 * w);
+    h2 = std::fabs(s) < 1e-300 ? 1.0 : std::pow(std::sin(0.5 * w * k) / (k * s), 2);
+  } else if (bandwidth.butterworth()) {
+    const auto [b0, b1, b2, a1, a2] =
+        butterworth_coefficients(bandwidth.butterworth_cutoff_hz, sample_interval_s);
+    const std::complex<double> z1 = std::polar(1.0, -w);  // z^-1
+    const std::complex<double> h = (b0 + b1 * z1 + b2 * z1 * z1) / (1.0 + a1 * z1 + a2 * z1 * z1);
+    h2 = std::norm(h);
+  } else {
+    const double rho = filtered_lag1(bandwidth, sample_interval_s);
+    h2 = (1.0 - rho) * (1.0 - rho) / (1.0 - 2.0 * rho * std::cos(w) + rho * rho);
+  }
+  const double phi = bandwidth.filtered_fraction;
+  return (1.0 - phi) + phi * h2;
 }
 
 double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,

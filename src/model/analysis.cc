@@ -13,6 +13,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
+#include "foglab/model/psd_allan.h"
 #include "foglab/model/spectral_lines.h"
 
 namespace foglab::model {
@@ -476,6 +477,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     r.notes.emplace_back(Text::note_fit, r.noise.outcome);
   }
   r.verdict = classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h);
+  r.psd_allan = check_allan_against_psd(r.noise, r.allan, 1.0 / r.sample_rate_hz, r.duration_s);
   return r;
 }
 

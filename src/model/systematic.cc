@@ -495,6 +495,7 @@ void set_criterion(SystematicFit& fit, const Sums& s, const NoiseModel& noise,
   const Eigen::VectorXd beta = solve_scaled(s.moments, top);
   const Eigen::MatrixXd cov = scaled_covariance(s, top, noise);
   const double penalty = options.degree_penalty;
+  fit.criterion_penalty = penalty;
   fit.criterion.assign(static_cast<std::size_t>(top + 1), 0.0);
   for (int d = 0; d < top; ++d) {
     const int k = top - d;

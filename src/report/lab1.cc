@@ -255,8 +255,8 @@ Plot closed_ramp_time_plot(const sim::Lab1Result& r, Language l) {
                      {t.empty() ? 0.0 : t.front(), t.empty() ? 0.0 : t.back()}, {w, w}, kRed, 3);
   edge.sets_range = false;
   p.series.push_back(std::move(edge));
-  // u = -K_s rate: the right axis runs the other way, so both curves rise and fall together
-  // only in magnitude; its range is the left one's times -K_s.
+  // u = -K_s rate is negative: the right axis spans the left one's range times -K_s, so u
+  // falls from the top as the rate rises.
   const double top = c.rate_rad_s.empty() ? w : c.rate_rad_s.back() * kDegPerRad;
   p.y_range = AxisRange{0.0, 1.15 * top};
   p.y2_range = AxisRange{-1.15 * top / kDegPerRad * r.numbers.scale_factor_s, 0.0};

@@ -223,6 +223,17 @@ void build_rows(Lab2Table& t) {
       [l](const Lab2Run& r) { return bias_instability_cell(r.result, l); },
       truth_number(&Lab2Truth::bias_instability_deg_h));
   add_row(
+      t, Text::lab2_q_eq17, Text::lab2_m_eq17, Text::unit_percent,
+      [l](const Lab2Run& r) {
+        const model::PsdAllanCheck& c = r.result.psd_allan;
+        if (c.compared == 0) return missing_cell();
+        const double percent = 100.0 * (c.worst_ratio - 1.0);
+        return Lab2Cell{
+            percent, kNaN, kNaN,
+            say(l, Text::lab2_eq17_cell, percent, g(c.worst_tau_s), c.inside_95, c.compared)};
+      },
+      nullptr);
+  add_row(
       t, Text::lab2_q_class, Text::lab2_m_class, kNoUnit,
       [l](const Lab2Run& r) {
         return Lab2Cell{kNaN, kNaN, kNaN, class_cell_text(r.result.verdict, l)};
@@ -253,8 +264,8 @@ std::string change_text(std::string_view what, std::string_view unit, const mode
 /// out of the noise (|c_j| above sqrt(penalty) standard errors, the 1 %
 /// level the criterion asks), and the degree the data alone would keep.
 std::string temperature_verdict(const model::SystematicFit& s, Language l) {
-  if (s.criterion_degree < 0 || s.degree_chosen) return "";
-  const double penalty = model::SystematicOptions{}.degree_penalty;
+  if (s.criterion_degree < 0 || s.degree_chosen || !std::isfinite(s.criterion_penalty)) return "";
+  const double penalty = s.criterion_penalty;
   std::string text = " ";
   for (std::size_t j = 1; j < s.coefficients.size() && j < s.standard_errors.size(); ++j) {
     const double se = s.standard_errors[j];
@@ -262,9 +273,10 @@ std::string temperature_verdict(const model::SystematicFit& s, Language l) {
     const double t = std::fabs(s.coefficients[j]) / se;
     const std::string unit = j == 1 ? say(l, Text::unit_deg_h_per_degc)
                                     : say(l, Text::unit_deg_h_per_degc_k, static_cast<int>(j));
-    text += say(
-        l, Text::lab2_verdict_term, static_cast<int>(j), g(s.coefficients[j]), g(1.96 * se), unit,
-        t, say(l, t * t > penalty ? Text::lab2_verdict_stands_out : Text::lab2_verdict_in_noise));
+    text += say(l, Text::lab2_verdict_term, static_cast<int>(j), g(s.coefficients[j]), g(1.96 * se),
+                unit, t,
+                t * t > penalty ? say(l, Text::lab2_verdict_stands_out)
+                                : say(l, Text::lab2_verdict_in_noise, std::sqrt(penalty)));
   }
   text += say(l, Text::lab2_verdict_degree, penalty, s.criterion_degree);
   if (s.criterion_degree == 0) text += say(l, Text::lab2_verdict_nothing_stands_out);
@@ -327,6 +339,19 @@ std::string changed_item_name(model::ChangedItem item, const model::RunCompariso
   return "";
 }
 
+/// What the ramp changed, as a list: "the white noise, the bias instability and the K term".
+std::string changed_list(const model::RunComparison& c, Language l) {
+  std::string list;
+  std::size_t term = 0;
+  for (std::size_t k = 0; k < c.changed.size(); ++k) {
+    list += (k == 0                      ? std::string()
+             : k + 1 == c.changed.size() ? say(l, Text::lab2_and)
+                                         : std::string(", ")) +
+            changed_item_name(c.changed[k], c, term, l);
+  }
+  return list;
+}
+
 std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ramp, Language l) {
   const model::RunComparison c = model::compare_runs(constant.result, ramp.result);
   std::vector<std::string> out;
@@ -356,15 +381,7 @@ std::vector<std::string> compare_runs(const Lab2Run& constant, const Lab2Run& ra
   if (c.changed.empty()) {
     out.push_back(say(l, Text::lab2_conclusion_unchanged));
   } else {
-    std::string list;
-    std::size_t term = 0;
-    for (std::size_t k = 0; k < c.changed.size(); ++k) {
-      list += (k == 0                      ? std::string()
-               : k + 1 == c.changed.size() ? say(l, Text::lab2_and)
-                                           : std::string(", ")) +
-              changed_item_name(c.changed[k], c, term, l);
-    }
-    out.push_back(say(l, Text::lab2_conclusion_changed, list));
+    out.push_back(say(l, Text::lab2_conclusion_changed, changed_list(c, l)));
   }
   return out;
 }
@@ -469,8 +486,9 @@ std::string temperature_answer(const Lab2Table& t, Language l) {
   const model::RunComparison c = model::compare_runs(t.runs[0]->result, t.runs[1]->result);
   std::string text = t.gyro + ": ";
   const auto [c1, se] = ramp_slope(t);
-  if (c.systematic && std::isfinite(c1) && se > 0.0) {
-    const double penalty = model::SystematicOptions{}.degree_penalty;
+  const model::SystematicFit& fit = *t.runs[1]->result.systematic;
+  if (c.systematic && std::isfinite(c1) && se > 0.0 && std::isfinite(fit.criterion_penalty)) {
+    const double penalty = fit.criterion_penalty;
     const double z = std::fabs(c1) / se;
     text += say(
         l, Text::lab2_answer_slope, c.systematic->span_after_c, g(c1), g(1.96 * se), z,
@@ -480,15 +498,7 @@ std::string temperature_answer(const Lab2Table& t, Language l) {
     text += say(l, Text::lab2_answer_no_slope);
   }
   if (c.changed.empty()) return text + say(l, Text::lab2_answer_noise_unchanged);
-  std::string list;
-  std::size_t term = 0;
-  for (std::size_t k = 0; k < c.changed.size(); ++k) {
-    list += (k == 0                      ? std::string()
-             : k + 1 == c.changed.size() ? say(l, Text::lab2_and)
-                                         : std::string(", ")) +
-            changed_item_name(c.changed[k], c, term, l);
-  }
-  return text + say(l, Text::lab2_answer_noise_changed, list);
+  return text + say(l, Text::lab2_answer_noise_changed, changed_list(c, l));
 }
 
 std::string csv_field(std::string_view text) {

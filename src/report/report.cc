@@ -50,6 +50,14 @@ ParameterText parameter_text(const model::ParameterEstimate& p, Language languag
   return t;
 }
 
+/// The eq. (17) check in a sentence: how many taus it meets within the
+/// measured 95 % intervals and its largest disagreement.
+std::string eq17_sentence(const model::PsdAllanCheck& c, Language language) {
+  if (c.compared == 0) return say(language, Text::an_eq17_none);
+  return say(language, Text::an_eq17_value, c.inside_95, c.compared, 100.0 * (c.worst_ratio - 1.0),
+             g(c.worst_tau_s), c.worst_half_widths);
+}
+
 /// The manual's way of reading K and writing the quantisation term beside
 /// foglab's, with both numbers (docs/manual_notes.md): a sentence each,
 /// where the record shows them.
@@ -407,6 +415,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
       say(l, Text::an_bias_instability_value, g(r.bias_instability_deg_h),
           g(r.bias_instability_tau_s),
           r.bias_instability_at_edge ? say(l, Text::an_at_edge_why) : ""));
+  row(say(l, Text::an_eq17), eq17_sentence(r.psd_allan, l));
   h += "</table>\n";
 
   // Readings beside the fit.
@@ -569,6 +578,7 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
   if (in.sensor == Sensor::gyroscope) {
     for (const std::string& line : manual_conventions(r, l)) md += "  " + line + "\n";
   }
+  md += "- " + say(l, Text::an_eq17) + ": " + eq17_sentence(r.psd_allan, l) + "\n";
   md += "- " + say(l, Text::an_bandwidth) + ": " + bandwidth_sentence(r.noise.bandwidth, l) + "\n";
   md += "- " + say(l, Text::an_lines) + ": " + lines_sentence(r.noise, l) + "\n";
   md += "- " + say(l, Text::an_md_random_bias) + ": " + random_bias_answer(r, l) + "\n";

@@ -414,6 +414,18 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title, Languag
   fit.x = taus;
   for (double tau : taus) fit.y.push_back(std::sqrt(model::fitted_allan_variance(r.noise, tau)));
   plot.series.push_back(std::move(fit));
+  if (!r.psd_allan.tau_s.empty()) {
+    // The manual's eq. (17): the same model through its PSD, at the measured taus.
+    Series psd;
+    psd.title = say(l, Text::an_legend_eq17);
+    psd.color = kLightBlue;
+    psd.dash_type = 2;
+    psd.line_width = 2.5;
+    psd.sets_range = false;
+    psd.x = r.psd_allan.tau_s;
+    psd.y = r.psd_allan.adev_deg_h;
+    plot.series.push_back(std::move(psd));
+  }
   if (r.bias_instability_tau_s > 0.0 && r.bias_instability_deg_h > 0.0) {
     Series min;
     min.title =

@@ -57,6 +57,7 @@ enum class Text {
   unit_ppm_per_degc_k,    ///< ppm/degC^{k}
   unit_ppm_fs,            ///< ppm of full scale
   unit_ppm,               ///< ppm
+  unit_percent,           ///< %
   unit_lsb,               ///< LSB
   unit_deg_h,             ///< deg/h
   unit_lsb_per_degc_k,    ///< LSB/degC^{k}
@@ -336,9 +337,12 @@ enum class Text {
   lab2_table_heading,        ///< {gyro} {file}: the HTML table's heading
   lab2_accuracy_class_line,  ///< {class sentence}
   lab2_scale_factor_note,    ///< Table 1's scale-factor column: static data cannot tell; calibrate
-  lab2_k_convention,         ///< K read the manual's way: {allan c} {allan r} {psd c} {psd r}
-  lab2_gyros_heading,        ///< the closing part: {gyro} {gyro}
-  lab2_gyros_value,          ///< {what} {g1} {a} {g2} {b} {unit} {g2} {ratio} {g1}
+  lab2_q_eq17,
+  lab2_m_eq17,
+  lab2_eq17_cell,      ///< {worst %} {tau} {inside} {compared}
+  lab2_k_convention,   ///< K read the manual's way: {allan c} {allan r} {psd c} {psd r}
+  lab2_gyros_heading,  ///< the closing part: {gyro} {gyro}
+  lab2_gyros_value,    ///< {what} {g1} {a} {g2} {b} {unit} {g2} {ratio} {g1}
   lab2_gyros_apart,
   lab2_gyros_overlap,
   lab2_gyros_process,  ///< {process} {gyro} {process} {gyro}
@@ -356,6 +360,10 @@ enum class Text {
   lab2_conclusion_temperature,  ///< {gyro} {|c1|} {|c1| other} {other gyro}
   lab2_ramp_changed,
   // ---- analyze's report ----
+  an_eq17,        ///< the eq. (17) check's row
+  an_eq17_value,  ///< {inside} {compared} {worst %} {tau} {half-widths}
+  an_eq17_none,
+  an_legend_eq17,
   an_manual_k,                   ///< {K/sqrt3} {K/2pi}: K read the manual's way
   an_manual_q,                   ///< {C = sqrt3 Q} {Q}
   an_not_visible,                ///< g(): no reading

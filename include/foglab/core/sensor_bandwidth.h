@@ -96,6 +96,17 @@ double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s, double
 double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
                             double sample_interval_s);
 
+/// The bandwidth's power response at f [Hz] for samples every
+/// `sample_interval_s`: (1 - phi) + phi |H(f)|^2, with H the sampled
+/// filter's response normalised to 1 at DC — the first-order filter's
+/// (1 - rho)^2 / (1 - 2 rho cos(2 pi f tau0) + rho^2) (rho = exp(-tau0 / T),
+/// the autoregressive sequence above), the moving average's
+/// sin^2(pi f k tau0) / (k sin(pi f tau0))^2, the Butterworth's |H(e^(i 2 pi f tau0))|^2.
+/// 1 without a bandwidth. The PSD of the sensor's white (and flicker) noise
+/// is its level times this.
+double power_response(const SensorBandwidth& bandwidth, double frequency_hz,
+                      double sample_interval_s);
+
 /// The lag-1 autocorrelation of the white noise's samples with this
 /// bandwidth (0 without one); for the first-order filter
 /// phi rho (1 - rho) / (1 + rho - 2 phi rho).

@@ -24,6 +24,7 @@
 #include "foglab/core/accuracy_class.h"
 #include "foglab/model/noise_fit.h"
 #include "foglab/model/output_quantisation.h"
+#include "foglab/model/psd_allan.h"
 #include "foglab/model/readings.h"
 #include "foglab/model/spikes.h"
 #include "foglab/model/steps.h"
@@ -84,6 +85,9 @@ struct AnalysisResult {
   OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
   std::vector<Gap> gaps;                   ///< the record's gaps, as given (core/gaps.h)
   ClassVerdict verdict;
+  /// The manual's eq. (17): the Allan deviation the fitted PSD implies,
+  /// against the measured one (psd_allan.h).
+  PsdAllanCheck psd_allan;
   std::vector<Message> notes;  ///< what the program decided and why
 };
 

@@ -31,6 +31,7 @@
 // a thermostat run).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -79,6 +80,10 @@ struct SystematicFit {
   /// (from 0 up: whether any temperature term stands out of the noise).
   /// -1 when the criterion was not evaluated.
   int criterion_degree = -1;
+  /// The criterion's cost per coefficient (SystematicOptions::degree_penalty)
+  /// when it was evaluated: a coefficient stands out of the noise when it is
+  /// more than sqrt(penalty) standard errors from zero. NaN otherwise.
+  double criterion_penalty = std::numeric_limits<double>::quiet_NaN();
   double residual_rms_deg_h = 0.0;      ///< [deg/h]
   Message note;                         ///< what was done, for the report
 };
