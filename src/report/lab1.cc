@@ -260,7 +260,8 @@ Plot closed_ramp_time_plot(const sim::Lab1Result& r, Language l) {
   const double top = c.rate_rad_s.empty() ? w : c.rate_rad_s.back() * kDegPerRad;
   p.y_range = AxisRange{0.0, 1.15 * top};
   p.y2_range = AxisRange{-1.15 * top / kDegPerRad * r.numbers.scale_factor_s, 0.0};
-  p.key = "top left";
+  // The rate rises from the bottom left, u falls from the top left: the bottom middle is free.
+  p.key = "bottom center";
   return p;
 }
 
