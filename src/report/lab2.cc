@@ -486,9 +486,9 @@ std::string temperature_answer(const Lab2Table& t, Language l) {
   const model::RunComparison c = model::compare_runs(t.runs[0]->result, t.runs[1]->result);
   std::string text = t.gyro + ": ";
   const auto [c1, se] = ramp_slope(t);
-  const model::SystematicFit& fit = *t.runs[1]->result.systematic;
-  if (c.systematic && std::isfinite(c1) && se > 0.0 && std::isfinite(fit.criterion_penalty)) {
-    const double penalty = fit.criterion_penalty;
+  const std::optional<model::SystematicFit>& ramp_fit = t.runs[1]->result.systematic;
+  const double penalty = ramp_fit ? ramp_fit->criterion_penalty : kNaN;
+  if (c.systematic && std::isfinite(c1) && se > 0.0 && std::isfinite(penalty)) {
     const double z = std::fabs(c1) / se;
     text += say(
         l, Text::lab2_answer_slope, c.systematic->span_after_c, g(c1), g(1.96 * se), z,

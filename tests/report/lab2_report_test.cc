@@ -367,6 +367,14 @@ TEST(Lab2Report, TheClosingPartComparesTheGyrosAndAnswersTheTemperatureQuestion)
   EXPECT_TRUE(single.comparison.empty());
   EXPECT_NE(single.temperature_answer.find("FOG1: "), std::string::npos);
   EXPECT_EQ(single.conclusions.size(), 1u);
+
+  // A ramp run without a temperature channel: no slope to report, and no crash.
+  std::vector<Lab2Run> no_temperature(runs.begin(), runs.begin() + 2);
+  no_temperature[1].result.systematic.reset();
+  const Lab2Closing bare = lab2_closing(lab2_tables(no_temperature));
+  EXPECT_NE(bare.temperature_answer.find("FOG1: its ramp run shows no temperature slope."),
+            std::string::npos)
+      << bare.temperature_answer;
 }
 
 TEST(Lab2Report, WithoutPlotsThePageSaysSo) {
