@@ -16,7 +16,8 @@
 # closed-form cases stay), the library's triad (CliCalibrate's triad stays),
 # SpectralLine's broad
 # line, lab2's default and --no-answers runs (the generated variant and the
-# lab's files stay), eight of the nine ADIS16405 channels (imu1_x stays), and
+# lab's files stay), eight of the nine ADIS16405 channels (imu1_x stays) and the eighteen
+# records derived from them, and
 # two of AllanTheory's 2^20-sample loops over all eleven statistics (their
 # kernels run under ASan in the kernel, gap and Stable32 tests), two of
 # Systematic's three scatter studies (the white-noise one stays), the Allan

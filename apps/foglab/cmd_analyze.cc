@@ -273,8 +273,8 @@ std::function<void()> register_analyze(CLI::App& app) {
                   "(the lab's polyfit) or 3")
       ->capture_default_str();
   cmd->add_option("--taus", c->taus,
-                  "Allan tau grid: octave, decade, N-per-decade, or averaging times in s "
-                  "(1,10,100)")
+                  "reported Allan tau grid: octave, decade, all, N-per-decade, or averaging "
+                  "times in s (1,10,100); the noise fit always uses the octave grid")
       ->capture_default_str();
   cmd->add_option("--json", c->json_path, "write the results as JSON ('-' for stdout)");
   cmd->add_option("--csv", c->csv_path,

@@ -10,6 +10,7 @@
 #include <future>
 #include <limits>
 #include <thread>
+#include <utility>
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
@@ -64,19 +65,38 @@ stats::AllanResult reported_part(const stats::AllanResult& all, const stats::Tau
   return r;
 }
 
-// The OADEV the noise fit uses: the grid asked for, extended to the long
-// taus the lab's ten-cluster rule leaves out (down to `fit_min_clusters`):
-// their few degrees of freedom are weighted as such, and they show where a
-// random walk turns into a Gauss-Markov hump.
+// The OADEV the noise fit uses: the octave grid whatever grid is reported,
+// extended to the long taus the lab's ten-cluster rule leaves out (down to
+// `fit_min_clusters`): their few degrees of freedom are weighted as such, and
+// they show where a random walk turns into a Gauss-Markov hump. The fit
+// weighs its points as independent, and its intervals and model choice were
+// validated on octave spacing (docs/validation.md): neighbouring taus of a
+// denser grid share most of their data and would count it several times
+// over, and a list of a few taus cannot hold the model.
 stats::AllanOptions fit_allan_options(const AnalysisOptions& options, bool confidence) {
   stats::AllanOptions allan;
   allan.kind = stats::AllanKind::oadev;
-  allan.grid = options.grid;
+  allan.grid.kind = stats::TauGridKind::octave;
+  allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
   allan.confidence = confidence;
-  if (options.grid.kind != stats::TauGridKind::list) {
-    allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
-  }
   return allan;
+}
+
+// Whether the reported OADEV is a part of the fit's (the octave grid).
+bool reported_within_fit(const AnalysisOptions& options) {
+  return options.grid.kind == stats::TauGridKind::octave;
+}
+
+// The reported OADEV with intervals when its grid is not the fit's, from the
+// residual (not consumed); empty when it is.
+stats::AllanResult other_grid_allan(std::span<const double> residual, double fs,
+                                    const AnalysisOptions& options, std::span<const Gap> gaps) {
+  if (reported_within_fit(options)) return {};
+  stats::AllanOptions allan;
+  allan.kind = stats::AllanKind::oadev;
+  allan.grid = options.grid;
+  allan.confidence = true;
+  return stats::allan_deviation(residual, fs, InputKind::rate, allan, gaps);
 }
 
 struct Statistics {
@@ -102,10 +122,11 @@ stats::AllanResult residual_allan(std::vector<double>& residual, double fs,
                                          fit_allan_options(options, true), gaps);
 }
 
-// The reported part of the OADEV `all`, which the noise model needs 3 points of.
-void add_reported_allan(Statistics& s, const stats::AllanResult& all, double fs,
-                        const AnalysisOptions& options) {
-  s.allan = reported_part(all, options.grid);
+// The reported OADEV: the part of the fit's OADEV `all` on the octave grid,
+// else `other` (other_grid_allan()); the noise model needs 3 points of it.
+void add_reported_allan(Statistics& s, const stats::AllanResult& all, stats::AllanResult other,
+                        double fs, const AnalysisOptions& options) {
+  s.allan = reported_within_fit(options) ? reported_part(all, options.grid) : std::move(other);
   if (s.allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
         "the record ({} samples at {} Hz) gives only {} Allan-deviation point(s) with at least "
@@ -180,8 +201,9 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
+  stats::AllanResult other = other_grid_allan(residual, fs, options, gaps);
   const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
-  add_reported_allan(s, all, fs, options);
+  add_reported_allan(s, all, std::move(other), fs, options);
   s.noise = residual_noise_model(all, options, record, degree, lines);
   return s;
 }
@@ -215,6 +237,7 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
+  stats::AllanResult cubic_other = other_grid_allan(residual, fs, options, gaps);
   const stats::AllanResult cubic_allan = residual_allan(residual, fs, options, gaps);
   if (cubic_allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -234,7 +257,7 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
 
   if (fit.degree == cubic_degree) {
     residual = {};  // the second array is not needed any more (peak memory)
-    add_reported_allan(s, cubic_allan, fs, options);
+    add_reported_allan(s, cubic_allan, std::move(cubic_other), fs, options);
     s.noise = cubic_noise.get();
     return s;
   }
@@ -246,7 +269,8 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
     return residual_noise_model(all, final_options, &record, fit.degree, lines);
   });
   add_psd(s, rate, fs, options, gaps);  // the final residual's
-  add_reported_allan(s, all, fs, options);
+  cubic_other = {};
+  add_reported_allan(s, all, other_grid_allan(rate, fs, options, gaps), fs, options);
   s.noise = noise.get();
   return s;
 }

@@ -365,6 +365,8 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   auto mark = [&](NoiseFitResult& result) {
     result.first_taus_left_out = left_out.count;
     result.first_taus_left_out_why = trimmed_why;
+    result.left_out_below_tau_s =
+        left_out.count > 0 ? std::sqrt(left_out.last_tau_s * p.tau.front()) : 0.0;
     if (next_n && result.N.status == TermStatus::resolved) {
       result.N.ci95_low = std::min(result.N.ci95_low, next_n->first);
       result.N.ci95_high = std::max(result.N.ci95_high, next_n->second);

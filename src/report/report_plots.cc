@@ -349,11 +349,10 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title, Languag
                                              a.tau_s.front(), end, true));
     }
   }
-  if (const auto k = static_cast<std::size_t>(r.noise.first_taus_left_out);
-      k > 0 && k < a.tau_s.size()) {
+  if (const int k = r.noise.first_taus_left_out;
+      k > 0 && r.noise.left_out_below_tau_s > a.tau_s.front()) {
     plot.series.push_back(full_height_band(say(l, Text::an_legend_first_taus, k), kOrange, 0.12,
-                                           a.tau_s.front(), std::sqrt(a.tau_s[k - 1] * a.tau_s[k]),
-                                           true));
+                                           a.tau_s.front(), r.noise.left_out_below_tau_s, true));
   }
   Series dev;
   dev.title = say(l, Text::an_legend_oadev);

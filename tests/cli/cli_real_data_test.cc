@@ -12,15 +12,19 @@
 // a Gauss-Markov random bias below the tau range, the class is consumer.
 // The z axes carry a broad resonance near 20 Hz, reported as a spectral
 // line and kept out of the noise terms; x and y have none.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/cli.h"
+#include "support/files.h"
 
 namespace foglab {
 namespace {
@@ -181,6 +185,85 @@ TEST(RealImu, ThreeAxesInOneRunGiveEachAxisItsOwnAnalysis) {
   EXPECT_NEAR(j["kalibr"]["gyroscope_noise_density"].get<double>(),
               std::sqrt(sum / 3.0) * M_PI / 180.0 / 3600.0, 1e-12);
   EXPECT_TRUE(j["kalibr"]["accelerometer_noise_density"].is_null());
+}
+
+// Records derived from the real ones, which the short-tau models were not
+// built on (bench/real_variants.py has all 39; docs/validation.md their
+// table): each half of the x and y channels (1.4 h, the flicker floor on half
+// the data) and their samples averaged in pairs (50 Hz: a filter no channel
+// has, on a half-step output grid). Issue 16's done-when on each: N within
+// 5 % of the -1/2 region's white level, B resolved, the curve inside the
+// intervals at all but at most 2 taus, the bandwidth resolved and not at
+// the search bound, no Gauss-Markov Tc below the taus, the class consumer.
+// The z axes and every fourth sample, where they still fail, are left to
+// the study.
+TEST(RealGyroDerived, HalvesAndAveragedPairsOfTheXAndYAxesMeetTheDoneWhen) {
+  if (!fs::exists(kRealData / "adis_16405_imu1_gyro.csv")) {
+    GTEST_SKIP() << "the real recordings are not here (" << kRealData.string()
+                 << "): they live in ../shared/data/real beside the checkout";
+  }
+  test::TempDir dir;
+  for (int imu = 1; imu <= 3; ++imu) {
+    const fs::path file = kRealData / ("adis_16405_imu" + std::to_string(imu) + "_gyro.csv");
+    std::ifstream in(file);
+    std::string line;
+    std::getline(in, line);  // the header
+    std::vector<std::string> x, y;
+    while (std::getline(in, line)) {
+      const std::size_t a = line.find(','), b = line.find(',', a + 1);
+      ASSERT_NE(b, std::string::npos) << file.string() << ": " << line;
+      x.push_back(line.substr(0, a));
+      y.push_back(line.substr(a + 1, b - a - 1));
+    }
+    for (const auto& [axis, values] : {std::pair{"x", &x}, std::pair{"y", &y}}) {
+      const std::size_t n = values->size(), half = n / 2;
+      struct Derived {
+        std::string name;
+        double rate_hz;
+        std::vector<std::string> rows;
+      };
+      std::vector<Derived> derived{{"half1", 100.0, {}}, {"half2", 100.0, {}}, {"avg2", 50.0, {}}};
+      for (std::size_t i = 0; i < n; ++i) derived[i < half ? 0 : 1].rows.push_back((*values)[i]);
+      for (std::size_t i = 0; i + 1 < n; i += 2) {
+        derived[2].rows.push_back(
+            fmt::format("{:.9g}", (std::stod((*values)[i]) + std::stod((*values)[i + 1])) / 2.0));
+      }
+      for (const Derived& d : derived) {
+        const std::string name = "imu" + std::to_string(imu) + "_" + axis + "_" + d.name;
+        SCOPED_TRACE(name);
+        const fs::path path = dir / (name + ".csv");
+        {
+          std::ofstream out(path);
+          out << "rate_dps\n";
+          for (const std::string& r : d.rows) out << r << '\n';
+        }
+        const test::CliRun run =
+            test::run_foglab("analyze " + test::quote(path) + " --fs " +
+                             fmt::format("{:g}", d.rate_hz) + " --units deg/s --json -");
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        const json j = json::parse(run.out);
+        const double n_fit = j["noise_model"]["N"]["value"].get<double>();
+        EXPECT_NEAR(n_fit / white_level(j["allan"]), 1.0, 0.05);
+        EXPECT_EQ(j["noise_model"]["B"]["status"], "resolved") << j["fit"]["terms"];
+        int outside = 0;
+        const json& allan = j["allan"];
+        for (std::size_t i = 0; i < allan["tau_s"].size(); ++i) {
+          const double model = allan["model_adev_deg_h"][i].get<double>();
+          outside += model < allan["ci95_low"][i].get<double>() ||
+                     model > allan["ci95_high"][i].get<double>();
+        }
+        EXPECT_LE(outside, 2);
+        EXPECT_TRUE(j["sensor_bandwidth"]["resolved"].get<bool>());
+        EXPECT_FALSE(j["sensor_bandwidth"]["at_search_bound"].get<bool>());
+        if (j["noise_model"]["gm_tc"]["status"] == "resolved") {
+          EXPECT_GE(j["noise_model"]["gm_tc"]["value"].get<double>(),
+                    allan["tau_s"][0].get<double>());
+        }
+        EXPECT_EQ(j["accuracy_class"], "consumer");
+        EXPECT_EQ(j["fit"]["status"], "converged");
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "foglab/sim/lab2_variants.h"
 #include "foglab/sim/presets.h"
 #include "foglab/sim/sensor_output.h"
+#include "foglab/stats/tau_grid.h"
 #include "support/expect.h"
 
 namespace foglab::model {
@@ -193,6 +194,64 @@ TEST(Analysis, WithoutTemperatureTheSystematicStepIsSkippedWithANote) {
   // Table 1 from the ADEV minimum and the ARW; the worse class wins.
   EXPECT_EQ(r.verdict.accuracy_class,
             classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h).accuracy_class);
+}
+
+// The reported grid (--taus) changes the Allan table, not the model: the
+// fit always uses the octave grid. Before, a dense grid counted the same data
+// many times over in the fit (and `all` ran for minutes), and a list of three
+// taus was all the fit had. Both the path without temperature and the ramp
+// run's (the degree chosen on the cubic residual) are checked.
+TEST(Analysis, TheReportedGridChangesTheTableNotTheModel) {
+  sim::ErrorModel m;
+  m.noise = {.N = 0.3, .B = 0.02, .K = 0.004};
+  sim::GeneratorOptions o;
+  o.sample_rate_hz = 5.0;
+  o.duration_s = 3600.0;
+  o.seed = 5;
+  const sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
+  std::vector<double> rate = rec.rate_deg_h;  // analyze() consumes its record
+  const AnalysisResult octave = analyze(rate, {}, o.sample_rate_hz);
+  for (const char* grid : {"decade", "20-per-decade", "all", "1,10,100"}) {
+    AnalysisOptions options;
+    options.grid = stats::parse_tau_grid(grid);
+    rate = rec.rate_deg_h;
+    const AnalysisResult r = analyze(rate, {}, o.sample_rate_hz, options);
+    EXPECT_EQ(r.noise.terms, octave.noise.terms) << grid;
+    EXPECT_EQ(r.noise.model.N, octave.noise.model.N) << grid;
+    EXPECT_EQ(r.noise.model.B, octave.noise.model.B) << grid;
+    EXPECT_EQ(r.noise.model.K, octave.noise.model.K) << grid;
+    EXPECT_EQ(r.noise.points, octave.noise.points) << grid;
+    EXPECT_EQ(r.verdict.accuracy_class, octave.verdict.accuracy_class) << grid;
+    ASSERT_EQ(r.allan.tau_s.size(), r.allan.ci95_low.size()) << grid;
+    if (std::string(grid) == "all") {
+      for (std::size_t k = 0; k < r.allan.m.size(); ++k)
+        ASSERT_EQ(r.allan.m[k], static_cast<std::int64_t>(k + 1)) << k;
+      EXPECT_GT(r.allan.tau_s.size(), 1000u);
+    } else if (std::string(grid) == "1,10,100") {
+      EXPECT_EQ(r.allan.tau_s, (std::vector<double>{1.0, 10.0, 100.0}));
+    } else {
+      EXPECT_NE(r.allan.tau_s, octave.allan.tau_s) << grid;
+    }
+    // The table's OADEV is the statistic on its own grid: where a tau is on
+    // both grids the deviations agree.
+    for (std::size_t k = 0; k < r.allan.tau_s.size(); ++k) {
+      const auto at =
+          std::find(octave.allan.tau_s.begin(), octave.allan.tau_s.end(), r.allan.tau_s[k]);
+      if (at != octave.allan.tau_s.end()) {
+        EXPECT_DOUBLE_EQ(r.allan.dev[k], octave.allan.dev[at - octave.allan.tau_s.begin()])
+            << grid << " tau " << r.allan.tau_s[k];
+      }
+    }
+  }
+  AnalysisOptions decade;
+  decade.grid = stats::parse_tau_grid("decade");
+  const Lab2Case ramp_octave = analyse_lab2(1, 0, 1, 3);
+  const Lab2Case ramp_decade = analyse_lab2(1, 0, 1, 3, decade);
+  EXPECT_EQ(ramp_decade.result.noise.terms, ramp_octave.result.noise.terms);
+  EXPECT_EQ(ramp_decade.result.noise.model.N, ramp_octave.result.noise.model.N);
+  ASSERT_TRUE(ramp_octave.result.systematic.has_value());
+  EXPECT_EQ(ramp_decade.result.systematic->degree, ramp_octave.result.systematic->degree);
+  EXPECT_NE(ramp_decade.result.allan.tau_s, ramp_octave.result.allan.tau_s);
 }
 
 TEST(Analysis, TooShortARecordIsADataErrorThatSaysHowMany) {

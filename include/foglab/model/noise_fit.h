@@ -308,6 +308,10 @@ struct NoiseFitResult {
   /// filter follows them (0: none), and why.
   int first_taus_left_out = 0;
   Message first_taus_left_out_why;
+  /// [s] The taus below this were left out: the geometric mean of the last
+  /// one left out and the first one used (0 when none was). The fit's taus
+  /// are the octave grid's, which need not be the reported ones.
+  double left_out_below_tau_s = 0.0;
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
