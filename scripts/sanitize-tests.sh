@@ -8,25 +8,24 @@
 # the asan test preset's exclude): the 10^9-sample test, which needs 8 GB
 # before ASan's shadow memory; the browser tests, which only render what the
 # other tests checked; and the statistical cases that run a path another
-# kept case runs, only on other numbers (these cost 30-100 s each under ASan
+# kept case runs, only on other numbers (these cost 15-100 s each under ASan
 # and run in the Release half): six of Bandwidth's seven (the flicker one
 # stays, and SensorEffects' filter cases, its Butterworth among them), the
-# Wiener random bias named over six seeds (NoiseFit's Wiener round trip stays),
-# eq. (17) on five generated records (every analysis computes it; PsdAllan's
-# closed-form cases stay), the library's triad (CliCalibrate's triad stays),
-# SpectralLine's broad
-# line, lab2's default and --no-answers runs (the generated variant and the
-# lab's files stay), eight of the nine ADIS16405 channels (imu1_x stays) and the eighteen
-# records derived from them, and
-# two of AllanTheory's 2^20-sample loops over all eleven statistics (their
-# kernels run under ASan in the kernel, gap and Stable32 tests), two of
-# Systematic's three scatter studies (the white-noise one stays), the Allan
-# covariance's Monte Carlo, and calibrate's two coverage studies over seeds
-# (the CLI tests run its generalised least squares, triads and optics once
-# each), and three CLI runs whose paths other kept cases take under ASan (the
-# fleet's interrupted batch, 80 s: the batch and its resume run in CliBatch's
-# and CliInterrupt's other cases; the real three-axis IMU run and the bag
-# analysed against every axis, 40 and 33 s: CliImu's CSV cases and
+# Wiener random bias named over six seeds (NoiseFit's Wiener round trip
+# stays), eq. (17) on five generated records (every analysis computes it;
+# PsdAllan's closed-form cases stay), the library's triad (CliCalibrate's
+# triad stays), SpectralLine's broad line, lab2's default and --no-answers
+# runs (the generated variant and the lab's files stay), eight of the nine
+# ADIS16405 channels (imu1_x stays) and the eighteen records derived from
+# them, two of AllanTheory's 2^20-sample loops over all eleven statistics
+# (their kernels run under ASan in the kernel, gap and Stable32 tests), two
+# of Systematic's three scatter studies (the white-noise one stays), the
+# Allan covariance's Monte Carlo, and calibrate's two coverage studies over
+# seeds (the CLI tests run its generalised least squares, triads and optics
+# once each), and three CLI runs whose paths other kept cases take under
+# ASan (the fleet's interrupted batch, 80 s: the batch and its resume run in
+# CliBatch's and CliInterrupt's other cases; the real three-axis IMU run and
+# the bag analysed against every axis, 40 and 33 s: CliImu's CSV cases and
 # RosbagTest's bag parsing stay).
 # Needs clang-14, libclang-rt-14-dev, libomp-14-dev (install-deps.sh --tests).
 set -euo pipefail

@@ -205,7 +205,7 @@ TEST(Analysis, TheReportedGridChangesTheTableNotTheModel) {
   sim::ErrorModel m;
   m.noise = {.N = 0.3, .B = 0.02, .K = 0.004};
   sim::GeneratorOptions o;
-  o.sample_rate_hz = 5.0;
+  o.sample_rate_hz = 2.0;  // 7,200 samples: `all` reports 720 taus (31 s under ASan at 1,800)
   o.duration_s = 3600.0;
   o.seed = 5;
   const sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
@@ -226,7 +226,7 @@ TEST(Analysis, TheReportedGridChangesTheTableNotTheModel) {
     if (std::string(grid) == "all") {
       for (std::size_t k = 0; k < r.allan.m.size(); ++k)
         ASSERT_EQ(r.allan.m[k], static_cast<std::int64_t>(k + 1)) << k;
-      EXPECT_GT(r.allan.tau_s.size(), 1000u);
+      EXPECT_GT(r.allan.tau_s.size(), 500u);
     } else if (std::string(grid) == "1,10,100") {
       EXPECT_EQ(r.allan.tau_s, (std::vector<double>{1.0, 10.0, 100.0}));
     } else {
