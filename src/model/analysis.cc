@@ -237,7 +237,6 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
-  stats::AllanResult cubic_other = other_grid_allan(residual, fs, options, gaps);
   const stats::AllanResult cubic_allan = residual_allan(residual, fs, options, gaps);
   if (cubic_allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -254,10 +253,12 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
       fit_noise_model(without_intervals(cubic_allan), options.noise_fit, &cubic_factors, lines);
   fit = choose_temperature_degree(fit, record, look.model, options.systematic);
   subtract_temperature_fit(fit, rate, temperature);
+  // `rate` is the final residual now, whichever degree was kept: the
+  // reported grid's OADEV, when it is not the fit's, is taken from it.
 
   if (fit.degree == cubic_degree) {
     residual = {};  // the second array is not needed any more (peak memory)
-    add_reported_allan(s, cubic_allan, std::move(cubic_other), fs, options);
+    add_reported_allan(s, cubic_allan, other_grid_allan(rate, fs, options, gaps), fs, options);
     s.noise = cubic_noise.get();
     return s;
   }
@@ -269,7 +270,6 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
     return residual_noise_model(all, final_options, &record, fit.degree, lines);
   });
   add_psd(s, rate, fs, options, gaps);  // the final residual's
-  cubic_other = {};
   add_reported_allan(s, all, other_grid_allan(rate, fs, options, gaps), fs, options);
   s.noise = noise.get();
   return s;
