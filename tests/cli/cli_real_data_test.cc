@@ -70,6 +70,17 @@ double white_level(const json& allan) {
   return std::exp(sum / static_cast<double>(best_end - best_begin));
 }
 
+// How many taus' 95 % intervals the fitted curve leaves.
+int taus_outside(const json& allan) {
+  int outside = 0;
+  for (std::size_t i = 0; i < allan["tau_s"].size(); ++i) {
+    const double model = allan["model_adev_deg_h"][i].get<double>();
+    outside +=
+        model < allan["ci95_low"][i].get<double>() || model > allan["ci95_high"][i].get<double>();
+  }
+  return outside;
+}
+
 TEST_P(RealGyro, WhiteLevelBandwidthAndClass) {
   const Channel c = GetParam();
   const fs::path file = kRealData / ("adis_16405_imu" + std::to_string(c.imu) + "_gyro.csv");
@@ -87,14 +98,8 @@ TEST_P(RealGyro, WhiteLevelBandwidthAndClass) {
   EXPECT_NEAR(n / level, 1.0, 0.03) << "N " << n << ", the -1/2 region's level " << level;
   EXPECT_EQ(j["noise_model"]["B"]["status"], "resolved") << j["fit"]["terms"];
   // The fitted curve against the Allan deviation's intervals.
-  int outside = 0;
   const json& allan = j["allan"];
-  for (std::size_t i = 0; i < allan["tau_s"].size(); ++i) {
-    const double model = allan["model_adev_deg_h"][i].get<double>();
-    outside +=
-        model < allan["ci95_low"][i].get<double>() || model > allan["ci95_high"][i].get<double>();
-  }
-  EXPECT_LE(outside, 2) << "of " << allan["tau_s"].size() << " taus";
+  EXPECT_LE(taus_outside(allan), 2) << "of " << allan["tau_s"].size() << " taus";
   // The interval holds the estimate, is not degenerate, and is narrow: a
   // million samples fix the white level to well under 1 % (on the z axes it
   // had been -23/+58 % while the 20 Hz resonance's skirts were left out and
@@ -245,14 +250,8 @@ TEST(RealGyroDerived, HalvesAndAveragedPairsOfTheXAndYAxesMeetTheDoneWhen) {
         const double n_fit = j["noise_model"]["N"]["value"].get<double>();
         EXPECT_NEAR(n_fit / white_level(j["allan"]), 1.0, 0.05);
         EXPECT_EQ(j["noise_model"]["B"]["status"], "resolved") << j["fit"]["terms"];
-        int outside = 0;
         const json& allan = j["allan"];
-        for (std::size_t i = 0; i < allan["tau_s"].size(); ++i) {
-          const double model = allan["model_adev_deg_h"][i].get<double>();
-          outside += model < allan["ci95_low"][i].get<double>() ||
-                     model > allan["ci95_high"][i].get<double>();
-        }
-        EXPECT_LE(outside, 2);
+        EXPECT_LE(taus_outside(allan), 2);
         EXPECT_TRUE(j["sensor_bandwidth"]["resolved"].get<bool>());
         EXPECT_FALSE(j["sensor_bandwidth"]["at_search_bound"].get<bool>());
         if (j["noise_model"]["gm_tc"]["status"] == "resolved") {
