@@ -31,11 +31,8 @@ std::string fmt_tau(double tau_s) {
   return out.str();
 }
 
-json run_json(const std::string& args) {
-  const test::CliRun r = run_foglab(args + " --json -");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return json::parse(r.out);
-}
+// `foglab ARGS --json -`, parsed.
+json allan_json(const std::string& args) { return test::run_json(args + " --json -"); }
 
 struct OctaveCase {
   std::string file;
@@ -48,9 +45,9 @@ class CliStable32 : public ::testing::TestWithParam<OctaveCase> {};
 
 TEST_P(CliStable32, JsonReproducesTheOctaveTableWithIntervals) {
   const OctaveCase& c = GetParam();
-  const json j = run_json("allan " + quote(test::data_path("stable32-phasedat/PHASE.DAT")) +
-                          " --input phase --fs 1 --kind " + c.kind +
-                          " --taus octave --min-clusters 1");
+  const json j =
+      allan_json("allan " + quote(test::data_path("stable32-phasedat/PHASE.DAT")) +
+                 " --input phase --fs 1 --kind " + c.kind + " --taus octave --min-clusters 1");
   EXPECT_EQ(j["kind"], c.kind);
   EXPECT_EQ(j["input"], "phase");
   std::map<double, std::size_t> index;
@@ -88,8 +85,8 @@ TEST(CliAllan, EveryStable32AllTauTableThroughAnExplicitTauList) {
     const auto rows = test::read_stable32(file);
     std::string taus;
     for (const auto& row : rows) taus += (taus.empty() ? "" : ",") + std::to_string(row.af);
-    const json j = run_json("allan " + quote(test::data_path("stable32-phasedat/PHASE.DAT")) +
-                            " --input phase --fs 1 --kind " + kind + " --taus " + taus);
+    const json j = allan_json("allan " + quote(test::data_path("stable32-phasedat/PHASE.DAT")) +
+                              " --input phase --fs 1 --kind " + kind + " --taus " + taus);
     ASSERT_EQ(j["dev"].size(), rows.size()) << file;
     for (std::size_t k = 0; k < rows.size(); ++k) {
       EXPECT_NEAR(j["dev"][k].get<double>() / rows[k].sigma, 1.0, 2e-4) << file << " AF "
@@ -106,8 +103,8 @@ TEST(CliAllan, MtieAndTieRmsReproduceStable32AndTakeTheRateAsItsIntegral) {
     const auto rows = test::read_stable32_values(file);
     std::string taus;
     for (const auto& row : rows) taus += (taus.empty() ? "" : ",") + std::to_string(row.af);
-    const json j = run_json("allan " + phase_dat + " --input phase --fs 1 --kind " +
-                            std::string(kind) + " --taus " + taus);
+    const json j = allan_json("allan " + phase_dat + " --input phase --fs 1 --kind " +
+                              std::string(kind) + " --taus " + taus);
     EXPECT_EQ(j["kind"], kind);
     EXPECT_EQ(j["unit"], "deg/h*s");
     ASSERT_EQ(j["value"].size(), rows.size()) << file;
@@ -134,10 +131,11 @@ TEST(CliAllan, MtieAndTieRmsReproduceStable32AndTakeTheRateAsItsIntegral) {
   rate.close();
   angle.close();
   for (const char* kind : {"mtie", "tierms"}) {
-    const json from_rate = run_json("allan " + quote(dir / "rate.csv") + " --fs 4 --kind " + kind +
-                                    " --min-clusters 3");
-    const json from_angle = run_json("allan " + quote(dir / "angle.csv") +
-                                     " --input phase --fs 4 --kind " + kind + " --min-clusters 3");
+    const json from_rate = allan_json("allan " + quote(dir / "rate.csv") + " --fs 4 --kind " +
+                                      kind + " --min-clusters 3");
+    const json from_angle =
+        allan_json("allan " + quote(dir / "angle.csv") + " --input phase --fs 4 --kind " + kind +
+                   " --min-clusters 3");
     ASSERT_EQ(from_rate["value"].size(), from_angle["value"].size()) << kind;
     for (std::size_t k = 0; k < from_rate["value"].size(); ++k) {
       EXPECT_NEAR(from_rate["value"][k].get<double>() / from_angle["value"][k].get<double>(), 1.0,
@@ -146,7 +144,8 @@ TEST(CliAllan, MtieAndTieRmsReproduceStable32AndTakeTheRateAsItsIntegral) {
     }
   }
   // MTIE of a rate with a bias grows with it: 250 deg/h for 1 s at least.
-  const json biased = run_json("allan " + quote(dir / "rate.csv") + " --fs 4 --kind mtie --taus 1");
+  const json biased =
+      allan_json("allan " + quote(dir / "rate.csv") + " --fs 4 --kind mtie --taus 1");
   EXPECT_GT(biased["value"][0].get<double>(), 250.0);
 }
 
@@ -184,8 +183,8 @@ TEST(CliAllan, TotalAndTheoFamilyReproduceStable32WithTheirOptions) {
     const auto rows = test::read_stable32(c.file);
     std::string taus;
     for (const auto& row : rows) taus += (taus.empty() ? "" : ",") + fmt_tau(row.tau_s);
-    const json j = run_json("allan " + phase_dat + " --input phase --fs 1 --kind " + c.kind +
-                            " --taus " + taus + " " + c.options);
+    const json j = allan_json("allan " + phase_dat + " --input phase --fs 1 --kind " + c.kind +
+                              " --taus " + taus + " " + c.options);
     EXPECT_EQ(j["kind"], c.kind);
     EXPECT_EQ(j["unit"], c.kind == "ttotdev" ? "deg/h*s" : "deg/h");
     EXPECT_EQ(j["bias_correction"], c.kind == "htotdev" && c.options.empty()) << c.file;
@@ -233,8 +232,8 @@ TEST(CliAllan, Nbs14TableThroughCsvInputAndJsonOutput) {
       {"tdev", {1.687202e-01, 3.563623e-01, 1.253382e+00}},
   };
   for (const auto& [kind, values] : expected) {
-    const json j = run_json("allan " + quote(dir / "nbs14.csv") + " --fs 1 --kind " + kind +
-                            " --taus 1,10,100");
+    const json j = allan_json("allan " + quote(dir / "nbs14.csv") + " --fs 1 --kind " + kind +
+                              " --taus 1,10,100");
     ASSERT_EQ(j["dev"].size(), 3u) << kind;
     for (std::size_t k = 0; k < 3; ++k) {
       EXPECT_NEAR(j["dev"][k].get<double>() / values[k], 1.0, 1e-6) << kind;
@@ -287,8 +286,8 @@ TEST(CliAllan, MatFilesV5AndV73GiveTheSameResultWithTheRateFromF) {
   const std::vector<double> y = test::nbs14_1000();
   write_mat(dir / "v5.mat", MAT_FT_MAT5, 1.0, y);
   write_mat(dir / "v73.mat", MAT_FT_MAT73, 1.0, y);
-  const json a = run_json("allan " + quote(dir / "v5.mat") + " --channel Y1 --taus 10");
-  const json b = run_json("allan " + quote(dir / "v73.mat") + " --taus 10");
+  const json a = allan_json("allan " + quote(dir / "v5.mat") + " --channel Y1 --taus 10");
+  const json b = allan_json("allan " + quote(dir / "v73.mat") + " --taus 10");
   EXPECT_NEAR(a["dev"][0].get<double>() / 9.159953e-02, 1.0, 1e-6);
   EXPECT_EQ(a["dev"], b["dev"]);
   EXPECT_EQ(a["source"]["sample_rate_source"].get<std::string>().find("f") != std::string::npos,

@@ -28,12 +28,7 @@ using ::testing::HasSubstr;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kC = 299792458.0;
 
-json run_json(const std::string& args) {
-  const test::CliRun r = run_foglab(args);
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
-  if (r.exit_code != 0) return json::object();
-  return json::parse(r.out);
-}
+using test::run_json;
 
 TEST(CliCoil, Variant6HasTheManualsFormulasInCliJsonFields) {
   // Table 4 variant 6: L = 5 km, R = 20 cm, lambda = 1550 nm.

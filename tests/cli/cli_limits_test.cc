@@ -89,7 +89,7 @@ bool can_mount_tmpfs(const test::TempDir& dir) {
 }
 
 // A record to analyse (36 s at 10 Hz, t, rate and temperature).
-std::string make_record(const test::TempDir& dir, const std::string& name = "run.csv") {
+std::string make_short_record(const test::TempDir& dir, const std::string& name = "run.csv") {
   const std::string record = dir.file(name);
   const test::CliRun g =
       test::run_foglab("generate --N 0.3 --fs 10 --hours 0.05 --seed 3 --out " + quote(record));
@@ -226,7 +226,7 @@ TEST(CliWriteErrors, AReaderThatGoesAwayIsExit3NotAHang) {
 TEST(CliWriteErrors, DevicesAreWrittenInPlaceAndAFullOneIsExit3) {
   const test::TempDir dir;
   if (!can_mount_tmpfs(dir)) GTEST_SKIP() << "needs root and unshare -m (a private /dev)";
-  const std::string record = make_record(dir);
+  const std::string record = make_short_record(dir);
   // With what a run needs there besides the devices under test: /dev/shm
   // (LLVM's OpenMP registers in it) and the random devices.
   const std::string setup =
@@ -255,7 +255,7 @@ TEST(CliWriteErrors, AnUnprivilegedUserWritesToDevNullAndIsRefusedPlainly) {
   const test::TempDir dir;
   fs::permissions(dir.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                                   fs::perms::others_read | fs::perms::others_exec);
-  const std::string record = make_record(dir);
+  const std::string record = make_short_record(dir);
   fs::create_directory(dir / "locked");
   fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec |
                                       fs::perms::others_read | fs::perms::others_exec);
@@ -342,7 +342,7 @@ TEST(CliBoundedInput, EndlessOrHugeInputEndsWithAShortMessage) {
 
 TEST(CliBoundedInput, AFifoWithAWriterIsReadOnce) {
   const test::TempDir dir;
-  const std::string record = make_record(dir);
+  const std::string record = make_short_record(dir);
   const test::CliRun regular = test::run_foglab("allan " + quote(record) + " --json -");
   ASSERT_EQ(regular.exit_code, 0) << regular.err;
   const fs::path fifo = dir / "live.csv";
@@ -372,7 +372,7 @@ void write_utf16(const fs::path& path, const std::string& text, bool little_endi
 
 TEST(CliText, LineEndsEncodingsAndDecimalCommasGiveTheSameNumbers) {
   const test::TempDir dir;
-  const std::string record = make_record(dir);
+  const std::string record = make_short_record(dir);
   const std::string text = test::read_file(record);
   auto replaced = [&](char from, const std::string& to) {
     std::string out;
@@ -419,7 +419,7 @@ TEST(CliText, LineEndsEncodingsAndDecimalCommasGiveTheSameNumbers) {
 TEST(CliText, NamesThatAreNotUtf8ReachJsonReplacedNotAsAnError) {
   const test::TempDir dir;
   const std::string latin1_name = dir.file("d\xe9rive.csv");  // Latin-1 e-acute
-  std::string text = test::read_file(make_record(dir));
+  std::string text = test::read_file(make_short_record(dir));
   text.replace(text.find("\nt,rate") + 3, 4, "vitesse_\xe9");
   std::ofstream(latin1_name, std::ios::binary) << text;
   for (const std::string command : {"allan", "analyze"}) {
@@ -437,7 +437,7 @@ TEST(CliText, NamesThatAreNotUtf8ReachJsonReplacedNotAsAnError) {
 
 TEST(CliNumbers, AbsurdOrDegenerateValuesAreRefusedNamingThem) {
   const test::TempDir dir;
-  const std::string record = make_record(dir);
+  const std::string record = make_short_record(dir);
   std::ofstream(dir / "constant.csv") << "t,rate\n";
   {
     std::ofstream constant(dir / "constant.csv", std::ios::app);

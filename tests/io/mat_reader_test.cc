@@ -27,6 +27,7 @@
 #include "support/expect.h"
 #include "support/files.h"
 #include "support/mat_writer.h"
+#include "support/noise.h"
 
 namespace foglab::io {
 namespace {
@@ -54,11 +55,7 @@ void write_bytes(const std::string& path, const std::vector<unsigned char>& byte
 
 using test::MatWriter;
 
-std::vector<double> ramp(std::size_t n, double first, double step) {
-  std::vector<double> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = first + step * static_cast<double>(i);
-  return out;
-}
+using test::ramp;
 
 // The lab's layout f, t, Y1, Y2, T1, T2 at 100 Hz.
 void write_lab_file(MatWriter& mat, std::size_t n = 50) {

@@ -16,6 +16,7 @@
 #include "foglab/io/reader.h"
 #include "support/expect.h"
 #include "support/files.h"
+#include "support/noise.h"
 
 namespace foglab::io {
 namespace {
@@ -26,11 +27,7 @@ using ::testing::ElementsAreArray;
 using ::testing::HasSubstr;
 using test::message_of;
 
-std::vector<double> ramp(std::size_t n, double start, double step) {
-  std::vector<double> v(n);
-  for (std::size_t i = 0; i < n; ++i) v[i] = start + step * static_cast<double>(i);
-  return v;
-}
+using test::ramp;
 
 std::vector<double> awkward(std::size_t n) {
   std::vector<double> v(n);

@@ -13,10 +13,6 @@
 namespace foglab::model {
 namespace {
 
-std::vector<double> white(std::size_t n, std::uint64_t seed) {
-  return test::mt_normal(n, seed, 5.0, 1.0);
-}
-
 TEST(Steps, ACoarseOutputWordGivesNoEmptyOrRepeatedSteps) {
   // An output word whose step is ten times the noise (almost every sample
   // 0): no step of size 0, none repeated, none below the output's step (a
@@ -40,7 +36,7 @@ TEST(Steps, ACoarseOutputWordGivesNoEmptyOrRepeatedSteps) {
 }
 
 TEST(Steps, TwoStepsAreFoundAndLevelled) {
-  std::vector<double> y = white(400000, 1);
+  std::vector<double> y = test::mt_normal(400000, 1, 5.0, 1.0);
   for (std::size_t k = 100000; k < y.size(); ++k) y[k] += 0.3;  // 0.3 sample sd
   for (std::size_t k = 300000; k < y.size(); ++k) y[k] -= 0.5;
   const BiasSteps s = find_steps(y);
@@ -57,7 +53,7 @@ TEST(Steps, TwoStepsAreFoundAndLevelled) {
 }
 
 TEST(Steps, NoneInWhiteNoiseADriftOrARandomWalk) {
-  std::vector<double> y = white(1000000, 2);
+  std::vector<double> y = test::mt_normal(1000000, 2, 5.0, 1.0);
   std::mt19937_64 engine(3);
   std::normal_distribution<double> normal;
   double walk = 0.0;

@@ -18,21 +18,15 @@
 namespace foglab::report {
 namespace {
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
 /// Two hours at 10 Hz under a 10 degC ramp: white noise, flicker, a random walk, angle
 /// quantisation and a linear temperature sensitivity, analysed once.
-struct Analysed {
+struct RussianRun {
   model::AnalysisResult result;
   ReportInput input;
 };
 
-const Analysed& analysed() {
-  static const Analysed a = [] {
+const RussianRun& russian_run() {
+  static const RussianRun a = [] {
     sim::ErrorModel m;
     m.noise.N = 0.5;
     m.noise.B = 0.05;
@@ -50,7 +44,7 @@ const Analysed& analysed() {
     g.duration_s = 7200.0;
     g.seed = 5;
     sim::Recording rec = sim::generate(m, t, g);
-    Analysed out;
+    RussianRun out;
     out.input.file_name = "ВОГ1.mat";
     out.input.channel = "Y2";
     out.input.temperature_channel = "T2";
@@ -62,7 +56,7 @@ const Analysed& analysed() {
 }
 
 TEST(AnalyzeLanguage, ARussianReportHasNoEnglishLeft) {
-  const Analysed& a = analysed();
+  const RussianRun& a = russian_run();
   ReportOptions options;
   options.language = Language::ru;
   options.plots = gnuplot_available();  // drawn when it can be: the SVGs' text is checked too
@@ -70,7 +64,7 @@ TEST(AnalyzeLanguage, ARussianReportHasNoEnglishLeft) {
   const std::string html = html_document(rep);
   if (options.plots) {
     ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
-    EXPECT_EQ(count(html, "<svg"), 4u);
+    EXPECT_EQ(test::occurrences(html, "<svg"), 4u);
   }
   // Latin words allowed: the standard's and the program's names, the MATLAB function the
   // manual's lab 2 calls (polyfit(T, Y, 2)), and the recording's file extension.
@@ -121,7 +115,7 @@ TEST(AnalyzeLanguage, ARussianReportHasNoEnglishLeft) {
 TEST(AnalyzeLanguage, ARussianAccelerometerReportSpeaksInItsUnits) {
   // The same analysis as an accelerometer's: every °/ч of the section and the summary
   // becomes м/с² (the page's footer names the gyroscope's units, as the English one does).
-  const Analysed& a = analysed();
+  const RussianRun& a = russian_run();
   ReportInput in = a.input;
   in.sensor = Sensor::accelerometer;
   in.input_unit = "m/s^2";
@@ -144,7 +138,7 @@ TEST(AnalyzeLanguage, ARussianAccelerometerReportSpeaksInItsUnits) {
 }
 
 TEST(AnalyzeLanguage, EnglishIsTheDefaultAndKeepsItsWords) {
-  const Analysed& a = analysed();
+  const RussianRun& a = russian_run();
   ReportOptions plain;
   plain.plots = false;
   ReportOptions english = plain;

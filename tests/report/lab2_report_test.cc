@@ -59,12 +59,6 @@ const Lab2Row* find_row(const Lab2Table& t, const std::string& quantity,
   return nullptr;
 }
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
 TEST(Lab2Report, OneTablePerGyroWithTheRowsTheLabAsksFor) {
   const std::vector<Lab2Table> tables = lab2_tables(variant_runs());
   ASSERT_EQ(tables.size(), 2u);
@@ -206,7 +200,7 @@ TEST(Lab2Report, PageHoldsEveryPlotWithDistinctIdsAndNoExternalResources) {
   ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
   ASSERT_EQ(rep.runs.size(), 4u);
   // Four plots per run (record, bias-temperature, PSD, ADEV).
-  EXPECT_EQ(count(rep.html, "<svg"), 16u);
+  EXPECT_EQ(test::occurrences(rep.html, "<svg"), 16u);
   std::set<std::string> ids;
   const std::regex id_re("\\sid=\"([^\"]+)\"");
   for (auto it = std::sregex_iterator(rep.html.begin(), rep.html.end(), id_re);
@@ -220,7 +214,7 @@ TEST(Lab2Report, PageHoldsEveryPlotWithDistinctIdsAndNoExternalResources) {
   EXPECT_NE(rep.html.find("intro &amp; text"), std::string::npos);
   EXPECT_NE(rep.html.find("href=\"#recording-4\""), std::string::npos);
   EXPECT_NE(rep.html.find("id=\"recording-4\""), std::string::npos);
-  EXPECT_EQ(count(rep.markdown_summary, "| quantity | method |"), 2u);
+  EXPECT_EQ(test::occurrences(rep.markdown_summary, "| quantity | method |"), 2u);
   EXPECT_GT(rep.markdown.size(), rep.markdown_summary.size());
   EXPECT_EQ(rep.csv, lab2_tables_csv(rep.tables));
 }
@@ -233,7 +227,7 @@ TEST(Lab2Report, InRussianEveryWordIsRussianButTheCsvStaysEnglish) {
   o.title_block = {2, 1, "Иванова А.", "", "2026-11-27"};  // its words are checked too
   const Lab2Report rep = make_lab2_report(variant_runs(), "Лабораторная работа 2", "Вступление", o);
   ASSERT_FALSE(rep.plots_skipped) << rep.plots_note;
-  EXPECT_EQ(count(rep.html, "<svg"), 16u);
+  EXPECT_EQ(test::occurrences(rep.html, "<svg"), 16u);
   // Latin words allowed: the standard's, the program's and MATLAB's function names, the
   // gyros' and files' names (FOG1_2.mat), the command the scale factor's note names and the
   // notes on the manual the convention lines cite (docs/manual_notes.md).
@@ -247,7 +241,7 @@ TEST(Lab2Report, InRussianEveryWordIsRussianButTheCsvStaysEnglish) {
                            "класс точности", "белый шум ρ"}) {
     EXPECT_NE(rep.markdown.find(term), std::string::npos) << term;
   }
-  EXPECT_EQ(count(rep.markdown_summary, "| величина | метод |"), 2u);
+  EXPECT_EQ(test::occurrences(rep.markdown_summary, "| величина | метод |"), 2u);
   // The CSV is for programs: the same as the English report's.
   EXPECT_EQ(rep.csv, lab2_tables_csv(lab2_tables(variant_runs())));
   EXPECT_NE(rep.csv.find("white noise N"), std::string::npos);
@@ -382,7 +376,7 @@ TEST(Lab2Report, WithoutPlotsThePageSaysSo) {
   o.plots = false;
   const Lab2Report rep = make_lab2_report(variant_runs(), "t", "i", o);
   EXPECT_TRUE(rep.plots_skipped);
-  EXPECT_EQ(count(rep.html, "<svg"), 0u);
+  EXPECT_EQ(test::occurrences(rep.html, "<svg"), 0u);
   EXPECT_NE(rep.html.find("plots were skipped"), std::string::npos);
   EXPECT_NE(rep.markdown_summary.find("plots were skipped"), std::string::npos);
 }

@@ -26,12 +26,6 @@
 namespace foglab::report {
 namespace {
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
 /// A two-hour 10 Hz recording under a 10 degC ramp: white noise, flicker,
 /// a small random walk and a linear temperature sensitivity, analysed once.
 struct Analysed {
@@ -155,8 +149,8 @@ TEST(Report, HtmlHasFourInlinePlotsAndNoNetworkReferences) {
   ASSERT_EQ(rep.figures.size(), 4u);
   for (const Figure& f : rep.figures) EXPECT_TRUE(f.svg.has_value()) << f.name << ": " << f.error;
   const std::string html = html_document(rep);
-  EXPECT_EQ(count(html, "<svg"), 4u);
-  EXPECT_EQ(count(html, "</svg>"), 4u);
+  EXPECT_EQ(test::occurrences(html, "<svg"), 4u);
+  EXPECT_EQ(test::occurrences(html, "</svg>"), 4u);
   EXPECT_EQ(html.find("<?xml"), std::string::npos);
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   // The only URLs are the XML namespace names of SVG (never fetched).

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,7 @@
 namespace foglab::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-const double kPlateau = 2.0 * std::log(2.0) / kPi;  // AVAR of flicker / B^2
+const double kPlateau = 2.0 * std::log(2.0) / std::numbers::pi;  // AVAR of flicker / B^2
 
 std::vector<double> rate_of(const ErrorModel& m, double fs_hz, double samples, std::uint64_t seed) {
   GeneratorOptions o;
@@ -313,7 +313,7 @@ TEST(ProcessPsd, RandomWalkHasSlopeMinusTwoAndLevelKSquaredOverTwoPiFSquared) {
   m.noise.K = 0.5;
   const double fs = 10.0;
   const PsdFit fit = fit_psd(rate_of(m, fs, 1e6, 22), fs, 8192, 0.01, 0.5, [&](double f) {
-    return m.noise.K * m.noise.K / std::pow(2.0 * kPi * f, 2.0);
+    return m.noise.K * m.noise.K / std::pow(2.0 * std::numbers::pi * f, 2.0);
   });
   EXPECT_GE(fit.points, 15);
   EXPECT_NEAR(fit.slope, -2.0, 0.15);
@@ -328,8 +328,9 @@ TEST(ProcessPsd, FlickerHasSlopeMinusOneAndLevelBSquaredOverTwoPiF) {
   ErrorModel m;
   m.noise.B = 1.0;
   const double fs = 100.0;
-  const PsdFit fit = fit_psd(rate_of(m, fs, 4e6, 23), fs, 65536, 0.01, 5.0,
-                             [&](double f) { return m.noise.B * m.noise.B / (2.0 * kPi * f); });
+  const PsdFit fit = fit_psd(rate_of(m, fs, 4e6, 23), fs, 65536, 0.01, 5.0, [&](double f) {
+    return m.noise.B * m.noise.B / (2.0 * std::numbers::pi * f);
+  });
   EXPECT_GE(fit.points, 25);
   EXPECT_NEAR(fit.slope, -1.0, 0.15);
   EXPECT_GT(fit.min_ratio, 0.8);
@@ -342,7 +343,7 @@ TEST(ProcessPsd, GaussMarkovIsLorentzian) {
   m.noise.gm_tc = 30.0;
   const double fs = 10.0;
   const PsdFit fit = fit_psd(rate_of(m, fs, 1e6, 24), fs, 16384, 2e-3, 0.5, [&](double f) {
-    const double w = 2.0 * kPi * f * m.noise.gm_tc;
+    const double w = 2.0 * std::numbers::pi * f * m.noise.gm_tc;
     return 2.0 * m.noise.gm_sigma * m.noise.gm_sigma * m.noise.gm_tc / (1.0 + w * w);
   });
   EXPECT_GE(fit.points, 15);

@@ -1,6 +1,7 @@
 // Test support: run the foglab executable and capture its exit code and output.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -47,6 +49,15 @@ inline CliRun run_foglab(const std::string& args, const std::string& stdin_text 
   run.out = read_file(out);
   run.err = read_file(err);
   return run;
+}
+
+/// Runs `foglab ARGS` that prints JSON on standard output, and parses it: a failed
+/// run is a test failure (with ARGS and the error), and an empty object.
+inline nlohmann::json run_json(const std::string& args) {
+  const CliRun r = run_foglab(args);
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  if (r.exit_code != 0) return nlohmann::json::object();
+  return nlohmann::json::parse(r.out);
 }
 
 inline std::string quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }

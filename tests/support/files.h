@@ -17,6 +17,13 @@ inline std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
+/// How many times `what` occurs in `text` (overlapping occurrences counted).
+inline std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
 /// A JSON file, parsed (throws nlohmann::json::parse_error for one that is not).
 inline nlohmann::json read_json(const std::filesystem::path& path) {
   std::ifstream in(path);

@@ -1,6 +1,6 @@
-// Test support: reproducible Gaussian noise, generated in parallel from a
-// counter-based generator so that 10^9 samples take seconds and do not depend
-// on the number of threads.
+// Test support: reproducible Gaussian noise (and a plain ramp), the noise generated in parallel
+// from a counter-based generator so that 10^9 samples take seconds and do not depend on the number
+// of threads.
 #pragma once
 
 #include <cmath>
@@ -56,6 +56,13 @@ inline std::vector<double> random_walk(std::size_t count, std::uint64_t seed, do
   std::vector<double> v = white(count, seed, step);
   for (std::size_t i = 1; i < count; ++i) v[i] += v[i - 1];
   return v;
+}
+
+/// first, first + step, ... (n values): a deterministic series for readers and writers.
+inline std::vector<double> ramp(std::size_t n, double first, double step) {
+  std::vector<double> out(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = first + step * static_cast<double>(i);
+  return out;
 }
 
 }  // namespace foglab::test
