@@ -4,10 +4,11 @@
 # UndefinedBehaviorSanitizer (CMakePresets.json "asan", build-asan/), then
 # runs the unit and CLI tests under them with leak checking, and each fuzz
 # target's smoke run (FuzzSmoke.*: its kept regression inputs, then
-# FOGLAB_FUZZ_SECONDS of fuzzing, default 20). Left out (CMakePresets.json,
-# the asan test preset's exclude): the 10^9-sample test, which needs 8 GB
-# before ASan's shadow memory; the browser tests, which only render what the
-# other tests checked; and the statistical cases that run a path another
+# FOGLAB_FUZZ_SECONDS of fuzzing, default 20). Not built here
+# (tests/CMakeLists.txt): the 10^9-sample test, which needs 8 GB before
+# ASan's shadow memory, and the browser tests, which only render what the
+# other tests checked. Left out (CMakePresets.json, the asan test preset's
+# exclude): the statistical cases that run a path another
 # kept case runs, only on other numbers (these cost 15-100 s each under ASan
 # and run in the Release half): six of Bandwidth's seven (the flicker one
 # stays, and SensorEffects' filter cases, its Butterworth among them), the
@@ -26,7 +27,10 @@
 # ASan (the fleet's interrupted batch, 80 s: the batch and its resume run in
 # CliBatch's and CliInterrupt's other cases; the real three-axis IMU run and
 # the bag analysed against every axis, 40 and 33 s: CliImu's CSV cases and
-# RosbagTest's bag parsing stay).
+# RosbagTest's bag parsing stay), and two studies over seeds: six ramp
+# records never set aside (RecordTrend's scatter case stays)
+# and ten white-noise records resolving no other term (NoiseFit's round
+# trips run the same fit).
 # Needs clang-14, libclang-rt-14-dev, libomp-14-dev (install-deps.sh --tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."
