@@ -340,7 +340,10 @@ py::dict generate(const std::string& preset, const std::optional<double>& rate_h
                                     [&](const auto& t) { return t.first == name; });
     if (term == std::end(kTerms)) {
       std::string names;
-      for (const auto& t : kTerms) names += (names.empty() ? "" : ", ") + std::string(t.first);
+      for (const auto& t : kTerms) {
+        if (!names.empty()) names += ", ";
+        names += t.first;
+      }
       throw UsageError("generate(" + name + "=...): expected one of " + names);
     }
     term->second(model) = value.cast<double>();

@@ -302,7 +302,8 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
                         "beyond any sensor's output or temperature, and the statistics would "
                         "overflow); check the channel, its unit and the file",
                         i + 1, series.channel, internal::format_value(value),
-                        unit == target ? "" : " " + std::string(to_string(unit)), max_magnitude));
+                        unit == target ? std::string() : fmt::format(" {}", to_string(unit)),
+                        max_magnitude));
       }
     }
   }

@@ -14,8 +14,6 @@ namespace foglab::model {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kMadToSigma = 1.4826;  // 1 / Phi^-1(3/4): MAD of a normal is 0.6745 sigma
-constexpr double kModifiedZFactor = 0.6745;
 
 // The q-quantile of sorted values, by linear interpolation between order statistics.
 double quantile(const std::vector<double>& sorted, double q) {

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -21,7 +20,6 @@ namespace {
 
 constexpr double kTau0 = 0.01;       // 100 Hz
 constexpr double kFarBelow = 1e-12;  // [Hz] the band's lower end: no cut
-constexpr double kPi = std::numbers::pi;
 
 double from_psd(const NoiseFitResult& fit, double tau, double f_low = kFarBelow) {
   return allan_variance_from_psd([&](double f) { return fitted_rate_psd(fit, f, kTau0); }, tau,
