@@ -20,13 +20,13 @@ namespace {
 
 /// Two hours at 10 Hz under a 10 degC ramp: white noise, flicker, a random walk, angle
 /// quantisation and a linear temperature sensitivity, analysed once.
-struct RussianRun {
+struct AnalysedRamp {
   model::AnalysisResult result;
   ReportInput input;
 };
 
-const RussianRun& russian_run() {
-  static const RussianRun a = [] {
+const AnalysedRamp& analysed_ramp() {
+  static const AnalysedRamp a = [] {
     sim::ErrorModel m;
     m.noise.N = 0.5;
     m.noise.B = 0.05;
@@ -44,7 +44,7 @@ const RussianRun& russian_run() {
     g.duration_s = 7200.0;
     g.seed = 5;
     sim::Recording rec = sim::generate(m, t, g);
-    RussianRun out;
+    AnalysedRamp out;
     out.input.file_name = "ВОГ1.mat";
     out.input.channel = "Y2";
     out.input.temperature_channel = "T2";
@@ -56,7 +56,7 @@ const RussianRun& russian_run() {
 }
 
 TEST(AnalyzeLanguage, ARussianReportHasNoEnglishLeft) {
-  const RussianRun& a = russian_run();
+  const AnalysedRamp& a = analysed_ramp();
   ReportOptions options;
   options.language = Language::ru;
   options.plots = gnuplot_available();  // drawn when it can be: the SVGs' text is checked too
@@ -115,7 +115,7 @@ TEST(AnalyzeLanguage, ARussianReportHasNoEnglishLeft) {
 TEST(AnalyzeLanguage, ARussianAccelerometerReportSpeaksInItsUnits) {
   // The same analysis as an accelerometer's: every °/ч of the section and the summary
   // becomes м/с² (the page's footer names the gyroscope's units, as the English one does).
-  const RussianRun& a = russian_run();
+  const AnalysedRamp& a = analysed_ramp();
   ReportInput in = a.input;
   in.sensor = Sensor::accelerometer;
   in.input_unit = "m/s^2";
@@ -138,7 +138,7 @@ TEST(AnalyzeLanguage, ARussianAccelerometerReportSpeaksInItsUnits) {
 }
 
 TEST(AnalyzeLanguage, EnglishIsTheDefaultAndKeepsItsWords) {
-  const RussianRun& a = russian_run();
+  const AnalysedRamp& a = analysed_ramp();
   ReportOptions plain;
   plain.plots = false;
   ReportOptions english = plain;
