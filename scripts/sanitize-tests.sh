@@ -28,9 +28,9 @@
 # CliBatch's and CliInterrupt's other cases; the real three-axis IMU run and
 # the bag analysed against every axis, 40 and 33 s: CliImu's CSV cases and
 # RosbagTest's bag parsing stay), and two studies over seeds: six ramp
-# records never set aside (RecordTrend's scatter case stays)
-# and ten white-noise records resolving no other term (NoiseFit's round
-# trips run the same fit).
+# records never set aside (RecordTrend's scatter case stays) and ten
+# white-noise records resolving no other term (NoiseFit's round trips run
+# the same fit).
 # Needs clang-14, libclang-rt-14-dev, libomp-14-dev (install-deps.sh --tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."
