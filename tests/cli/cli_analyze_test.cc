@@ -38,10 +38,7 @@ constexpr const char* kModel = "--N 0.5 --B 0.05 --K 0.02 --fs 10 --temp-coef 2,
 
 /// Runs `foglab analyze ARGS --json -` and parses its standard output.
 json analyze_json(const std::string& args) {
-  const test::CliRun r = run_foglab("analyze " + args + " --json -");
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
-  if (r.exit_code != 0) return json::object();
-  return json::parse(r.out);
+  return test::run_json("analyze " + args + " --json -");
 }
 
 std::string all_notes(const json& j) {

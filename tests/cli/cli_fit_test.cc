@@ -19,11 +19,7 @@ using nlohmann::json;
 using test::quote;
 using test::run_foglab;
 
-json fit_json(const std::string& table) {
-  const test::CliRun r = run_foglab("fit " + table + " --json -");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return json::parse(r.out);
-}
+json fit_json(const std::string& table) { return test::run_json("fit " + table + " --json -"); }
 
 // Keeps the first `columns` comma-separated columns of every line.
 void keep_columns(const std::string& from, const std::string& to, int columns) {

@@ -14,6 +14,7 @@
 #include "foglab/report/plot.h"
 #include "foglab/sim/lab1.h"
 #include "support/english_left.h"
+#include "support/files.h"
 
 namespace foglab::report {
 namespace {
@@ -51,12 +52,6 @@ class Lab1Language : public ::testing::Test {
   static inline sim::Lab1Result* result_ = nullptr;
 };
 
-int count_of(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
 TEST_F(Lab1Language, RussianReportHasNoEnglishLeftInItsTextOrPlots) {
   const bool plots = gnuplot_available();
   const Lab1Report rep = report(Language::ru, plots);
@@ -70,7 +65,7 @@ TEST_F(Lab1Language, RussianReportHasNoEnglishLeftInItsTextOrPlots) {
     markdown.erase(note, rep.plots_note.size());
   } else {
     // Every plot drawn, so its SVG <text> (titles, axes, legends) is checked too.
-    EXPECT_EQ(count_of(html, "<svg"), 11);
+    EXPECT_EQ(test::occurrences(html, "<svg"), 11u);
     EXPECT_NE(html.find(">действующая угловая скорость [°/с]<"), std::string::npos);
     EXPECT_NE(html.find(">разность фаз модуляции (правая ось)<"), std::string::npos);
   }
