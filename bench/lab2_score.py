@@ -72,6 +72,8 @@ def main():
     p.add_argument("--misses", action="store_true")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--temp-degree", default=None)
+    p.add_argument("--c1-spread", action="store_true",
+                   help="per gyro channel: c1's error over its standard error, over the seeds")
     args = p.parse_args()
     work = tempfile.mkdtemp(prefix="foglab_lab2_score_")
     seeds = [int(s) for s in args.seeds.split(",")]
@@ -104,6 +106,23 @@ def main():
                           f"(key {r['rb_key']}, {r['octaves']:.2f} octaves), class {r['class']} "
                           f"(key {r['class_key']}; BI {r['bi']:.4g}/{r['bi_key']:.4g} deg/h, "
                           f"ARW {r['arw']:.4g}/{r['arw_key']:.4g} deg/sqrt(h)), fit {r['terms']}")
+    if args.c1_spread:
+        by_channel = {}
+        for rows in results:
+            for r in rows:
+                c = r["c1"]
+                if c is None or not c["se"]:
+                    continue
+                by_channel.setdefault((r["file"], r["channel"]), []).append(
+                    (c["fit"] - c["key"]) / c["se"])
+        print("c1's error in its standard errors, per channel over the seeds "
+              "(an honest standard error: mean 0, rms 1):")
+        for (file, channel), z in sorted(by_channel.items()):
+            mean = sum(z) / len(z)
+            rms = (sum(v * v for v in z) / len(z)) ** 0.5
+            outside = sum(abs(v) > 1.959964 for v in z)
+            print(f"  {file} {channel}: {len(z)} runs, mean {mean:+.2f}, rms {rms:.2f}, "
+                  f"outside the 95 % interval {outside}")
     print(f"total: random bias {rb_ok}/{total} ({100 * rb_ok / total:.1f} %), "
           f"class {cls_ok}/{total} ({100 * cls_ok / total:.1f} %), "
           f"ramp runs with a temperature law: c1's 95 % interval holds the key in {held}/{laws}")
