@@ -19,20 +19,18 @@
 #include <vector>
 
 #include "../src/model/allan_covariance.h"
+#include "fit_study_options.h"
 #include "fmt/format.h"
 #include "foglab/core/noise_model.h"
 
 int main(int argc, char** argv) {
   using namespace foglab;
-  NoiseModel model;
-  double fs_hz = 100.0, hours = 2.0;
+  bench::StudiedRecord record;
   CLI::App app{"linearised precision of the noise fit's Allan points"};
-  app.add_option("--N", model.N, "white noise [deg/h/sqrt(Hz)]")->required();
-  app.add_option("--B", model.B, "flicker [deg/h]");
-  app.add_option("--K", model.K, "random walk [deg/h/sqrt(s)]");
-  app.add_option("--fs", fs_hz, "sample rate [Hz]");
-  app.add_option("--hours", hours, "record length [h]");
+  bench::add_record_options(app, record);
   CLI11_PARSE(app, argc, argv);
+  const NoiseModel& model = record.model;
+  const double fs_hz = record.fs_hz, hours = record.hours;
 
   const auto phase_points = static_cast<std::int64_t>(fs_hz * hours * 3600.0) + 1;
   const double tau0_s = 1.0 / fs_hz;

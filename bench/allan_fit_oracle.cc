@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "../src/model/allan_covariance.h"
+#include "fit_study_options.h"
 #include "fmt/format.h"
 #include "foglab/core/noise_model.h"
 #include "foglab/model/noise_fit.h"
@@ -92,21 +93,18 @@ Summary summarise(const std::vector<double>& ln_errors) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  NoiseModel truth;
-  double fs_hz = 100.0, hours = 2.0;
+  bench::StudiedRecord record;
   int first_seed = 1, last_seed = 40, iterations = 8;
   bool rows = false;
   CLI::App app{"the noise fit against generalised least squares and an oracle, over seeds"};
-  app.add_option("--N", truth.N, "white noise [deg/h/sqrt(Hz)]")->required();
-  app.add_option("--B", truth.B, "flicker [deg/h]");
-  app.add_option("--K", truth.K, "random walk [deg/h/sqrt(s)]");
-  app.add_option("--fs", fs_hz, "sample rate [Hz]");
-  app.add_option("--hours", hours, "record length [h]");
+  bench::add_record_options(app, record);
   app.add_option("--from", first_seed, "first seed");
   app.add_option("--to", last_seed, "last seed");
   app.add_option("--iterations", iterations, "GLS iterations");
   app.add_flag("--rows", rows, "one line per seed");
   CLI11_PARSE(app, argc, argv);
+  const NoiseModel& truth = record.model;
+  const double fs_hz = record.fs_hz, hours = record.hours;
 
   std::vector<NoiseTerm> terms;
   for (NoiseTerm t : {NoiseTerm::white, NoiseTerm::flicker, NoiseTerm::random_walk}) {
