@@ -292,7 +292,11 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
 // the lab's FOG2_5 (Tc 38-80 s, B = 1.7 deg/h) c1's errors had spread 1.46
 // times its standard errors over 40 seeds, 8 of 40 outside the 95 %
 // interval; with the near candidates 1.26 and 6 (bench/lab2_score.py
-// --c1-spread; docs/validation.md).
+// --c1-spread; docs/validation.md). That rule takes the slopes only: the
+// intercept's error counts the stationary terms alone (coefficient_
+// covariance()), which a Wiener model and a slow Gauss-Markov one that
+// mimics it split differently (a near N+B+GM beside a chosen N+B+K had made
+// it 170 times larger on a 28 h record).
 void finish_temperature_errors(SystematicFit& fit, const TemperatureRecord& record,
                                const NoiseFitResult& noise, const NoiseModel& chosen,
                                const AnalysisOptions& options) {
@@ -305,7 +309,7 @@ void finish_temperature_errors(SystematicFit& fit, const TemperatureRecord& reco
     }
     SystematicFit other = fit;
     set_standard_errors(other, record, near.model);
-    for (std::size_t j = 0; j < fit.standard_errors.size(); ++j) {
+    for (std::size_t j = 1; j < fit.standard_errors.size(); ++j) {
       fit.standard_errors[j] = std::fmax(fit.standard_errors[j], other.standard_errors[j]);
     }
   }
