@@ -125,11 +125,12 @@ int main(int argc, char** argv) {
     generator.sample_rate_hz = fs_hz;
     generator.duration_s = hours * 3600.0;
     generator.seed = static_cast<std::uint64_t>(seed);
-    const sim::Recording record = sim::generate(error_model, sim::TemperatureProfile{}, generator);
+    const sim::Recording recording =
+        sim::generate(error_model, sim::TemperatureProfile{}, generator);
     stats::AllanOptions allan_options;
     allan_options.grid.min_clusters = 3;
     const stats::AllanResult a =
-        stats::allan_deviation(record.rate_deg_h, fs_hz, InputKind::rate, allan_options);
+        stats::allan_deviation(recording.rate_deg_h, fs_hz, InputKind::rate, allan_options);
     const model::NoiseFitResult fit = model::fit_noise_model(a);
 
     const auto points = static_cast<Eigen::Index>(a.m.size());
