@@ -26,9 +26,9 @@
 // by more than its two parameters cost in the selection criterion (2 x the penalty, times the
 // dispersion), both as the deviance counts the points and with their correlation
 // (correlated_drop()), takes at least 0.5 % from the first point's Allan variance and does not sit
-// at the longest T or k searched. It is then held for every candidate, and kept only if the best
-// candidate with it beats the best without it by more than those two parameters' cost
-// (noise_fit.cc).
+// at the longest T or k searched (nor at either end of the Butterworth's cut-offs). It is then held
+// for every candidate, and kept only if the best candidate with it beats the best without it by
+// more than those two parameters' cost (noise_fit.cc).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -364,9 +364,14 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
   // At the longest T searched the data want a correlation longer than a
   // filter's: a random-bias process the reference model lacks (a Gauss-
   // Markov hump) bends the first taus, and that is left to the candidates.
-  // (For the Butterworth: the lowest cut-off.)
+  // For the Butterworth: the lowest cut-off, and the highest too, where the
+  // data want a roll-off at the Nyquist frequency or beyond, which no
+  // sampled filter makes (an aliased PSD that falls towards the Nyquist
+  // frequency, as in the ADIS16405 z axes with every fourth sample kept).
+  const bool butterworth_bound =
+      best.log_t <= std::log(kLowestCutoff) + 1e-3 || best.log_t >= std::log(kHighestCutoff) - 1e-3;
   e.at_search_bound = best.k > 1               ? best.k == kLongestMovingAverage
-                      : best.k == kButterworth ? best.log_t <= std::log(kLowestCutoff) + 1e-3
+                      : best.k == kButterworth ? butterworth_bound
                                                : best.log_t >= std::log(kLongestT) - 1e-3;
   const double cost = 2.0 * options.penalty;
   if (!(e.deviance_drop > cost * dispersion) || reduction < kSmallestEffect || e.at_search_bound) {

@@ -10,26 +10,41 @@ namespace foglab::model {
 namespace {
 
 constexpr double kBandsPerDecade = 20.0;
-constexpr double kFloorHalfWidth = 0.2;  // decades either side of a band's centre
-constexpr double kSmoothing = 0.005;     // moving-average width, relative to f
-constexpr double kBinRatio = 3.0;        // a line's smoothed bins stand this far above the floor
+constexpr double kSmoothing = 0.005;        // moving-average width, relative to f
 constexpr double kSkirtSignificance = 4.0;  // a found line extends while they stand this many
                                             // standard errors above the floor
 constexpr double kSkirtShare = 1e-3;        // of the line's peak excess, the least a skirt holds
-constexpr double kPeakRatio = 4.0;       // its highest smoothed bin this far
 constexpr double kSignificance = 10.0;   // its excess this many standard errors
 constexpr std::size_t kLowestBin = 64;   // in resolutions
 constexpr std::size_t kClosedGap = 2;    // bins
 
+// What makes a run of bins a line, for one noise floor.
+struct LinePass {
+  double floor_half_width;  // decades either side of a band's centre
+  double bin_ratio;         // a line's smoothed bins stand this far above the floor
+  double peak_ratio;        // its highest smoothed bin this far
+  double least_width;       // the run of high bins at least this wide, relative to f
+};
+
+// Narrow lines (a sinusoid, a resonance up to about a quarter of its
+// frequency wide) over the median of +-0.2 decade.
+constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0};
+// Broad humps, which lift that median themselves: an aliased resonance
+// (the ADIS16405 z axes' 20 Hz resonance at 5 Hz when every fourth sample
+// is kept, 3.5-7 Hz wide, its PSD 2.6-5 times the floor) over the median of
+// +-0.5 decade; a run of high bins 0.15 of its frequency wide or more (the
+// aliased humps' runs are 0.35-0.39 of it).
+constexpr LinePass kBroad{0.5, 2.0, 2.5, 0.15};
+
 // The noise floor at every bin: at the centre of each band of 1/20 decade,
-// the median of the PSD within 0.2 decade either side (wide enough that a
-// resonance hump a quarter of its frequency wide does not lift it),
-// interpolated in log-log between the centres.
-std::vector<double> noise_floor(const stats::PsdResult& psd) {
+// the median of the PSD within `half_width` decade either side (0.2 is wide
+// enough that a resonance hump a quarter of its frequency wide does not lift
+// it), interpolated in log-log between the centres.
+std::vector<double> noise_floor(const stats::PsdResult& psd, double half_width) {
   const std::vector<double>& f = psd.frequency_hz;
   const std::size_t n = f.size();
   const double step = std::pow(10.0, 1.0 / kBandsPerDecade);
-  const double half = std::pow(10.0, kFloorHalfWidth);
+  const double half = std::pow(10.0, half_width);
   std::vector<double> centre, level, window;
   for (double fc = f.front(); fc <= f.back() * step; fc *= step) {
     const auto lo = std::lower_bound(f.begin(), f.end(), fc / half);
@@ -83,27 +98,31 @@ bool above_floor(double smooth, double floor, std::size_t k, double segments) {
   return smooth > floor * (1.0 + kSkirtSignificance * std::sqrt(2.0 / (segments * bins)));
 }
 
-}  // namespace
+// The bins [low, high] of a line found.
+struct BinRange {
+  std::size_t low, high;
+};
 
-std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::size_t max_lines) {
-  std::vector<SpectralLine> lines;
+// The lines of one pass, added to `lines`; `taken` holds the bins of the
+// lines found before, which a run of this pass may not overlap.
+void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
+                const LinePass& pass, std::vector<BinRange>& taken,
+                std::vector<SpectralLine>& lines) {
   const std::size_t n = psd.psd.size();
-  if (n < 2 * kLowestBin || psd.segments == 0 || !(psd.resolution_hz > 0.0)) return lines;
-  const std::vector<double> floor = noise_floor(psd);
-  const std::vector<double> smooth = smoothed(psd);
+  const std::vector<double> floor = noise_floor(psd, pass.floor_half_width);
   const double df = psd.resolution_hz;
   const double segments = static_cast<double>(psd.segments);
 
   std::size_t k = kLowestBin;
   while (k < n) {
-    if (!(smooth[k] > kBinRatio * floor[k])) {
+    if (!(smooth[k] > pass.bin_ratio * floor[k])) {
       ++k;
       continue;
     }
     // A run of high bins, gaps of up to kClosedGap closed.
     std::size_t end = k + 1, last = k;
     while (end < n && end <= last + kClosedGap + 1) {
-      if (smooth[end] > kBinRatio * floor[end]) last = end;
+      if (smooth[end] > pass.bin_ratio * floor[end]) last = end;
       ++end;
     }
     double excess = 0.0, floor_sum = 0.0, peak_ratio = 0.0;
@@ -114,7 +133,9 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
     }
     const double bins = static_cast<double>(last - k + 1);
     const double standard_error = floor_sum / bins * std::sqrt(bins / segments);
-    if (!(excess > kSignificance * standard_error && peak_ratio > kPeakRatio)) {
+    const double run_width = psd.frequency_hz[last] - psd.frequency_hz[k];
+    if (!(excess > kSignificance * standard_error && peak_ratio > pass.peak_ratio &&
+          run_width >= pass.least_width * psd.frequency_hz[(k + last) / 2])) {
       k = last + 1;
       continue;
     }
@@ -134,7 +155,7 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
     std::size_t low = k, high = last;
     while (low > kLowestBin && skirt(low - 1)) --low;
     while (high + 1 < n && skirt(high + 1)) ++high;
-    // A line falls on both sides: its highest averaged bin stands kBinRatio
+    // A line falls on both sides: its highest averaged bin stands the bin ratio
     // above the PSD where its skirts end. A steep roll-off of the output
     // filter (or a moving average's side lobe) can stand above the running
     // median on one side only, where the passband's level goes on.
@@ -142,10 +163,18 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
     for (std::size_t b = k; b <= last; ++b) peak = std::max(peak, smooth[b]);
     const double below = smooth[low > kLowestBin ? low - 1 : low];
     const double above = smooth[high + 1 < n ? high + 1 : high];
-    if (!(peak > kBinRatio * below && peak > kBinRatio * above)) {
+    if (!(peak > pass.bin_ratio * below && peak > pass.bin_ratio * above)) {
       k = last + 1;  // a real line on the shoulder is still looked for
       continue;
     }
+    const bool overlaps = std::any_of(taken.begin(), taken.end(), [&](const BinRange& r) {
+      return low <= r.high && r.low <= high;
+    });
+    if (overlaps) {
+      k = high + 1;
+      continue;
+    }
+    taken.push_back({low, high});
     SpectralLine line;
     line.peak_ratio = peak_ratio;
     double line_excess = 0.0, weighted_f = 0.0;
@@ -162,6 +191,18 @@ std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::
     lines.push_back(std::move(line));
     k = high + 1;
   }
+}
+
+}  // namespace
+
+std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::size_t max_lines) {
+  std::vector<SpectralLine> lines;
+  if (psd.psd.size() < 2 * kLowestBin || psd.segments == 0 || !(psd.resolution_hz > 0.0))
+    return lines;
+  const std::vector<double> smooth = smoothed(psd);
+  std::vector<BinRange> taken;
+  find_lines(psd, smooth, kNarrow, taken, lines);
+  find_lines(psd, smooth, kBroad, taken, lines);
   std::sort(lines.begin(), lines.end(),
             [](const SpectralLine& a, const SpectralLine& b) { return a.variance > b.variance; });
   if (lines.size() > max_lines) lines.resize(max_lines);

@@ -25,6 +25,17 @@
 // The line's bins carry their excess, 2 (S - floor) df each (both signs of
 // f). A resonance hump a few hertz wide is a line in this sense: its bins
 // are summed as they are.
+//
+// A hump wider than about a third of its frequency fills most of the
+// +-0.2 decade window and lifts the median with it (the ADIS16405 z axes'
+// 20 Hz resonance, with every fourth sample kept, aliases to a hump at
+// 5 Hz of a 25 Hz record, 3-4 Hz wide, 2.6-5 times the floor: the narrow
+// floor lay inside it). A second pass looks for such humps over the median
+// of +-0.5 decade: runs of bins 2 times above that floor, 2.5 times at the
+// highest, at least 0.15 of their frequency wide, falling on both sides to
+// half their peak, with the same significance and skirts, and not
+// overlapping a line of the first pass (which keeps every narrow line as
+// it was).
 #pragma once
 
 #include <vector>
