@@ -301,24 +301,25 @@ void finish_temperature_errors(SystematicFit& fit, const TemperatureRecord& reco
                                const NoiseFitResult& noise, const NoiseModel& chosen,
                                const AnalysisOptions& options) {
   set_criterion_verdict(fit, record, chosen, options.systematic);
+  auto within_window = [&](const CandidateModel& c) {
+    return !noise.candidates.empty() &&
+           c.criterion - noise.candidates.front().criterion <= options.noise_fit.interval_window;
+  };
+  // The best Wiener candidate's errors, all of them, beside a chosen model
+  // without a random walk (below); the near candidates' loop leaves it out.
+  const bool wiener_rule = noise.random_bias_process != RandomBiasProcess::wiener &&
+                           noise.has_wiener_candidate && within_window(noise.best_wiener);
   for (std::size_t k = 1; k < noise.candidates.size(); ++k) {
     const CandidateModel& near = noise.candidates[k];
-    if (!(near.criterion - noise.candidates.front().criterion <=
-          options.noise_fit.interval_window)) {
-      break;  // best first
-    }
+    if (!within_window(near)) break;  // best first
+    if (wiener_rule && near.terms == noise.best_wiener.terms) continue;
     SystematicFit other = fit;
     set_standard_errors(other, record, near.model);
     for (std::size_t j = 1; j < fit.standard_errors.size(); ++j) {
       fit.standard_errors[j] = std::fmax(fit.standard_errors[j], other.standard_errors[j]);
     }
   }
-  if (noise.random_bias_process == RandomBiasProcess::wiener || !noise.has_wiener_candidate ||
-      noise.candidates.empty() ||
-      !(noise.best_wiener.criterion - noise.candidates.front().criterion <=
-        options.noise_fit.interval_window)) {
-    return;
-  }
+  if (!wiener_rule) return;
   SystematicFit wiener = fit;
   set_standard_errors(wiener, record, noise.best_wiener.model);
   set_criterion_verdict(wiener, record, noise.best_wiener.model, options.systematic);
