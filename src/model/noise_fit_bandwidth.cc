@@ -15,7 +15,7 @@
 // Nelder-Mead simplex (phi and T trade off along a narrow valley, which
 // coordinate steps crawled down: they stopped at phi 0.77, T 0.67 tau0 for
 // a whole-output filter of 0.54 tau0, with N 1 % high), over phi and
-// the length k (2 .. 32 samples) of a moving average, and over phi and the
+// the length k (2 .. 128 samples, kMovingAverageLengths) of a moving average, and over phi and the
 // cut-off f_c (0.016 .. 0.45 / tau0) of a second-order Butterworth (a grid,
 // then the same simplex). The better of the first two kinds is taken, and
 // the Butterworth instead only when it beats that by more than one
@@ -45,7 +45,13 @@ constexpr double kShortestT = 1.0 / 20.0;  // in tau0
 constexpr double kLongestT = 10.0;         // in tau0
 constexpr int kTSteps = 16;
 constexpr int kFractionSteps = 20;
-constexpr int kLongestMovingAverage = 32;  // samples
+// The moving averages' lengths [samples]: every one to 32, then about a
+// sixth apart to 128 (a 1 kHz output averaged over 40 samples had stood
+// beyond the search, and the fit had lost N altogether).
+constexpr std::array kMovingAverageLengths = {
+    2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,  21,
+    22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32, 37, 43, 50, 58, 68, 80, 93, 108, 128};
+constexpr int kLongestMovingAverage = kMovingAverageLengths.back();  // samples
 constexpr double kLowestCutoff = 0.016;    // Butterworth f_c, in 1/tau0 (as 1/(2 pi 10 tau0))
 constexpr double kHighestCutoff = 0.45;
 constexpr int kButterworth = 0;  // Trial::k of the Butterworth kind
@@ -218,11 +224,26 @@ class Search {
     Trial best = best_on_grid(lo, t_step, 1);
     // The moving averages.
     Trial best_ma;
-    for (int k = 2; k <= kLongestMovingAverage; ++k) {
+    for (const int k : kMovingAverageLengths) {
       for (int f = 1; f <= kFractionSteps; ++f) {
         const double fraction = static_cast<double>(f) / kFractionSteps;
         const double d = tried(fraction, 0.0, k);
         if (d < best_ma.deviance) best_ma = {fraction, 0.0, d, k};
+      }
+    }
+    // Between the lengths beyond 32 every one is tried around the best.
+    const auto at =
+        std::find(kMovingAverageLengths.begin(), kMovingAverageLengths.end(), best_ma.k);
+    if (at != kMovingAverageLengths.end() && best_ma.k > 32) {
+      const int from = *std::prev(at) + 1;
+      const int to = std::next(at) == kMovingAverageLengths.end() ? best_ma.k : *std::next(at) - 1;
+      for (int k = from; k <= to; ++k) {
+        if (k == best_ma.k) continue;
+        for (int f = 1; f <= kFractionSteps; ++f) {
+          const double fraction = static_cast<double>(f) / kFractionSteps;
+          const double d = tried(fraction, 0.0, k);
+          if (d < best_ma.deviance) best_ma = {fraction, 0.0, d, k};
+        }
       }
     }
     if (std::isfinite(best_ma.deviance)) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "foglab/core/numeric.h"
 
@@ -24,17 +25,23 @@ struct LinePass {
   double bin_ratio;         // a line's smoothed bins stand this far above the floor
   double peak_ratio;        // its highest smoothed bin this far
   double least_width;       // the run of high bins at least this wide, relative to f
+  double least_beside;      // beside the line (as far out as it is wide), the PSD stays this
+                            // far above the floor
 };
 
 // Narrow lines (a sinusoid, a resonance up to about a quarter of its
 // frequency wide) over the median of +-0.2 decade.
-constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0};
+constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0, 0.0};
 // Broad humps, which lift that median themselves: an aliased resonance
 // (the ADIS16405 z axes' 20 Hz resonance at 5 Hz when every fourth sample
 // is kept, 3.5-7 Hz wide, its PSD 2.6-5 times the floor) over the median of
 // +-0.5 decade; a run of high bins 0.15 of its frequency wide or more (the
-// aliased humps' runs are 0.35-0.39 of it).
-constexpr LinePass kBroad{0.5, 2.0, 2.5, 0.15};
+// aliased humps' runs are 0.35-0.39 of it). Beside it the PSD stays at
+// half the floor or more: a hump on the noise floor returns to it, while a
+// moving average's side lobe (between its nulls at multiples of fs / k)
+// falls into them (the side lobes of a 6- to 16-sample average had been
+// taken for lines 4-9 Hz wide).
+constexpr LinePass kBroad{0.5, 2.0, 2.5, 0.15, 0.5};
 
 // The noise floor at every bin: at the centre of each band of 1/20 decade,
 // the median of the PSD within `half_width` decade either side (0.2 is wide
@@ -96,6 +103,33 @@ std::vector<double> smoothed(const stats::PsdResult& psd) {
 bool above_floor(double smooth, double floor, std::size_t k, double segments) {
   const double bins = static_cast<double>(2 * smoothing_half_width(k) + 1);
   return smooth > floor * (1.0 + kSkirtSignificance * std::sqrt(2.0 / (segments * bins)));
+}
+
+// The lowest ratio of the PSD to the floor beside the bins [low, high], as
+// far out on either side as they are wide, each side in bands of 1/100
+// decade and at least 16 bins (the mean PSD over the mean floor: a single
+// bin's Welch scatter is too wide to take its least).
+double lowest_beside(const stats::PsdResult& psd, const std::vector<double>& floor, std::size_t low,
+                     std::size_t high) {
+  const std::vector<double>& f = psd.frequency_hz;
+  const std::size_t n = f.size(), reach = high - low + 1;
+  constexpr std::size_t kLeastBins = 16;
+  const double band = std::pow(10.0, 0.01);
+  double lowest = std::numeric_limits<double>::infinity();
+  auto scan = [&](std::size_t from, std::size_t to) {  // bins [from, to)
+    std::size_t a = from;
+    while (a < to) {
+      std::size_t b = a + 1;
+      while (b < to && (f[b] < f[a] * band || b - a < kLeastBins)) ++b;
+      double sum = 0.0, floor_sum = 0.0;
+      for (std::size_t i = a; i < b; ++i) sum += psd.psd[i], floor_sum += floor[i];
+      lowest = std::min(lowest, sum / floor_sum);
+      a = b;
+    }
+  };
+  scan(low > kLowestBin + reach ? low - reach : kLowestBin, low);
+  scan(high + 1, std::min(n, high + 1 + reach));
+  return lowest;
 }
 
 // The bins [low, high] of a line found.
@@ -165,6 +199,10 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
     const double above = smooth[high + 1 < n ? high + 1 : high];
     if (!(peak > pass.bin_ratio * below && peak > pass.bin_ratio * above)) {
       k = last + 1;  // a real line on the shoulder is still looked for
+      continue;
+    }
+    if (pass.least_beside > 0.0 && !(lowest_beside(psd, floor, low, high) >= pass.least_beside)) {
+      k = high + 1;
       continue;
     }
     const bool overlaps = std::any_of(taken.begin(), taken.end(), [&](const BinRange& r) {

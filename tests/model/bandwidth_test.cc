@@ -84,6 +84,34 @@ TEST(Bandwidth, FilteredWhiteNoiseKeepsItsWhiteLevelAndShowsItsTimeConstant) {
   }
 }
 
+TEST(Bandwidth, AMovingAverageLongerThan32SamplesIsFound) {
+  // A 1 kHz output averaged over 40 and over 100 samples, 0.5 h, white
+  // noise and flicker (the generator's, the whole output filtered). The
+  // search had ended at 32 samples: the bandwidth stood at that bound, not
+  // resolved, and the fit lost N (an upper bound of 0.026 against 0.3, with
+  // a ramp and a Gauss-Markov term).
+  constexpr double fs = 1000.0, n_level = 0.3;
+  for (const int k : {40, 100}) {
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      sim::ErrorModel m;
+      m.noise.N = n_level;
+      m.noise.B = 0.1;
+      m.output.moving_average_samples = k;
+      sim::GeneratorOptions o;
+      o.sample_rate_hz = fs;
+      o.duration_s = 1800.0;
+      o.seed = seed;
+      sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
+      const AnalysisResult r = analyze(rec.rate_deg_h, {}, fs);
+      SCOPED_TRACE(::testing::Message() << k << "-sample average, seed " << seed);
+      ASSERT_TRUE(r.noise.bandwidth.resolved);
+      EXPECT_EQ(r.noise.bandwidth.bandwidth.moving_average_samples, k);
+      EXPECT_NEAR(r.noise.N.value / n_level, 1.0, 0.01);
+      EXPECT_EQ(r.noise.B.status, TermStatus::resolved);
+    }
+  }
+}
+
 // White noise of level N through a second-order Butterworth low-pass at
 // f_c (Bristow-Johnson's cookbook LPF with Q = 1/sqrt(2), made here from
 // std::normal_distribution), plus the generator's flicker B.

@@ -274,5 +274,28 @@ TEST(SpectralLine, ABroadHumpThatLiftsTheNarrowFloorIsFound) {
   }
 }
 
+TEST(SpectralLine, AMovingAveragesSideLobesAreNoLines) {
+  // A k-sample average has nulls at multiples of fs / k and side lobes
+  // between them, humps 13 dB and more under its main lobe that fill much
+  // of the broad pass's +-0.5 decade: with 6- to 24-sample averages they
+  // had been taken for lines 3-9 Hz wide. Beside a hump on the noise floor
+  // the PSD returns to the floor; beside a side lobe it falls into the nulls.
+  const std::size_t n = 720000;
+  for (const std::size_t k : {8u, 24u}) {
+    const std::vector<double> x = white(150.0, n, 30 + k);
+    std::vector<double> y(n, 0.0);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      sum += x[i];
+      if (i >= k) sum -= x[i - k];
+      y[i] = sum / static_cast<double>(std::min(i + 1, k));
+    }
+    stats::WelchOptions w;
+    w.segment_length = 131072;
+    SCOPED_TRACE(::testing::Message() << k << "-sample average");
+    EXPECT_TRUE(find_spectral_lines(stats::welch_psd(y, kFs, w)).empty());
+  }
+}
+
 }  // namespace
 }  // namespace foglab::model

@@ -33,9 +33,11 @@
 // floor lay inside it). A second pass looks for such humps over the median
 // of +-0.5 decade: runs of bins 2 times above that floor, 2.5 times at the
 // highest, at least 0.15 of their frequency wide, falling on both sides to
-// half their peak, with the same significance and skirts, and not
-// overlapping a line of the first pass (which keeps every narrow line as
-// it was).
+// half their peak, with the same significance and skirts, not overlapping
+// a line of the first pass (which keeps every narrow line as it was), and
+// with the PSD beside them (as far out as they are wide, in bands of 1/100
+// decade) at half the floor or more: a hump on the noise floor returns to
+// it, a moving average's side lobe falls into the average's nulls.
 #pragma once
 
 #include <vector>
