@@ -39,8 +39,8 @@ constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0, 0.0};
 // aliased humps' runs are 0.35-0.39 of it). Beside it the PSD stays at
 // half the floor or more: a hump on the noise floor returns to it, while a
 // moving average's side lobe (between its nulls at multiples of fs / k)
-// falls into them (the side lobes of a 6- to 16-sample average had been
-// taken for lines 4-9 Hz wide).
+// falls into them (the side lobes of 6- to 24-sample averages had been
+// taken for lines 3-9 Hz wide).
 constexpr LinePass kBroad{0.5, 2.0, 2.5, 0.15, 0.5};
 
 // The noise floor at every bin: at the centre of each band of 1/20 decade,
@@ -107,8 +107,9 @@ bool above_floor(double smooth, double floor, std::size_t k, double segments) {
 
 // The lowest ratio of the PSD to the floor beside the bins [low, high], as
 // far out on either side as they are wide, each side in bands of 1/100
-// decade and at least 16 bins (the mean PSD over the mean floor: a single
-// bin's Welch scatter is too wide to take its least).
+// decade and at least 16 bins, a shorter remainder joined to the last
+// (the mean PSD over the mean floor: a single bin's Welch scatter is too
+// wide to take its least).
 double lowest_beside(const stats::PsdResult& psd, const std::vector<double>& floor, std::size_t low,
                      std::size_t high) {
   const std::vector<double>& f = psd.frequency_hz;
@@ -121,6 +122,7 @@ double lowest_beside(const stats::PsdResult& psd, const std::vector<double>& flo
     while (a < to) {
       std::size_t b = a + 1;
       while (b < to && (f[b] < f[a] * band || b - a < kLeastBins)) ++b;
+      if (to - b < kLeastBins) b = to;  // a short remainder joins this band
       double sum = 0.0, floor_sum = 0.0;
       for (std::size_t i = a; i < b; ++i) sum += psd.psd[i], floor_sum += floor[i];
       lowest = std::min(lowest, sum / floor_sum);
