@@ -298,8 +298,9 @@ TEST_F(RealGyroDerived, HalvesAndAveragedPairsOfTheXAndYAxesMeetTheDoneWhen) {
 // (spectral_lines.h), and it is reported as a line there. Before, none was
 // found and an angle quantisation Q stood in for it, with B an upper bound
 // on imu1. N within 5 % of the white level, B resolved, no bandwidth at a
-// search bound (a Butterworth at 0.45 fs had been reported on two of them),
-// no Gauss-Markov Tc below the taus, the class consumer. The curve still
+// search bound (with the hump found, two of them ask for a Butterworth at
+// 0.45 fs, the highest cut-off searched, which is a bound and not
+// resolved), no Gauss-Markov Tc below the taus, the class consumer. The curve still
 // leaves the intervals at 2-4 of the first taus (docs/validation.md), which
 // is not asserted.
 TEST_F(RealGyroDerived, EveryFourthSampleOfTheZAxesShowsTheAliasedResonance) {
