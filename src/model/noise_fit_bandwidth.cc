@@ -45,6 +45,7 @@ constexpr double kShortestT = 1.0 / 20.0;  // in tau0
 constexpr double kLongestT = 10.0;         // in tau0
 constexpr int kTSteps = 16;
 constexpr int kFractionSteps = 20;
+constexpr int kEveryMovingAverageTo = 32;  // samples: every length up to here is tried
 // The moving averages' lengths [samples]: every one to 32, then about a
 // sixth apart to 128 (a 1 kHz output averaged over 40 samples had stood
 // beyond the search, and the fit had lost N altogether).
@@ -222,28 +223,26 @@ class Search {
     const double lo = std::log(kShortestT), hi = std::log(kLongestT);
     const double t_step = (hi - lo) / kTSteps;
     Trial best = best_on_grid(lo, t_step, 1);
-    // The moving averages.
+    // The moving averages: each length at kFractionSteps fractions.
     Trial best_ma;
-    for (const int k : kMovingAverageLengths) {
+    auto try_length = [&](int k) {
       for (int f = 1; f <= kFractionSteps; ++f) {
         const double fraction = static_cast<double>(f) / kFractionSteps;
         const double d = tried(fraction, 0.0, k);
         if (d < best_ma.deviance) best_ma = {fraction, 0.0, d, k};
       }
-    }
-    // Between the lengths beyond 32 every one is tried around the best.
+    };
+    for (const int k : kMovingAverageLengths) try_length(k);
+    // Beyond the lengths tried one by one, every length between the grid's
+    // neighbours of the best.
+    const int grid_best = best_ma.k;
     const auto at =
-        std::find(kMovingAverageLengths.begin(), kMovingAverageLengths.end(), best_ma.k);
-    if (at != kMovingAverageLengths.end() && best_ma.k > 32) {
+        std::find(kMovingAverageLengths.begin(), kMovingAverageLengths.end(), grid_best);
+    if (at != kMovingAverageLengths.end() && grid_best > kEveryMovingAverageTo) {
       const int from = *std::prev(at) + 1;
-      const int to = std::next(at) == kMovingAverageLengths.end() ? best_ma.k : *std::next(at) - 1;
+      const int to = std::next(at) == kMovingAverageLengths.end() ? grid_best : *std::next(at) - 1;
       for (int k = from; k <= to; ++k) {
-        if (k == best_ma.k) continue;
-        for (int f = 1; f <= kFractionSteps; ++f) {
-          const double fraction = static_cast<double>(f) / kFractionSteps;
-          const double d = tried(fraction, 0.0, k);
-          if (d < best_ma.deviance) best_ma = {fraction, 0.0, d, k};
-        }
+        if (k != grid_best) try_length(k);
       }
     }
     if (std::isfinite(best_ma.deviance)) {
