@@ -413,9 +413,24 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.gaps.assign(gaps.begin(), gaps.end());
   if (!gaps.empty()) r.notes.push_back(gap_note(rate_deg_h.size(), gaps, sample_rate_hz));
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
-  const double lsb = r.output_quantisation.detected ? r.output_quantisation.lsb_deg_h : 0.0;
+  const OutputQuantisation& word = r.output_quantisation;
+  const double lsb = word.detected ? word.lsb_deg_h : 0.0;
   r.spikes = find_spikes(rate_deg_h, options.spikes, lsb);
-  r.steps = find_steps(rate_deg_h, options.steps, lsb);
+  {
+    // The steps are looked for on top of the temperature law (a first
+    // least-squares fit; the spikes are out, the steps are still in, and a
+    // polynomial cannot follow a jump): a law with curvature would widen
+    // the spread of D or pass for steps, and a step levelled out of a
+    // temperature ramp takes part of the law with it.
+    std::vector<double> law;  // none where it is a constant (the mean is taken out anyway)
+    if (!temperature_c.empty()) {
+      const SystematicFit first =
+          fit_temperature(rate_deg_h, temperature_c, sample_rate_hz, options.systematic);
+      if (!first.constant_fallback && first.degree > 0) law = temperature_law(first, temperature_c);
+    }
+    r.steps = find_steps(rate_deg_h, options.steps, word.detected && !word.noise_like ? lsb : 0.0,
+                         gaps, law);
+  }
   if (!r.steps.indices.empty()) {
     std::vector<Message> list;
     for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {

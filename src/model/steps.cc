@@ -1,10 +1,14 @@
 // foglab — bias steps (steps.h).
 #include "foglab/model/steps.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "foglab/core/error.h"
+#include "foglab/core/gaps.h"
 #include "foglab/core/numeric.h"
 
 namespace foglab::model {
@@ -16,17 +20,34 @@ struct Candidate {
   std::int64_t window = 0;
 };
 
-// The most significant step at window length w, from prefix sums p.
-Candidate best_at(const std::vector<double>& p, std::int64_t w) {
-  const auto n = static_cast<std::int64_t>(p.size()) - 1;
-  auto d = [&](std::int64_t k) {
-    return (p[static_cast<std::size_t>(k + w)] - p[static_cast<std::size_t>(k)] -
-            (p[static_cast<std::size_t>(k)] - p[static_cast<std::size_t>(k - w)])) /
-           static_cast<double>(w);
-  };
+// Means over [i, j) of the record from its prefix sums p, with a drift of
+// `slope` per sample taken out (the record's own, from the median of D).
+struct Means {
+  const std::vector<double>& p;
+  double slope = 0.0;
+  double operator()(std::int64_t i, std::int64_t j) const {
+    const double sum = p[static_cast<std::size_t>(j)] - p[static_cast<std::size_t>(i)];
+    return sum / static_cast<double>(j - i) - slope * 0.5 * static_cast<double>(i + j - 1);
+  }
+};
+
+// The most significant step at window length w, from prefix sums p, with
+// every window inside one of the contiguous `stretches`.
+Candidate best_at(const std::vector<double>& p, std::int64_t w,
+                  std::span<const Stretch> stretches) {
+  const Means raw{p};
+  auto d = [&](std::int64_t k) { return raw(k, k + w) - raw(k - w, k); };
   const std::int64_t stride = std::max<std::int64_t>(1, w / 8);
   std::vector<double> values;
-  for (std::int64_t k = w; k + w <= n; k += stride) values.push_back(d(k));
+  std::vector<std::int64_t> at;
+  std::vector<std::size_t> in;  // the stretch of each
+  for (std::size_t s = 0; s < stretches.size(); ++s) {
+    for (std::int64_t k = stretches[s].begin + w; k + w <= stretches[s].end; k += stride) {
+      values.push_back(d(k));
+      at.push_back(k);
+      in.push_back(s);
+    }
+  }
   Candidate c;
   if (values.size() < 16) return c;
   const auto [centre, spread] = robust_spread(values);
@@ -36,34 +57,34 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
     if (std::fabs(values[i] - centre) > std::fabs(values[top] - centre)) top = i;
   }
   const double top_dev = std::fabs(values[top] - centre);
-  const std::int64_t coarse = w + static_cast<std::int64_t>(top) * stride;
+  const std::int64_t coarse = at[top];
+  const Stretch& stretch = stretches[in[top]];
+  // A steady drift makes every D its slope times W (the median, centre):
+  // the change point and the size are found with that slope taken out, so
+  // that a drift (a temperature ramp without its channel, a rate ramp)
+  // neither moves the step nor enters its size.
+  const Means level{p, centre / static_cast<double>(w)};
   // The sample: the single change point of the stretch W either side,
   // where |mean after - mean before| sqrt(l r / (l + r)) peaks (l, r the
   // samples on either side): it uses the whole stretch, so it lands within
   // (sd / size)^2 samples of the step, not within the triangle's width.
-  const std::int64_t a = std::max<std::int64_t>(0, coarse - w);
-  const std::int64_t b = std::min(n, coarse + w);
+  const std::int64_t a = std::max(stretch.begin, coarse - w);
+  const std::int64_t b = std::min(stretch.end, coarse + w);
   std::int64_t best = coarse;
   double best_stat = -1.0;
-  const double sum = p[static_cast<std::size_t>(b)] - p[static_cast<std::size_t>(a)];
   for (std::int64_t k = a + 1; k < b; ++k) {
     const double l = static_cast<double>(k - a), r = static_cast<double>(b - k);
-    const double left = (p[static_cast<std::size_t>(k)] - p[static_cast<std::size_t>(a)]) / l;
-    const double right = (sum - left * l) / r;
-    const double stat = std::fabs(right - left) * std::sqrt(l * r / (l + r));
+    const double stat = std::fabs(level(k, b) - level(a, k)) * std::sqrt(l * r / (l + r));
     if (stat > best_stat) best_stat = stat, best = k;
   }
-  const double best_dev = std::fabs(d(std::clamp(best, w, n - w)) - centre);
+  const double best_dev =
+      std::fabs(d(std::clamp(best, stretch.begin + w, stretch.end - w)) - centre);
   // Its size from up to 4 W either side (four times the samples of the
   // stretch that found it: half the scatter, where the noise is white).
-  const std::int64_t lo = std::max<std::int64_t>(0, best - 4 * w);
-  const std::int64_t hi = std::min(n, best + 4 * w);
-  const double best_size = (p[static_cast<std::size_t>(hi)] - p[static_cast<std::size_t>(best)]) /
-                  static_cast<double>(hi - best) -
-              (p[static_cast<std::size_t>(best)] - p[static_cast<std::size_t>(lo)]) /
-                  static_cast<double>(best - lo);
+  const std::int64_t lo = std::max(stretch.begin, best - 4 * w);
+  const std::int64_t hi = std::min(stretch.end, best + 4 * w);
   c.index = best;
-  c.size = best_size;
+  c.size = level(best, hi) - level(lo, best);
   c.z = std::max(best_dev, top_dev) / spread;
   c.window = w;
   return c;
@@ -71,24 +92,33 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w) {
 
 }  // namespace
 
-BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb_deg_h) {
+BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb_deg_h,
+                     std::span<const Gap> gaps, std::span<const double> baseline_deg_h) {
   BiasSteps steps;
   const auto n = static_cast<std::int64_t>(y.size());
+  if (!baseline_deg_h.empty() && baseline_deg_h.size() != y.size()) {
+    throw UsageError(fmt::format("bias steps: {} rate samples but {} of the baseline", y.size(),
+                                 baseline_deg_h.size()));
+  }
+  check_gaps(gaps, n, "bias steps");
+  auto base = [&](std::size_t k) { return baseline_deg_h.empty() ? 0.0 : baseline_deg_h[k]; };
   double mean = 0.0;
-  for (double v : y) {
-    if (!std::isfinite(v)) return steps;  // the readers refuse these; nothing to do
-    mean += v;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    if (!std::isfinite(y[k]) || !std::isfinite(base(k))) return steps;  // the readers refuse these
+    mean += y[k] - base(k);
   }
   mean /= static_cast<double>(std::max<std::int64_t>(1, n));
-  // Prefix sums of y - mean (one array beside the record; the steps are
-  // levelled in y itself and put back when they are only to be reported).
+  const std::vector<Stretch> stretches = contiguous_stretches(n, gaps);
+  // Prefix sums of y - baseline - mean (one array beside the record; the
+  // steps are levelled in y itself and put back when they are only to be
+  // reported).
   std::vector<double> p(y.size() + 1);
   for (int round = 0; round < options.max_steps; ++round) {
     p[0] = 0.0;
-    for (std::size_t k = 0; k < y.size(); ++k) p[k + 1] = p[k] + (y[k] - mean);
+    for (std::size_t k = 0; k < y.size(); ++k) p[k + 1] = p[k] + (y[k] - base(k) - mean);
     Candidate best;
     for (std::int64_t w = 64; 64 * w <= n; w *= 2) {
-      const Candidate c = best_at(p, w);
+      const Candidate c = best_at(p, w, stretches);
       if (c.index >= 0 && c.z > best.z) best = c;
     }
     if (best.index < 0 || !(best.z > options.threshold)) break;

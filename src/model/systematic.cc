@@ -623,6 +623,17 @@ void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_d
   }
 }
 
+std::vector<double> temperature_law(const SystematicFit& fit,
+                                    std::span<const double> temperature_c) {
+  const std::size_t n = temperature_c.size();
+  std::vector<double> law = large_vector(n);
+#pragma omp parallel for schedule(static) if (n > kChunkSamples)
+  for (std::size_t k = 0; k < n; ++k) {
+    law[k] = polynomial(fit.coefficients, temperature_c[k] - fit.t_ref_c);
+  }
+  return law;
+}
+
 std::vector<double> temperature_fit_residual(const SystematicFit& fit,
                                              std::span<const double> rate_deg_h,
                                              std::span<const double> temperature_c) {

@@ -177,8 +177,12 @@ std::vector<double> spike_times_s(const SensorOutput& output, double sample_rate
   std::vector<double> times;
   const double p = spike_probability(output, sample_rate_hz);
   const std::uint64_t key = detail::process_key(seed, stream, kSpike);
+  const auto lost = lost_ranges(output, sample_rate_hz, samples);  // sorted, disjoint
+  auto next_lost = lost.begin();
   for (std::int64_t k = 0; p > 0.0 && k < samples; ++k) {
-    if (spike_at(key, k, p)) times.push_back(static_cast<double>(k) / sample_rate_hz);
+    while (next_lost != lost.end() && next_lost->second <= k) ++next_lost;
+    const bool dropped = next_lost != lost.end() && next_lost->first <= k;
+    if (spike_at(key, k, p) && !dropped) times.push_back(static_cast<double>(k) / sample_rate_hz);
   }
   return times;
 }

@@ -110,6 +110,52 @@ TEST(SensorEffects, BiasStepsAreFoundAndLevelled) {
   EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
 }
 
+TEST(SensorEffects, StepsOnATemperatureRampAcrossAGapAreFoundAndTheLawKept) {
+  // The ADIS16405-like axis warming by 10 degC with a curved law (c1 900
+  // deg/h/degC, c2 15), two steps, and a 10 min gap during the ramp (the
+  // rate moves by 750 deg/h while nothing is recorded). The steps were
+  // sought on the raw rate: the law's curvature and the jump across the
+  // gap passed for up to 20 steps, the levelling took part of the law
+  // with it, and c1 came out 1.5-3 standard errors low.
+  const test::TempDir dir;
+  for (int seed = 1; seed <= 2; ++seed) {
+    const Generated r = generate_and_analyze(
+        dir.path(),
+        "--N 150 --B 30 --fs 100 --hours 2 --temperature ramp:10@20 --temp-coef 900,15 "
+        "--step 2000:750 --step 5000:-600 --drop 3000:600",
+        seed);
+    ASSERT_TRUE(r.analysis.is_object());
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    const json& s = r.analysis["steps"];
+    ASSERT_EQ(s["count"], 2);
+    EXPECT_NEAR(s["times_s"][0].get<double>(), 2000.0, 2.0);
+    EXPECT_NEAR(s["times_s"][1].get<double>(), 5000.0, 2.0);
+    EXPECT_NEAR(s["sizes_deg_h"][0].get<double>() / 750.0, 1.0, 0.25);
+    EXPECT_NEAR(s["sizes_deg_h"][1].get<double>() / -600.0, 1.0, 0.25);
+    EXPECT_EQ(r.analysis["input"]["gaps"]["count"], 1);
+    const json& fit = r.analysis["systematic"];
+    const double c1 = fit["coefficients"][1].get<double>();
+    const double se = fit["standard_errors"][1].get<double>();
+    EXPECT_LT(std::fabs(c1 - 900.0), 3.0 * se) << c1 << " +- " << se;
+    EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
+  }
+}
+
+TEST(SensorEffects, AStepSmallerThanAFineOutputWordsStepIsFound) {
+  // An output word of half the sample spread is noise-like: the mean moves
+  // by any amount, so a step of two thirds of the word's step is a step
+  // (the word's step had been a floor for every step).
+  const test::TempDir dir;
+  const Generated r = generate_and_analyze(
+      dir.path(), "--N 0.3 --B 0.1 --K 0.02 --fs 100 --hours 2 --lsb 1.5 --step 3600:1.0", 1);
+  ASSERT_TRUE(r.analysis.is_object());
+  ASSERT_TRUE(r.analysis["output_quantisation"]["noise_like"].get<bool>());
+  const json& s = r.analysis["steps"];
+  ASSERT_EQ(s["count"], 1);
+  EXPECT_NEAR(s["times_s"][0].get<double>(), 3600.0, 5.0);
+  EXPECT_NEAR(s["sizes_deg_h"][0].get<double>(), 1.0, 0.3);
+}
+
 TEST(SensorEffects, MovingAverageIsFoundWithItsLength) {
   const test::TempDir dir;
   const Generated r =

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "foglab/core/error.h"
 #include "support/noise.h"
 
 namespace foglab::model {
@@ -50,6 +51,74 @@ TEST(Steps, TwoStepsAreFoundAndLevelled) {
   double a = 0.0, b = 0.0;
   for (std::size_t k = 0; k < 100000; ++k) a += y[k], b += y[300000 + k];
   EXPECT_NEAR(a / 1e5, b / 1e5, 0.05);
+}
+
+TEST(Steps, ASteepDriftNeitherSizesNorRepeatsAStep) {
+  // A drift of 40 sample sd over the record (a temperature ramp with no
+  // temperature channel, a rate ramp): the step's size had taken the
+  // drift over the 4 W either side (+30 % here), and the search found the
+  // step again and again, with sizes near 0, up to the limit.
+  std::vector<double> y = test::mt_normal(400000, 4, 0.0, 1.0);
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    y[k] += 1e-4 * static_cast<double>(k) + (k >= 150000 ? 0.5 : 0.0);
+  }
+  const BiasSteps s = find_steps(y);
+  ASSERT_EQ(s.indices.size(), 1u);
+  EXPECT_NEAR(static_cast<double>(s.indices[0]), 150000.0, 200.0);
+  EXPECT_NEAR(s.sizes_deg_h[0], 0.5, 0.05);
+}
+
+TEST(Steps, AJumpAcrossAGapIsNoStep) {
+  // The bias moved while nothing was recorded: the stretches either side
+  // of the gap differ by 2 sample sd, which is no step; a real step of 0.5
+  // in the later stretch is still found, and levelled from there on.
+  std::vector<double> y = test::mt_normal(400000, 5, 0.0, 1.0);
+  for (std::size_t k = 200000; k < y.size(); ++k) y[k] += 2.0;
+  for (std::size_t k = 300000; k < y.size(); ++k) y[k] += 0.5;
+  const std::vector<Gap> gaps = {{200000, 5000}};
+  const std::vector<double> before = y;
+  const BiasSteps s = find_steps(y, {}, 0.0, gaps);
+  ASSERT_EQ(s.indices.size(), 1u);
+  EXPECT_NEAR(static_cast<double>(s.indices[0]), 300000.0, 200.0);
+  EXPECT_NEAR(s.sizes_deg_h[0], 0.5, 0.05);
+  EXPECT_EQ(y[250000], before[250000]);
+  EXPECT_NEAR(y[350000], before[350000] - s.sizes_deg_h[0], 1e-12);
+  // Taken as one stretch, the jump is a step.
+  std::vector<double> z = before;
+  EXPECT_EQ(find_steps(z).indices.size(), 2u);
+}
+
+TEST(Steps, AreFoundOnTopOfACurvedBaseline) {
+  // A temperature law with curvature (a parabola of 30 sample sd): with
+  // it as the baseline the two steps are found with their sizes, and the
+  // record keeps the law (only the steps are levelled).
+  const std::size_t n = 400000;
+  std::vector<double> law(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = static_cast<double>(k) / static_cast<double>(n) - 0.5;
+    law[k] = 120.0 * u * u;
+  }
+  std::vector<double> y = test::mt_normal(n, 6, 0.0, 1.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    y[k] += law[k] + (k >= 100000 ? 0.4 : 0.0) + (k >= 250000 ? -0.6 : 0.0);
+  }
+  const BiasSteps s = find_steps(y, {}, 0.0, {}, law);
+  ASSERT_EQ(s.indices.size(), 2u);
+  EXPECT_NEAR(static_cast<double>(s.indices[0]), 100000.0, 300.0);
+  EXPECT_NEAR(static_cast<double>(s.indices[1]), 250000.0, 300.0);
+  EXPECT_NEAR(s.sizes_deg_h[0], 0.4, 0.06);
+  EXPECT_NEAR(s.sizes_deg_h[1], -0.6, 0.06);
+  double end = 0.0;  // the last 10,000 samples still carry the law
+  for (std::size_t k = n - 10000; k < n; ++k) end += y[k] - law[k];
+  EXPECT_NEAR(end / 1e4, 0.0, 0.1);
+}
+
+TEST(Steps, ABadBaselineOrGapIsAUsageError) {
+  std::vector<double> y(1000, 0.0);
+  const std::vector<double> short_law(999, 0.0);
+  EXPECT_THROW(find_steps(y, {}, 0.0, {}, short_law), UsageError);
+  const std::vector<Gap> outside = {{1000, 5}};
+  EXPECT_THROW(find_steps(y, {}, 0.0, outside), UsageError);
 }
 
 TEST(Steps, NoneInWhiteNoiseADriftOrARandomWalk) {

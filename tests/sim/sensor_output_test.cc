@@ -89,6 +89,25 @@ TEST(SensorOutput, SinusoidStepsSpikesAndTheOutputWord) {
   }
 }
 
+TEST(SensorOutput, ASpikeInADroppedStretchIsNotListed) {
+  // The truth lists the spikes the file holds: those in the samples a
+  // dropout loses are gone with them (analyze cannot find them).
+  SensorOutput o;
+  o.spike_rate_per_hour = 360.0;
+  o.spike_size_deg_h = 1000.0;
+  const double fs = 20.0;
+  const std::int64_t n = 20000;  // 1000 s
+  const std::vector<double> all = spike_times_s(o, fs, 5, 2, n);
+  o.dropouts = {{200.0, 300.0}};
+  const std::vector<double> kept = spike_times_s(o, fs, 5, 2, n);
+  std::vector<double> expected;
+  for (double t : all) {
+    if (t < 200.0 || t >= 500.0) expected.push_back(t);
+  }
+  ASSERT_LT(expected.size(), all.size());  // some did fall in the dropout
+  EXPECT_EQ(kept, expected);
+}
+
 TEST(SensorOutput, FilterGainAtTheLineFrequency) {
   SensorOutput o;
   o.filter_time_constant_s = 0.0054;

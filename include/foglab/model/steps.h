@@ -11,13 +11,20 @@
 // length, is a step; its sample is the best single change point of the
 // stretch W either side (the largest |mean after - mean before| sqrt(l r /
 // (l + r))), its size the difference of the means over up to 4 W either
-// side of it. It is levelled (its size subtracted from every
-// later sample) and the search repeats, up to `max_steps` times.
+// side of it, both with the record's drift (the median of D over W) taken
+// out. It is levelled (its size subtracted from every later sample) and the
+// search repeats, up to `max_steps` times. The windows stay inside the
+// contiguous stretches between gaps (a jump across a gap is the process
+// moving while nothing was recorded, not a step), and the search runs on
+// the record less a baseline when one is given (the temperature law, whose
+// curvature would otherwise enter the spread of D or look like a step).
 #pragma once
 
 #include <cstdint>
 #include <span>
 #include <vector>
+
+#include "foglab/core/gaps.h"
 
 namespace foglab::model {
 
@@ -38,8 +45,14 @@ struct BiasSteps {
 /// Finds the bias steps of `rate_deg_h` and, with options.remove, levels
 /// the record in place. A step smaller than `lsb_deg_h` (the output word's
 /// step; 0: unknown) or of size 0 is none, and ends the search (on a
-/// coarse output word one step of size 0 had been found again and again).
+/// coarse output word one step of size 0 had been found again and again;
+/// give it only where the output word distorts the noise: in a word finer
+/// than the noise the mean moves by any amount). `gaps`: the record's gaps
+/// (as for the statistics). `baseline_deg_h`: empty, or one value per
+/// sample subtracted before the search (not from the record). Throws
+/// UsageError for a baseline of another length or gaps outside the record.
 BiasSteps find_steps(std::span<double> rate_deg_h, const StepOptions& options = {},
-                     double lsb_deg_h = 0.0);
+                     double lsb_deg_h = 0.0, std::span<const Gap> gaps = {},
+                     std::span<const double> baseline_deg_h = {});
 
 }  // namespace foglab::model

@@ -159,6 +159,10 @@ void set_criterion_verdict(SystematicFit& fit, const TemperatureRecord& record,
 void subtract_temperature_fit(const SystematicFit& fit, std::span<double> rate_deg_h,
                               std::span<const double> temperature_c);
 
+/// The fitted polynomial at every temperature sample [deg/h].
+std::vector<double> temperature_law(const SystematicFit& fit,
+                                    std::span<const double> temperature_c);
+
 /// The residual rate_deg_h minus the fitted polynomial as a new vector, with
 /// room for one more sample (the Allan deviation's angle record).
 std::vector<double> temperature_fit_residual(const SystematicFit& fit,

@@ -79,7 +79,8 @@ void validate(const SensorOutput& output, double sample_rate_hz);
 double output_filter_gain(const SensorOutput& output, double frequency_hz, double sample_rate_hz);
 
 /// The times [s] of the spikes the chain puts into a record of `samples`
-/// samples (the same draws as OutputChain's).
+/// samples (the same draws as OutputChain's), but those in the samples
+/// the dropouts lose: a spike dropped with its sample is not in the file.
 std::vector<double> spike_times_s(const SensorOutput& output, double sample_rate_hz,
                                   std::uint64_t seed, std::uint64_t stream, std::int64_t samples);
 
