@@ -7,9 +7,9 @@ in one record, with and without a temperature law, on three grades;
 
 The effects study (bench/effects_study.py) puts one effect into each
 record; real recordings carry several at once, and the detectors run one
-after the other (the output word, spikes, steps, the temperature law, the
-bandwidth, the lines), so each must work on what the others leave. Per
-record it prints N's and B's error (and K's, when the grade has one; "!"
+after the other (the temperature channel's steps, the output word, spikes,
+bias steps, the temperature law, the bandwidth, the lines), so each must
+work on what the others leave. Per record it prints N's and B's error (and K's, when the grade has one; "!"
 when the truth is outside the 95 % interval), the terms, what was found of
 each effect against the truth (spikes and steps as found/true), and c1's
 error in its standard errors where there is a temperature law. The closing
@@ -52,6 +52,11 @@ def combinations(grade):
         "ramp(c1)+gaps+spikes": [
             *ramp, "--temp-coef", f"{30 * b:.6g}", "--drop", "600:30", "--drop", "5000:900",
             "--spikes", f"3:{20 * sd:.6g}"],
+        # a temperature sensor read in steps of 0.25 degC (the rate follows
+        # the temperature itself), with a step and a low-pass
+        "ramp(c1,c2)+temp-lsb+step+lowpass": [
+            *ramp, "--temp-coef", f"{30 * b:.6g},{0.5 * b:.6g}", "--temp-lsb", "0.25",
+            "--step", f"3000:{0.5 * sd:.6g}", "--filter-tc", "0.0054"],
     }
 
 
@@ -99,6 +104,10 @@ def judge(truth, r):
             f"steps {steps[0]}/{steps[1]}  lines {len(r['spectral_lines'])}/{len(out['sinusoids'])}"
             f"  bandwidth {r['sensor_bandwidth'].get('kind') if r['sensor_bandwidth']['resolved'] else '-'}"
             f"  class {r['accuracy_class']}")
+    if truth["temperature"].get("lsb_c", 0) > 0:
+        tq = r["temperature_quantisation"]
+        held["temperature step found"] = (
+            tq["detected"] and abs(tq["lsb_c"] / truth["temperature"]["lsb_c"] - 1) < 1e-6)
     coefs = m.get("temp_coefs") or []
     fit = r.get("systematic")
     if coefs and fit:

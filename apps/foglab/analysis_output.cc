@@ -220,6 +220,16 @@ nlohmann::json steps_json(const model::AnalysisResult& r) {
           {"significance", numbers(s.significance)}};
 }
 
+nlohmann::json temperature_quantisation_json(const model::TemperatureQuantisation& t) {
+  nlohmann::json j = {{"detected", t.detected}};
+  if (!t.detected) return j;
+  j["lsb_c"] = number(t.lsb_c);
+  j["distinct_values"] = t.distinct_values;
+  j["changes"] = t.changes;
+  j["mean_hold_s"] = number(t.mean_hold_s);
+  return j;
+}
+
 nlohmann::json quantisation_json(const model::AnalysisResult& r) {
   const model::OutputQuantisation& q = r.output_quantisation;
   nlohmann::json j = {{"detected", q.detected},
@@ -286,6 +296,8 @@ nlohmann::json units_json() {
       {"output_quantisation.sample_sd_deg_h", "deg/h"},
       {"output_quantisation.step_sd_deg_h", "deg/h"},
       {"output_quantisation.white_variance_departure", "1 (of the sensor's white variance)"},
+      {"temperature_quantisation.lsb_c", "degC"},
+      {"temperature_quantisation.mean_hold_s", "s"},
       {"spectral_lines[].frequency_hz", "Hz"},
       {"spectral_lines[].width_hz", "Hz"},
       {"spectral_lines[].rms_deg_h", "deg/h"},
@@ -385,6 +397,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"spectral_lines", lines_json(r.noise)},
           {"psd_allan_check", psd_allan_json(r.psd_allan)},
           {"output_quantisation", quantisation_json(r)},
+          {"temperature_quantisation", temperature_quantisation_json(r.temperature_quantisation)},
           {"spikes", spikes_json(r)},
           {"steps", steps_json(r)},
           {"arw_deg_per_sqrt_h", number(r.arw_deg_sqrt_h)},

@@ -37,6 +37,7 @@ struct GenerateCommand {
   std::uint64_t seed = 1;
   std::uint64_t stream = 0;
   std::string temperature = "const";
+  std::optional<double> temp_lsb;  // [degC] the temperature sensor's step
   std::string out;
   std::string truth;
   // The sensor's output chain (sim/sensor_output.h).
@@ -188,6 +189,13 @@ std::string_view to_string(OutFormat f) {
   return "";
 }
 
+// --temperature with the sensor's step (--temp-lsb).
+sim::TemperatureProfile temperature_of(const GenerateCommand& c) {
+  sim::TemperatureProfile t = sim::parse_temperature(c.temperature);
+  if (c.temp_lsb) t.lsb_c = *c.temp_lsb;
+  return t;
+}
+
 std::vector<double> parse_coefs(const std::string& text) {
   if (text.empty()) return {};
   return numbers_of("--temp-coef", text, ',', 1, std::numeric_limits<std::size_t>::max(),
@@ -308,7 +316,7 @@ void run_imu(const GenerateCommand& c) {
         fmt::format("--stamp-jitter {} s: expected 0 to 0.4 sample intervals ({:.6g} s)", jitter_s,
                     0.4 / options.sample_rate_hz));
   }
-  const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
+  const sim::TemperatureProfile temperature = temperature_of(c);
   progress(fmt::format("generating 6 x {} samples ({} h at {} Hz)", samples, *c.hours,
                        options.sample_rate_hz));
 
@@ -432,7 +440,7 @@ Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
                         const std::string& out, const std::string& shown_out) {
   const sim::GeneratorOptions& options = generator;
   const OutFormat format = format_of(out);
-  const sim::TemperatureProfile temperature = sim::parse_temperature(c.temperature);
+  const sim::TemperatureProfile temperature = temperature_of(c);
   const double t_ref = temperature.reference_c(options.duration_s);
 
   std::vector<std::string> variables;
@@ -481,6 +489,7 @@ Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
                          {"start_c", temperature.start_c},
                          {"span_c", temperature.span_c},
                          {"jitter_c", temperature.jitter_c},
+                         {"lsb_c", temperature.lsb_c},
                          {"reference_c", t_ref}};
   Written w;
   w.truth = {
@@ -655,6 +664,10 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--temperature", c->temperature,
                   "const, const:25, ramp:10, ramp:10@20 or file:PATH")
       ->capture_default_str();
+  cmd->add_option("--temp-lsb", c->temp_lsb,
+                  "temperature sensor's step [degC]: the recorded temperature is rounded to it "
+                  "(the rate follows the temperature itself)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", c->out, "output: FILE.mat, FILE.csv, FILE.f32 or FILE.f64")->required();
   cmd->add_option("--truth", c->truth, "write the truth as JSON ('-' for stdout)");
   cmd->add_option("--filter-tc", c->filter_tc,

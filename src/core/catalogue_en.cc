@@ -739,6 +739,12 @@ constexpr CatalogueEntry kEntries[] = {
      "the output is quantised in steps of {:.6g} deg/h ({} distinct values in the "
      "first {} samples); rounding adds white noise of level {:.4g} deg/h/sqrt(Hz), "
      "{:.3g} % of N^2, {}"},
+    {Text::note_temperature_quantised,
+     "the temperature is read in steps of {:.4g} degC ({} readings, changing on {} "
+     "samples, every {:.3g} s on average): the temperature law is fitted against the "
+     "temperature between the steps (linear between the instants where the reading "
+     "changes, at the boundary of the two readings), not against the staircase, "
+     "whose error times the law's slope would stay in the residual"},
     {Text::note_quantised_known, "which the fit takes as known: N is the sensor's own white level"},
     {Text::note_quantised_distorting,
      "which the fitted N includes: the step is more than twice the samples' "

@@ -412,6 +412,16 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   AnalysisResult r;
   r.gaps.assign(gaps.begin(), gaps.end());
   if (!gaps.empty()) r.notes.push_back(gap_note(rate_deg_h.size(), gaps, sample_rate_hz));
+  std::vector<double> between_steps;  // a quantised temperature channel's temperature
+  if (!temperature_c.empty()) {
+    r.temperature_quantisation = find_temperature_quantisation(temperature_c, sample_rate_hz);
+    if (const TemperatureQuantisation& t = r.temperature_quantisation; t.detected) {
+      between_steps = reconstruct_quantised_temperature(temperature_c, t.lsb_c);
+      temperature_c = between_steps;
+      r.notes.emplace_back(Text::note_temperature_quantised, t.lsb_c, t.distinct_values, t.changes,
+                           t.mean_hold_s);
+    }
+  }
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
   const OutputQuantisation& word = r.output_quantisation;
   const double lsb = word.detected ? word.lsb_deg_h : 0.0;

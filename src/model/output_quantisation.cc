@@ -8,6 +8,32 @@
 
 namespace foglab::model {
 
+ValueGrid value_grid(std::span<const double> sorted) {
+  ValueGrid grid;
+  if (sorted.empty()) return grid;
+  const double scale = std::max(std::fabs(sorted.front()), std::fabs(sorted.back()));
+  const double same = 1e-9 * std::max(scale, 1e-300);
+  std::vector<double> distinct;
+  for (double v : sorted) {
+    if (distinct.empty() || v - distinct.back() > same) distinct.push_back(v);
+  }
+  grid.distinct_values = static_cast<std::int64_t>(distinct.size());
+  if (distinct.size() < 3) return grid;
+  double step = distinct[1] - distinct[0];
+  for (std::size_t k = 2; k < distinct.size(); ++k) {
+    step = std::min(step, distinct[k] - distinct[k - 1]);
+  }
+  if (!(step > same)) return grid;
+  std::size_t whole = 0;
+  for (std::size_t k = 1; k < distinct.size(); ++k) {
+    const double multiple = (distinct[k] - distinct[k - 1]) / step;
+    if (std::fabs(multiple - std::round(multiple)) < 1e-6 * std::max(1.0, multiple)) ++whole;
+  }
+  if (whole * 100 < (distinct.size() - 1) * 99) return grid;
+  grid.step = step;
+  return grid;
+}
+
 OutputQuantisation find_output_quantisation(std::span<const double> rate_deg_h,
                                             double sample_rate_hz, std::size_t max_samples) {
   OutputQuantisation q;
@@ -31,26 +57,12 @@ OutputQuantisation find_output_quantisation(std::span<const double> rate_deg_h,
   const double step_variance = 0.5 * squared_steps / static_cast<double>(values.size() - 1);
 
   std::sort(values.begin(), values.end());
-  // Distinct values, merging those equal to 1e-9 of the record's scale
-  // (a unit conversion leaves the last bits of a whole LSB count uneven).
-  const double scale = std::max(std::fabs(values.front()), std::fabs(values.back()));
-  const double same = 1e-9 * std::max(scale, 1e-300);
-  std::vector<double> distinct;
-  for (double v : values) {
-    if (distinct.empty() || v - distinct.back() > same) distinct.push_back(v);
+  const ValueGrid grid = value_grid(values);
+  q.distinct_values = grid.distinct_values;
+  if (grid.step == 0.0 || static_cast<std::size_t>(grid.distinct_values) * 4 > values.size()) {
+    return q;
   }
-  q.distinct_values = static_cast<std::int64_t>(distinct.size());
-  if (distinct.size() < 3 || distinct.size() * 4 > values.size()) return q;
-  std::vector<double> gaps(distinct.size() - 1);
-  for (std::size_t k = 1; k < distinct.size(); ++k) gaps[k - 1] = distinct[k] - distinct[k - 1];
-  const double lsb = *std::min_element(gaps.begin(), gaps.end());
-  if (!(lsb > same)) return q;
-  std::size_t whole = 0;
-  for (double g : gaps) {
-    const double multiple = g / lsb;
-    if (std::fabs(multiple - std::round(multiple)) < 1e-6 * std::max(1.0, multiple)) ++whole;
-  }
-  if (whole * 100 < gaps.size() * 99) return q;
+  const double lsb = grid.step;
   q.detected = true;
   q.lsb_deg_h = lsb;
   q.white_level_deg_h_sqrt_hz = lsb / std::sqrt(12.0 * sample_rate_hz);

@@ -137,6 +137,7 @@ std::int64_t validate(const ErrorModel& m, const TemperatureProfile& t, const Ge
   check_finite("temperature start_c", t.start_c, kMaxTemperatureC);
   check_finite("temperature span_c", t.span_c, kMaxTemperatureC);
   check_nonnegative("temperature jitter_c", t.jitter_c, "[degC]");
+  check_nonnegative("temperature lsb_c", t.lsb_c, "[degC]");
   if (t.kind == TemperatureKind::file) {
     if (t.profile_time_s.empty() || t.profile_time_s.size() != t.profile_temperature_c.size()) {
       throw UsageError(fmt::format(
@@ -351,6 +352,11 @@ void Engine::pass_one(std::size_t chunk, std::int64_t first, std::size_t len, do
       for (std::size_t i = coefs.size(); i-- > 0;) p = (p + coefs[i]) * d;
       rate[k] = constant + p;
     }
+  }
+  // The temperature sensor's step: the reading is rounded, the rate has
+  // followed the temperature itself.
+  if (tp.lsb_c > 0.0) {
+    for (std::size_t k = 0; k < len; ++k) temp[k] = std::round(temp[k] / tp.lsb_c) * tp.lsb_c;
   }
   if (model_.noise.R != 0.0) {
     for (std::size_t k = 0; k < len; ++k) {

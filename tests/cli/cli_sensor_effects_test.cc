@@ -156,6 +156,39 @@ TEST(SensorEffects, AStepSmallerThanAFineOutputWordsStepIsFound) {
   EXPECT_NEAR(s["sizes_deg_h"][0].get<double>(), 1.0, 0.3);
 }
 
+TEST(SensorEffects, AQuantisedTemperatureChannelLeavesTheNoiseModelAsItWas) {
+  // The tactical grade warming by 10 degC in 2 h (c1 3 deg/h/degC), its
+  // temperature read in steps of 0.25 degC (a staircase of 3 min steps;
+  // the rate follows the temperature itself, generate --temp-lsb).
+  // Against the staircase the law had left c1 times a +-0.125 degC
+  // sawtooth in the residual: B 42 % high, with a rate ramp and Q that are
+  // not there. Against the temperature between the steps the analysis is
+  // the unrounded channel's.
+  const test::TempDir dir;
+  const std::string model =
+      "--N 0.3 --B 0.1 --K 0.02 --fs 100 --hours 2 --temperature ramp:10@20 --temp-coef 3";
+  const Generated plain = generate_and_analyze(dir.path(), model, 1);
+  const Generated stepped = generate_and_analyze(dir.path(), model + " --temp-lsb 0.25", 1);
+  ASSERT_TRUE(plain.analysis.is_object() && stepped.analysis.is_object());
+  EXPECT_EQ(stepped.truth["temperature"]["lsb_c"], 0.25);
+  EXPECT_FALSE(plain.analysis["temperature_quantisation"]["detected"].get<bool>());
+  const json& q = stepped.analysis["temperature_quantisation"];
+  ASSERT_TRUE(q["detected"].get<bool>());
+  EXPECT_NEAR(q["lsb_c"].get<double>(), 0.25, 1e-9);
+  EXPECT_EQ(q["distinct_values"], 41);
+  EXPECT_EQ(stepped.analysis["fit"]["terms"], plain.analysis["fit"]["terms"]);
+  for (const char* term : {"N", "B", "K"}) {
+    EXPECT_NEAR(stepped.analysis["noise_model"][term]["value"].get<double>() /
+                    plain.analysis["noise_model"][term]["value"].get<double>(),
+                1.0, 0.01)
+        << term;
+  }
+  EXPECT_NEAR(stepped.analysis["systematic"]["coefficients"][1].get<double>(),
+              plain.analysis["systematic"]["coefficients"][1].get<double>(), 0.01);
+  EXPECT_EQ(stepped.analysis["random_bias_process"], plain.analysis["random_bias_process"]);
+  EXPECT_EQ(stepped.analysis["steps"]["count"], 0);
+}
+
 TEST(SensorEffects, MovingAverageIsFoundWithItsLength) {
   const test::TempDir dir;
   const Generated r =

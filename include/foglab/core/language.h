@@ -556,10 +556,11 @@ enum class Text {
   note_quantised,  ///< {lsb} {distinct} {examined} {level} {percent} {known or distorting}
   note_quantised_known,
   note_quantised_distorting,
-  note_minimum_at_edge,  ///< {start or end} {tau}
-  word_start,            ///< the start (of a range)
-  word_end,              ///< the end (of a range)
-  note_fit_degenerate,   ///< {the fit's outcome}
+  note_temperature_quantised,  ///< {lsb} {distinct} {changes} {mean hold s}
+  note_minimum_at_edge,        ///< {start or end} {tau}
+  word_start,                  ///< the start (of a range)
+  word_end,                    ///< the end (of a range)
+  note_fit_degenerate,         ///< {the fit's outcome}
   note_no_white,
   note_fit,  ///< {a sentence of the noise-model fit}
   fit_others_converged,

@@ -29,6 +29,7 @@
 #include "foglab/model/spikes.h"
 #include "foglab/model/steps.h"
 #include "foglab/model/systematic.h"
+#include "foglab/model/temperature_quantisation.h"
 #include "foglab/stats/allan.h"
 #include "foglab/stats/psd.h"
 
@@ -83,6 +84,9 @@ struct AnalysisResult {
   Spikes spikes;                           ///< what was found (and replaced) before the analysis
   BiasSteps steps;                         ///< the same for bias steps (levelled)
   OutputQuantisation output_quantisation;  ///< the output word's LSB, when the samples show one
+  /// The temperature channel's step, when its readings show one (the
+  /// temperature law is then fitted against the temperature between them).
+  TemperatureQuantisation temperature_quantisation;
   std::vector<Gap> gaps;                   ///< the record's gaps, as given (core/gaps.h)
   ClassVerdict verdict;
   /// The manual's eq. (17): the Allan deviation the fitted PSD implies,

@@ -58,6 +58,18 @@ struct OutputQuantisation {
   double white_variance_departure = 0.0;
 };
 
+/// The grid that sorted (ascending) values lie on: their distinct values,
+/// those equal to 1e-9 of the largest magnitude merged (a unit conversion
+/// leaves the last bits of a whole count of steps uneven), and, when there
+/// are at least 3 and at least 99 % of the gaps between neighbours are
+/// whole multiples of the smallest (to 1e-6 of it), that smallest gap, the
+/// step; else a step of 0.
+struct ValueGrid {
+  std::int64_t distinct_values = 0;
+  double step = 0.0;
+};
+ValueGrid value_grid(std::span<const double> sorted);
+
 /// Looks at up to `max_samples` samples of `rate_deg_h` (the first ones)
 /// sampled at `sample_rate_hz`.
 OutputQuantisation find_output_quantisation(std::span<const double> rate_deg_h,

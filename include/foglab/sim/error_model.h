@@ -57,6 +57,10 @@ struct TemperatureProfile {
   double start_c = 25.0;   ///< [degC]
   double span_c = 0.0;     ///< [degC] change over the run (ramp)
   double jitter_c = 0.0;   ///< [degC] 1-sigma white jitter of the sensor reading
+  /// [degC] the temperature sensor's step: the recorded temperature is
+  /// rounded to it, the rate follows the temperature before rounding (0:
+  /// not rounded).
+  double lsb_c = 0.0;
   std::vector<double> profile_time_s;         ///< [s] for kind = file, increasing
   std::vector<double> profile_temperature_c;  ///< [degC] for kind = file
 
