@@ -12,18 +12,21 @@ TemperatureQuantisation find_temperature_quantisation(std::span<const double> te
                                                       double sample_rate_hz) {
   TemperatureQuantisation q;
   const std::size_t n = temperature_c.size();
-  if (n < 100 || !(sample_rate_hz > 0.0)) return q;
-  // The readings of the runs (a new one at every change), while the changes
-  // stay at most a quarter of the samples: a channel that moves on most
-  // samples is not a staircase, and is left after a quarter of a pass.
-  std::vector<double> readings{temperature_c[0]};
+  if (n < 100 || !(sample_rate_hz > 0.0) || !std::isfinite(temperature_c[0])) return q;
+  // The changes, while they stay at most a quarter of the samples: a
+  // channel that moves on most samples is not a staircase, and is left
+  // after a quarter of a pass (nothing stored). Then the reading of each run.
+  std::size_t changes = 0;
   for (std::size_t k = 1; k < n; ++k) {
     if (!std::isfinite(temperature_c[k])) return q;
-    if (temperature_c[k] == temperature_c[k - 1]) continue;
-    readings.push_back(temperature_c[k]);
-    if (4 * (readings.size() - 1) > n) return q;
+    if (temperature_c[k] != temperature_c[k - 1] && 4 * ++changes > n) return q;
   }
-  q.changes = static_cast<std::int64_t>(readings.size() - 1);
+  std::vector<double> readings{temperature_c[0]};
+  readings.reserve(changes + 1);
+  for (std::size_t k = 1; k < n; ++k) {
+    if (temperature_c[k] != temperature_c[k - 1]) readings.push_back(temperature_c[k]);
+  }
+  q.changes = static_cast<std::int64_t>(changes);
   q.mean_hold_s = static_cast<double>(n) / static_cast<double>(readings.size()) / sample_rate_hz;
   std::sort(readings.begin(), readings.end());
   const ValueGrid grid = value_grid(readings);
