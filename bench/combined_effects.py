@@ -18,13 +18,11 @@ by hand, with the date.
 """
 import argparse
 import concurrent.futures as cf
-import json
-import os
 import subprocess
 import sys
 import tempfile
 
-from effects_study import FS_HZ, GRADES, HOURS
+from effects_study import FS_HZ, GRADES, run
 
 STUDY_GRADES = ("tactical-fog", "mems", "nav-fog")
 
@@ -60,22 +58,13 @@ def combinations(grade):
     }
 
 
-def run(foglab, workdir, grade_name, name, args, seed):
-    stem = os.path.join(workdir, f"{grade_name}_{name}_{seed}".replace("(", "").replace(")", ""))
-    model = []
-    for k, v in GRADES[grade_name].items():
-        model += [f"--{k}", str(v)]
-    subprocess.run([foglab, "generate", *model, *args, "--fs", str(FS_HZ), "--hours", str(HOURS),
-                    "--seed", str(seed), "--out", stem + ".mat", "--truth", stem + "_truth.json"],
-                   check=True, capture_output=True)
-    a = subprocess.run([foglab, "analyze", stem + ".mat", "--json", "-"], capture_output=True,
-                       text=True)
-    os.remove(stem + ".mat")
-    with open(stem + "_truth.json") as f:
-        truth = json.load(f)
-    if a.returncode != 0:
-        return truth, None, a.stderr.strip().splitlines()[-1:]
-    return truth, json.loads(a.stdout), []
+def run_or_fail(foglab, workdir, grade_name, name, args, seed):
+    """effects_study.run, with a failed run's last error line instead of an exception."""
+    try:
+        truth, r = run(foglab, workdir, grade_name, name, args, seed)
+        return truth, r, []
+    except subprocess.CalledProcessError as e:
+        return None, None, (e.stderr or b"").decode(errors="replace").strip().splitlines()[-1:]
 
 
 def judge(truth, r):
@@ -131,12 +120,12 @@ def main():
             for name, extra in combinations(GRADES[grade_name]).items():
                 for seed in range(1, args.seeds + 1):
                     jobs.append((grade_name, name, seed, pool.submit(
-                        run, args.foglab, work, grade_name, name, extra, seed)))
+                        run_or_fail, args.foglab, work, grade_name, name, extra, seed)))
         for grade_name, name, seed, job in jobs:
             truth, r, err = job.result()
             if r is None:
-                print(f"{grade_name:13s} {name:26s} seed {seed}: analyze failed: {err}")
-                tally.setdefault("analyze ran", [0, 0])[1] += 1
+                print(f"{grade_name:13s} {name:26s} seed {seed}: failed: {err}")
+                tally.setdefault("ran", [0, 0])[1] += 1
                 continue
             line, held = judge(truth, r)
             print(f"{grade_name:13s} {name:26s} seed {seed}: {line}", flush=True)
