@@ -36,30 +36,37 @@ FS_HZ = 100.0
 HOURS = 2.0
 
 
-def effects(grade):
-    sd = grade["N"] * FS_HZ ** 0.5
+def effects(grade, fs_hz=FS_HZ, hours=HOURS):
+    """The effects, sized by the grade's sample spread sd = N sqrt(fs); the
+    filters scale with the sample rate (the same correlation in samples),
+    the steps and dropouts with the record's length (at 100 Hz and 2 h:
+    the table's sizes)."""
+    sd = grade["N"] * fs_hz ** 0.5
+    at = lambda seconds_in_2h: f"{seconds_in_2h * hours / 2.0:.6g}"
     return {
         "none": [],
-        "low-pass": ["--filter-tc", "0.0054"],
+        "low-pass": ["--filter-tc", f"{0.54 / fs_hz:.6g}"],
         "moving-average": ["--moving-average", "4"],
-        "butterworth": ["--butterworth", "25"],
+        "butterworth": ["--butterworth", f"{fs_hz / 4:.6g}"],
         # two filters in a row, which no single modelled kind follows
-        "cascade": ["--moving-average", "3", "--filter-tc", "0.01"],
+        "cascade": ["--moving-average", "3", "--filter-tc", f"{1 / fs_hz:.6g}"],
         "lsb": ["--lsb", f"{0.5 * sd:.6g}"],
-        "sine": ["--sine", f"20:{3 * sd:.6g}"],
+        "sine": ["--sine", f"{fs_hz / 5:.6g}:{3 * sd:.6g}"],
         "spikes": ["--spikes", f"3:{20 * sd:.6g}"],
-        "steps": ["--step", f"2000:{0.5 * sd:.6g}", "--step", f"5000:{-0.4 * sd:.6g}"],
-        "gaps": ["--drop", "600:30", "--drop", "3000:0.5", "--drop", "5000:900"],
+        "steps": ["--step", f"{at(2000)}:{0.5 * sd:.6g}", "--step", f"{at(5000)}:{-0.4 * sd:.6g}"],
+        # 30 s (scaled), 50 samples, and 1/8 of the record
+        "gaps": ["--drop", f"{at(600)}:{at(30)}", "--drop", f"{at(3000)}:{50 / fs_hz:.6g}",
+                 "--drop", f"{at(5000)}:{at(900)}"],
     }
 
 
-def run(foglab, workdir, grade_name, effect_name, args, seed):
+def run(foglab, workdir, grade_name, effect_name, args, seed, fs_hz=FS_HZ, hours=HOURS):
     grade = GRADES[grade_name]
     stem = os.path.join(workdir, f"{grade_name}_{effect_name}_{seed}")
     model = []
     for k, v in grade.items():
         model += [f"--{k}", str(v)]
-    subprocess.run([foglab, "generate", *model, *args, "--fs", str(FS_HZ), "--hours", str(HOURS),
+    subprocess.run([foglab, "generate", *model, *args, "--fs", f"{fs_hz:g}", "--hours", f"{hours:g}",
                     "--seed", str(seed), "--out", stem + ".mat", "--truth", stem + "_truth.json"],
                    check=True, capture_output=True)
     a = subprocess.run([foglab, "analyze", stem + ".mat", "--json", "-"], check=True,
@@ -137,6 +144,9 @@ def main():
     p.add_argument("--grades", default=",".join(GRADES))
     p.add_argument("--effects", default="")
     p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--fs", type=float, default=FS_HZ, help="sample rate, Hz (default %(default)g)")
+    p.add_argument("--hours", type=float, default=HOURS,
+                   help="record length, h (default %(default)g)")
     p.add_argument("--misses", action="store_true",
                    help="list each truth parameter outside its 95 %% interval")
     args = p.parse_args()
@@ -145,12 +155,13 @@ def main():
           "95 % coverage | effect found |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
     for grade_name in args.grades.split(","):
-        chosen = effects(GRADES[grade_name])
+        chosen = effects(GRADES[grade_name], args.fs, args.hours)
         names = args.effects.split(",") if args.effects else list(chosen)
         for effect_name in names:
             with cf.ThreadPoolExecutor(args.jobs) as pool:
                 jobs = [pool.submit(run, args.foglab, work, grade_name, effect_name,
-                                    chosen[effect_name], seed) for seed in range(1, args.seeds + 1)]
+                                    chosen[effect_name], seed, args.fs, args.hours)
+                        for seed in range(1, args.seeds + 1)]
                 results = [j.result() for j in jobs]
             misses = [] if args.misses else None
             s = summarise(results, effect_name, misses)

@@ -200,12 +200,18 @@ nlohmann::json spikes_json(const model::AnalysisResult& r) {
   const model::Spikes& s = r.spikes;
   std::vector<double> times;
   for (std::int64_t k : s.indices) times.push_back(elapsed_s(k, r.gaps, r.sample_rate_hz));
-  return {{"count", s.count},
-          {"removed", s.removed},
-          {"robust_sd_deg_h", number(s.robust_sd_deg_h)},
-          {"threshold_deg_h", number(s.threshold_deg_h)},
-          {"times_s", times},
-          {"sizes_deg_h", numbers(s.sizes_deg_h)}};
+  return {
+      {"count", s.count},
+      {"removed", s.removed},
+      {"robust_sd_deg_h", number(s.robust_sd_deg_h)},
+      {"threshold_deg_h", number(s.threshold_deg_h)},
+      {"times_s", times},
+      {"sizes_deg_h", numbers(s.sizes_deg_h)},
+      {"shoulder_count", s.shoulder_count},
+      {"shoulder_expected", number(s.shoulder_expected)},
+      {"heavy_tailed", s.heavy_tailed},
+      {"tail_index", s.heavy_tailed ? number(s.tail_index) : nlohmann::json(nullptr)},
+      {"excess_kurtosis", s.heavy_tailed ? number(s.excess_kurtosis) : nlohmann::json(nullptr)}};
 }
 
 nlohmann::json steps_json(const model::AnalysisResult& r) {
@@ -290,6 +296,9 @@ nlohmann::json units_json() {
       {"spikes.threshold_deg_h", "deg/h"},
       {"spikes.times_s", "s"},
       {"spikes.sizes_deg_h", "deg/h"},
+      {"spikes.shoulder_count", "samples"},
+      {"spikes.shoulder_expected", "samples"},
+      {"spikes.tail_index", "1 (exponent of the tail's power law)"},
       {"output_quantisation.lsb_deg_h", "deg/h"},
       {"output_quantisation.white_level_deg_h_sqrt_hz", "deg/h/sqrt(Hz)"},
       {"output_quantisation.share_of_white_variance", "1 (of N^2)"},

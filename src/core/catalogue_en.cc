@@ -601,6 +601,9 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_left_in, ", left in"},
     {Text::an_spikes, "spikes"},
     {Text::an_spikes_value, "{} (beyond {} deg/h from their neighbours' mean){}"},
+    {Text::an_heavy_tail,
+     "; heavy-tailed noise (its tail a power {} of the size): its outliers are kept, a "
+     "spike departs by more than {} deg/h"},
     {Text::an_spikes_replaced, ", replaced by that mean"},
     {Text::an_quantisation, "output quantisation"},
     {Text::an_quantisation_value,
@@ -728,10 +731,19 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::note_steps_kept, "they were left in (not levelled)"},
     {Text::note_spikes,
      "{} spike(s): isolated samples departing from the mean of their neighbours by "
-     "more than {:.4g} deg/h ({:g} robust standard deviations); {}"},
+     "more than {:.4g} deg/h ({:.3g} robust standard deviations); {}"},
     {Text::note_spikes_replaced,
      "each was replaced by the mean of its neighbours before the analysis"},
     {Text::note_spikes_kept, "they were left in (not removed)"},
+    {Text::note_heavy_tail,
+     "the noise is heavy-tailed: {} samples depart from their neighbours' mean by 5 to 8 "
+     "robust standard deviations, where Gaussian noise would put {:.2g} (its tail falls "
+     "as a power {:.2g} of the size); these outliers are the noise's own and stay in the "
+     "record (the angle accumulates their variance too), and only a departure beyond "
+     "{:.4g} deg/h, which that tail reaches with probability 0.05 in the whole record, "
+     "is taken for a spike; N's 95 % interval is widened for the scatter such a noise "
+     "gives its sample variance (excess kurtosis {:.3g}), the other terms' intervals "
+     "assume Gaussian noise"},
     {Text::note_no_temperature,
      "no temperature: the systematic part is the mean rate only (removed by the "
      "statistics)"},

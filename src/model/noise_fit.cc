@@ -111,21 +111,60 @@ detail::BandwidthSearch find_bandwidth_and_line_scale(detail::Points& p,
 // 29-sample moving average on a 20 Hz record with Tc = 47 s). When the
 // chosen model has such a process (Tc beyond 100 samples, far from any
 // filter), the search is repeated with it in the reference, and a bandwidth
-// it no longer finds is dropped (with the candidates refitted).
+// it no longer finds is dropped (with the candidates refitted). The chosen
+// Tc was fitted beside the bandwidth, which can have taken the hump's short
+// side and pushed Tc out (a 108-sample moving average with 95 % of N^2 and
+// Tc 306 s, for a 100 s process on a 1 Hz record, N 4.5 times too high):
+// the Tc the best Gauss-Markov candidate has without any bandwidth is tried
+// as well, when it is a process the taus resolve (10 samples or more; the
+// ADIS16405's half-sample Gauss-Markov term is the filter itself).
+//
+// Conversely, that hump can hide a filter: on a 1 Hz record with a 100 s
+// process the reference bent its white level to the hump, no bandwidth
+// stood out, and N came out 6-17 % low with the first taus left out. When
+// none was found and a candidate has a process the taus resolve, the search
+// is repeated with the best such candidate's in the reference.
 void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
                        std::vector<detail::SubsetFit>& fits, const NoiseFitOptions& options) {
   constexpr double kSlowProcessSamples = 100.0;
-  if (!bandwidth.estimate.resolved || fits.empty() ||
-      !fits.front().terms.contains(NoiseTerm::gauss_markov) ||
+  constexpr double kResolvedProcessSamples = 10.0;
+  if (!bandwidth.estimate.resolved) {
+    // The best candidate with such a process (the chosen one can be without
+    // it while the filtered first taus spoil every fit).
+    const auto slow = std::find_if(fits.begin(), fits.end(), [&](const detail::SubsetFit& f) {
+      return f.terms.contains(NoiseTerm::gauss_markov) &&
+             f.tc >= kResolvedProcessSamples * p.sample_interval_s();
+    });
+    if (slow == fits.end()) return;
+    detail::Points with = p;
+    detail::BandwidthSearch found = detail::find_bandwidth(with, options, slow->tc);
+    if (!found.estimate.resolved) return;
+    p = std::move(with);
+    bandwidth = std::move(found);
+    fits = detail::fit_candidates(p, options);
+    return;
+  }
+  if (fits.empty() || !fits.front().terms.contains(NoiseTerm::gauss_markov) ||
       fits.front().tc < kSlowProcessSamples * p.sample_interval_s()) {
     return;
   }
-  detail::Points plain = p;
-  detail::BandwidthSearch again = detail::find_bandwidth(plain, options, fits.front().tc);
-  if (again.estimate.resolved) return;
-  p = std::move(plain);
-  bandwidth = std::move(again);
-  fits = detail::fit_candidates(p, options);
+  std::vector<double> tcs = {fits.front().tc};
+  detail::Points unfiltered = p;
+  detail::set_bandwidth_shapes(unfiltered, {});
+  for (const detail::SubsetFit& f : detail::fit_candidates(unfiltered, options)) {
+    if (!f.terms.contains(NoiseTerm::gauss_markov)) continue;
+    if (f.tc >= kResolvedProcessSamples * p.sample_interval_s()) tcs.push_back(f.tc);
+    break;
+  }
+  for (const double tc : tcs) {
+    detail::Points plain = p;
+    detail::BandwidthSearch again = detail::find_bandwidth(plain, options, tc);
+    if (again.estimate.resolved) continue;
+    p = std::move(plain);
+    bandwidth = std::move(again);
+    fits = detail::fit_candidates(p, options);
+    return;
+  }
 }
 
 // The result with fits.front() as the chosen model: its status, the

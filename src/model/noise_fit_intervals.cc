@@ -9,13 +9,13 @@
 #include <utility>
 
 #include "allan_covariance.h"
+#include "foglab/core/numeric.h"
 #include "noise_fit_internal.h"
 
 namespace foglab::model::detail {
 namespace {
 
-// The two-sided 95 % normal quantile and chi-square(1) point.
-constexpr double kZ95 = 1.959963984540054;
+// The chi-square(1) 95 % point (kZ95 squared; core/numeric.h).
 constexpr double kChi2_95 = 3.841458820694124;
 
 // How closely a near candidate must pin a random-bias coefficient (its 95 %

@@ -115,7 +115,22 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
   std::vector<double> p(y.size() + 1);
   for (int round = 0; round < options.max_steps; ++round) {
     p[0] = 0.0;
-    for (std::size_t k = 0; k < y.size(); ++k) p[k + 1] = p[k] + (y[k] - base(k) - mean);
+    auto v = [&](std::size_t k) { return y[k] - base(k) - mean; };
+    // An outlier's departure from its neighbours' mean, h; its neighbours
+    // depart by about -h/2 and are left (pulling them in would put back
+    // what was taken from it).
+    auto h = [&](std::size_t k) { return v(k) - 0.5 * (v(k - 1) + v(k + 1)); };
+    const double clip = options.outlier_clip_deg_h;
+    for (std::size_t k = 0; k < y.size(); ++k) {
+      double value = v(k);
+      if (clip > 0.0 && k > 0 && k + 1 < y.size()) {
+        const double hk = h(k);
+        const bool centre = (k < 2 || std::fabs(h(k - 1)) <= std::fabs(hk)) &&
+                            (k + 2 >= y.size() || std::fabs(h(k + 1)) <= std::fabs(hk));
+        if (std::fabs(hk) > clip && centre) value -= std::copysign(std::fabs(hk) - clip, hk);
+      }
+      p[k + 1] = p[k] + value;
+    }
     Candidate best;
     for (std::int64_t w = 64; 64 * w <= n; w *= 2) {
       const Candidate c = best_at(p, w, stretches);

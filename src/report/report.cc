@@ -402,10 +402,13 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
           : fmt::format("{}{}", r.steps.indices.size(),
                         say(l, r.steps.removed ? Text::an_steps_levelled : Text::an_left_in)));
   row(say(l, Text::an_spikes),
-      r.spikes.count == 0
-          ? say(l, Text::an_none)
-          : say(l, Text::an_spikes_value, r.spikes.count, g(r.spikes.threshold_deg_h),
-                say(l, r.spikes.removed ? Text::an_spikes_replaced : Text::an_left_in)));
+      (r.spikes.count == 0
+           ? say(l, Text::an_none)
+           : say(l, Text::an_spikes_value, r.spikes.count, g(r.spikes.threshold_deg_h),
+                 say(l, r.spikes.removed ? Text::an_spikes_replaced : Text::an_left_in))) +
+          (r.spikes.heavy_tailed
+               ? say(l, Text::an_heavy_tail, g(r.spikes.tail_index), g(r.spikes.threshold_deg_h))
+               : std::string()));
   row(say(l, Text::an_quantisation),
       r.output_quantisation.detected
           ? say(l, Text::an_quantisation_value, g(r.output_quantisation.lsb_deg_h),

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "support/noise.h"
@@ -21,6 +22,67 @@ std::vector<double> coarse_word(std::size_t n, std::uint64_t seed) {
   std::vector<double> y = test::mt_normal(n, seed, 2.0, 1.0);
   for (double& v : y) v = std::round(v / 10.0) * 10.0;
   return y;
+}
+
+// Student's t noise of unit variance: a heavy tail of power `dof`.
+std::vector<double> student(std::size_t n, double dof, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
+  std::student_t_distribution<double> t(dof);
+  std::vector<double> y(n);
+  for (double& v : y) v = t(engine) * std::sqrt((dof - 2.0) / dof);
+  return y;
+}
+
+TEST(Spikes, AHeavyTailedNoiseKeepsItsOutliers) {
+  // t with 3 degrees of freedom: at 8 robust standard deviations the fixed
+  // threshold took about 750 of 7.2 x 10^5 samples for spikes (its tail
+  // holds 17 % of the variance).
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    std::vector<double> y = student(720000, 3.0, seed);
+    const std::vector<double> before = y;
+    const Spikes s = find_spikes(y);
+    EXPECT_TRUE(s.heavy_tailed) << seed;
+    EXPECT_GT(s.shoulder_count, 1000) << seed;
+    EXPECT_LT(s.shoulder_expected, 1.0) << seed;
+    EXPECT_NEAR(s.tail_index, 3.0, 0.6) << seed;
+    EXPECT_EQ(s.count, 0) << seed;
+    EXPECT_EQ(y, before) << seed;
+    // A departure far beyond the tail is a spike still.
+    y[4321] += 50.0 * s.threshold_deg_h;
+    const Spikes again = find_spikes(y);
+    ASSERT_EQ(again.count, 1) << seed;
+    EXPECT_EQ(again.indices[0], 4321) << seed;
+  }
+}
+
+TEST(Spikes, AHeavyTailedNoisesKurtosisIsMeasuredFromItsDifferences) {
+  // t with 10 degrees of freedom: excess kurtosis 6 / (10 - 4) = 1; the
+  // difference of two samples has half of it.
+  for (std::uint64_t seed = 4; seed <= 6; ++seed) {
+    std::vector<double> y = student(720000, 10.0, seed);
+    const Spikes s = find_spikes(y);
+    ASSERT_TRUE(s.heavy_tailed) << seed;
+    EXPECT_NEAR(s.excess_kurtosis, 1.0, 0.35) << seed;
+  }
+  std::vector<double> g = white(720000, 7);
+  EXPECT_EQ(find_spikes(g).excess_kurtosis, 0.0);  // not heavy-tailed: not measured
+}
+
+TEST(Spikes, ManySpikesInGaussianNoiseAreNotATail) {
+  // 200 spikes of 9 to 30 robust standard deviations: their neighbours
+  // depart by half of them, into the 4-8 band, and are not outlier
+  // centres; nothing of Gaussian noise is in the 5-8 band.
+  std::vector<double> y = white(720000, 8);
+  std::mt19937_64 engine(9);
+  std::uniform_real_distribution<double> size(9.0, 30.0);
+  const double sd_h = std::sqrt(1.5);
+  for (std::size_t i = 0; i < 200; ++i)
+    y[1000 + 3500 * i] += (i % 2 ? 1.0 : -1.0) * size(engine) * sd_h;
+  const Spikes s = find_spikes(y);
+  EXPECT_FALSE(s.heavy_tailed);
+  EXPECT_LE(s.shoulder_count, 5);
+  EXPECT_EQ(s.count, 200);
+  EXPECT_NEAR(s.threshold_deg_h, 8.0 * sd_h, 0.2);
 }
 
 TEST(Spikes, OneStepExcursionsOfACoarseOutputWordAreNone) {
@@ -60,6 +122,8 @@ TEST(Spikes, NoneInGaussianNoiseAndAStepIsNotASpike) {
   const std::vector<double> before = y;
   const Spikes s = find_spikes(y);
   EXPECT_EQ(s.count, 0);
+  EXPECT_FALSE(s.heavy_tailed);
+  EXPECT_LT(s.shoulder_count, 10);  // expected 0.57 in 10^6 samples
   EXPECT_EQ(y, before);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "foglab/model/spikes.h"
 #include "support/noise.h"
 
 namespace foglab::model {
@@ -111,6 +112,37 @@ TEST(Steps, AreFoundOnTopOfACurvedBaseline) {
   double end = 0.0;  // the last 10,000 samples still carry the law
   for (std::size_t k = n - 10000; k < n; ++k) end += y[k] - law[k];
   EXPECT_NEAR(end / 1e4, 0.0, 0.1);
+}
+
+TEST(Steps, AHeavyTailedNoisesOutliersAreNoSteps) {
+  // t with 3 degrees of freedom (unit variance): a single sample of 60
+  // sd moves a 64-sample window's mean by a step of 6 spreads of D, and
+  // the search had found up to 20 steps about such samples. Pulled in to 5
+  // robust spreads of h for the search, they are none, and a real step of
+  // 0.3 sd is still found once.
+  std::mt19937_64 engine(11);
+  std::student_t_distribution<double> t(3.0);
+  std::vector<double> y(720000);
+  for (double& v : y) v = t(engine) / std::sqrt(3.0);
+  std::vector<double> z = y;
+  StepOptions heavy;
+  heavy.outlier_clip_deg_h = 5.0 * find_spikes(z, {.remove = false}).robust_sd_deg_h;
+  EXPECT_GE(find_steps(z).indices.size(), 2u);  // without: the failure
+  z = y;
+  EXPECT_TRUE(find_steps(z, heavy).indices.empty());
+  for (std::size_t k = 400000; k < y.size(); ++k) y[k] += 0.3;
+  const std::vector<double> before = y;
+  const BiasSteps s = find_steps(y, heavy);
+  ASSERT_EQ(s.indices.size(), 1u);
+  EXPECT_NEAR(static_cast<double>(s.indices[0]), 400000.0, 500.0);
+  EXPECT_NEAR(s.sizes_deg_h[0], 0.3, 0.05);
+  // Levelled in the record itself, the outliers kept.
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    ASSERT_NEAR(
+        y[k],
+        k >= static_cast<std::size_t>(s.indices[0]) ? before[k] - s.sizes_deg_h[0] : before[k],
+        1e-12);
+  }
 }
 
 TEST(Steps, ABadBaselineOrGapIsAUsageError) {

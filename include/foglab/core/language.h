@@ -452,6 +452,7 @@ enum class Text {
   an_left_in,                    ///< follows a count of steps or spikes
   an_spikes,                     ///< "spikes"
   an_spikes_value,               ///< {count} {threshold} {replaced or left in}
+  an_heavy_tail,                 ///< {tail index} {threshold}
   an_spikes_replaced,            ///< ", replaced by that mean"
   an_quantisation,               ///< "output quantisation"
   an_quantisation_value,         ///< {lsb} {white level}
@@ -552,6 +553,7 @@ enum class Text {
   note_spikes,  ///< {count} {threshold} {sds} {replaced or kept}
   note_spikes_replaced,
   note_spikes_kept,
+  note_heavy_tail,  ///< {shoulder count} {Gaussian's} {alpha} {threshold} {excess kurtosis}
   note_no_temperature,
   note_quantised,  ///< {lsb} {distinct} {examined} {level} {percent} {known or distorting}
   note_quantised_known,

@@ -102,4 +102,7 @@ int worker_threads();
 /// bits between a processor with AVX2 and one without.)
 inline constexpr std::size_t kChunkSamples = std::size_t{1} << 16;
 
+/// The two-sided 95 % point of the standard normal distribution.
+inline constexpr double kZ95 = 1.959963984540054;
+
 }  // namespace foglab

@@ -32,6 +32,12 @@ struct StepOptions {
   bool remove = true;      ///< level them (else only report them)
   double threshold = 6.0;  ///< robust spreads of D
   int max_steps = 20;
+  /// > 0: for the search only, a sample departing from its neighbours'
+  /// mean by more than this [deg/h] is pulled in to that distance (the
+  /// record keeps it). The analysis sets it for heavy-tailed noise
+  /// (spikes.h), whose single outliers, left in as the noise's own, would
+  /// move a window mean as a step does.
+  double outlier_clip_deg_h = 0.0;
 };
 
 struct BiasSteps {
