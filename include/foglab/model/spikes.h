@@ -6,11 +6,13 @@
 // h_k = y_k - (y_(k-1) + y_(k+1)) / 2, by more than `threshold` robust
 // standard deviations of h (1.4826 times the median absolute deviation of
 // h, which a few spikes do not move; with an output word so coarse that
-// this median is 0, the root mean square of h stands in). For Gaussian noise 8 of them is a false
-// alarm about once in 10^15 samples. Each spike is replaced by the mean of its neighbours (a single
-// sample's noise is lost, nothing is interpolated over a stretch); a spike's neighbours must each
-// depart from their own neighbours by minus half of it, to within half the threshold, so a bias
-// step or a run of two or more outlying samples is not a spike and is left alone.
+// this median is 0, the root mean square of h stands in). For Gaussian
+// noise 8 of them is a false alarm about once in 10^15 samples. Each spike
+// is replaced by the mean of its neighbours (a single sample's noise is
+// lost, nothing is interpolated over a stretch); a spike's neighbours must
+// each depart from their own neighbours by minus half of it, to within
+// half the threshold, so a bias step or a run of two or more outlying
+// samples is not a spike and is left alone.
 //
 // Heavy-tailed noise. Some sensors' noise is not Gaussian: bursts put
 // outliers of every size into it, and a fixed threshold takes its tail for
