@@ -299,6 +299,7 @@ nlohmann::json units_json() {
       {"spikes.shoulder_count", "samples"},
       {"spikes.shoulder_expected", "samples"},
       {"spikes.tail_index", "1 (exponent of the tail's power law)"},
+      {"spikes.excess_kurtosis", "1"},
       {"output_quantisation.lsb_deg_h", "deg/h"},
       {"output_quantisation.white_level_deg_h_sqrt_hz", "deg/h/sqrt(Hz)"},
       {"output_quantisation.share_of_white_variance", "1 (of N^2)"},
