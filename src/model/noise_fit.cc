@@ -124,9 +124,9 @@ detail::BandwidthSearch find_bandwidth_and_line_scale(detail::Points& p,
 // Conversely, that hump can hide a filter: on a 1 Hz record with a 100 s
 // process the reference bent its white level to the hump, no bandwidth
 // stood out, and a 0.54 s low-pass left N 6-7 % low with the first taus
-// left out. When
-// none was found and a candidate has a process the taus resolve, the search
-// is repeated with the best such candidate's in the reference.
+// left out. When none was found and a candidate has a process the taus
+// resolve, the search is repeated with the best such candidate's in the
+// reference.
 void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
                        std::vector<detail::SubsetFit>& fits, const NoiseFitOptions& options) {
   constexpr double kSlowProcessSamples = 100.0;
