@@ -14,9 +14,12 @@ corpus="$build/corpus/$target"
 mkdir -p "$findings" "$corpus"
 # matio/HDF5 keep global state at exit (no leak checks here); a small
 # quarantine keeps ASan from counting freed memory against the RSS limit;
-# an impossible allocation returns NULL as glibc's would (matio checks it)
-# instead of aborting, and libFuzzer judges memory by the RSS limit alone.
-export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:quarantine_size_mb=64:allocator_may_return_null=1
+# an allocation above 2 GB returns NULL, as on a machine without that much
+# memory (matio checks it), instead of aborting; and libFuzzer judges memory
+# by the RSS limit alone. (Without the 2 GB cap ASan would grant a 40 GB
+# request that glibc refuses, and write its 5 GB of shadow: the RSS limit
+# fails the run although the native build never touches the memory.)
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:quarantine_size_mb=64:allocator_may_return_null=1:max_allocation_size_mb=2048
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 limits=(-rss_limit_mb=4096 -malloc_limit_mb=1048576)
 

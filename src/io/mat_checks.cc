@@ -54,34 +54,90 @@ std::uint32_t decode_u32(const unsigned char* bytes, bool little_endian) {
                                      index, offset, needed, remaining));
 }
 
-// An uncompressed matrix element starts with the sub-elements array flags,
-// dimensions and name, each "type, size, data" (or, when the size fits in
-// the upper half of the type word, "small" with the data in 4 bytes). Each
-// must fit inside the element: matio allocates what a sub-element claims
-// before reading it (a 4 GB name in an 848-byte element was a fuzzing
-// finding, fuzz/regressions/mat_reader/).
+// An uncompressed matrix element starts with three sub-elements, each
+// "type, size, data": the array flags, the dimensions and the name. matio
+// (1.5, mat5.c: Mat_VarReadNextInfo5) reads them as it finds them and
+// allocates what they claim before reading it, so each claim is checked
+// here against the element, read the way matio reads it:
+// - the first 24 bytes are always the flags' tag, the flags (8 bytes) and
+//   the dimensions' tag, in the long form;
+// - dimensions of type int32 are size/4 numbers, allocated as 8 bytes each
+//   (a 4 GB claim in a 56-byte element: an 8.5 GB allocation);
+// - the name's tag is the long form when its type word is exactly int8,
+//   else the short one (up to 4 characters inside the tag);
+// - a cell array, a structure or a function handle then allocates a
+//   pointer per element; each element is at least a tag (8 bytes) of what
+//   follows in the element.
+// Fuzzing findings, fuzz/regressions/mat_reader/ (a 4 GB name in an
+// 848-byte element, the dimensions above).
 void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::size_t index,
                               std::uint64_t offset, std::uint32_t bytes, bool little_endian) {
-  std::uint64_t at = 0;  // within the element's data
-  for (int sub = 0; sub < 3 && at + 8 <= bytes; ++sub) {
-    unsigned char tag[8];
-    if (!read_at(file, offset + 8 + at, tag, sizeof(tag))) {
+  const auto corrupt = [&](const std::string& what) {
+    throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) {}",
+                                       index, offset, what));
+  };
+  const auto read_words = [&](std::uint64_t at, std::uint32_t* words, std::size_t count) {
+    unsigned char raw[24];
+    if (!read_at(file, offset + 8 + at, raw, 4 * count)) {
       throw_data_error(path, fmt::format("cannot read the MAT file at byte {}", offset + 8 + at));
     }
-    const std::uint32_t word = decode_u32(tag, little_endian);
-    if ((word >> 16) != 0) {  // small data element: 4 bytes of data in the tag's second word
-      at += 8;
-      continue;
+    for (std::size_t k = 0; k < count; ++k) words[k] = decode_u32(raw + 4 * k, little_endian);
+  };
+  const auto check_claim = [&](const char* part, std::uint64_t at, std::uint64_t claimed) {
+    if (at + 8 + claimed > bytes) {
+      corrupt(fmt::format("has {} claiming {} bytes where its {}-byte element has only {} left",
+                          part, claimed, bytes, bytes - std::min<std::uint64_t>(bytes, at + 8)));
     }
-    const std::uint64_t sub_bytes = decode_u32(tag + 4, little_endian);
-    const std::uint64_t padded = (sub_bytes + 7) / 8 * 8;
-    if (at + 8 + sub_bytes > bytes) {
-      throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) "
-                                         "has a part claiming {} bytes where its {}-byte "
-                                         "element has only {} left",
-                                         index, offset, sub_bytes, bytes, bytes - at - 8));
+  };
+  if (bytes < 24) {
+    corrupt(
+        fmt::format("is a {}-byte matrix, shorter than the 24 bytes of its array flags and "
+                    "dimensions tag",
+                    bytes));
+  }
+  std::uint32_t head[6];  // flags tag (2 words), flags (2), dimensions tag (2)
+  read_words(0, head, 6);
+  const std::uint32_t matrix_class = head[2] & 0xffu;
+  const bool has_pointers =
+      matrix_class == MAT_C_CELL || matrix_class == MAT_C_STRUCT || matrix_class == MAT_C_FUNCTION;
+  std::uint64_t at = 16;  // the dimensions' tag
+  double elements = 1.0;
+  if (head[4] == MAT_T_INT32) {
+    const std::uint64_t dims_bytes = head[5];
+    check_claim("dimensions", at, dims_bytes);
+    if (has_pointers) {
+      unsigned char dim[4];
+      for (std::uint64_t k = 0; k + 4 <= dims_bytes; k += 4) {
+        if (!read_at(file, offset + 8 + at + 8 + k, dim, sizeof(dim))) {
+          throw_data_error(
+              path, fmt::format("cannot read the MAT file at byte {}", offset + 8 + at + 8 + k));
+        }
+        elements *= decode_u32(dim, little_endian);
+      }
     }
-    at += 8 + padded;
+    at += 8 + (dims_bytes + 7) / 8 * 8;
+  } else {
+    at += 8;  // matio refuses dimensions of any other type
+  }
+  if (at + 8 > bytes) {  // matio would take the name's tag from what follows the element
+    corrupt(fmt::format("ends at byte {} of {} of its element, before its name", at, bytes));
+  }
+  std::uint32_t name_tag[2];
+  read_words(at, name_tag, 2);
+  if (name_tag[0] == MAT_T_INT8) {
+    check_claim("a name", at, name_tag[1]);
+    at += 8 + (std::uint64_t{name_tag[1]} + 7) / 8 * 8;
+  } else {
+    at += 8;
+  }
+  if (has_pointers) {
+    const double rest = at < bytes ? static_cast<double>(bytes - at) : 0.0;
+    if (elements * 8.0 > rest) {
+      corrupt(
+          fmt::format("claims {} elements of a cell, structure or function array in the "
+                      "{} bytes left of its element",
+                      elements, rest));
+    }
   }
 }
 

@@ -283,6 +283,11 @@ INSTANTIATE_TEST_SUITE_P(Issue7, CliFuzzFinding,
                              // An uncompressed v5 matrix whose name claims 4 GB inside an
                              // 848-byte element, which matio allocated.
                              FuzzFinding{"oom-v5-name-length", {"variable #2", "4143972352 bytes"}},
+                             // An uncompressed v5 matrix whose dimensions claim 4 GB inside
+                             // a 56-byte element (matio allocated 8.5 GB for them); its array
+                             // flags' tag reads as a short one, which had misled the check.
+                             FuzzFinding{"oom-v5-dims-size",
+                                         {"variable #1", "dimensions claiming 4278190088 bytes"}},
                              // A compressed v5 header whose inflated dimensions are huge.
                              FuzzFinding{"oom-v5-compressed-header", {"corrupt"}},
                              // A damaged v7.3 file on which HDF5 1.10 segfaults inside

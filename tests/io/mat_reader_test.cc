@@ -518,6 +518,43 @@ TEST_F(DamagedMatTest, ImpossibleDimensionsAreRefusedBeforeAllocating) {
   expect_data_error(path, "claims 2000000000x1 double elements, more than a");
 }
 
+TEST_F(DamagedMatTest, DimensionsClaimingMoreThanTheirElementAreRefusedBeforeAllocating) {
+  // matio allocates 8 bytes per claimed 4-byte dimension before reading
+  // them: this claim would have been an 8.5 GB allocation. matio reads the
+  // array flags' tag in the long form whatever its type word says; the
+  // fuzzing finding's type word read as a short tag, which had walked the
+  // check past the dimensions.
+  const std::string path = good("v5.mat", MAT_FT_MAT5, MAT_COMPRESSION_NONE);
+  std::vector<unsigned char> bytes = read_bytes(path);
+  // Y1's element at byte 192: tag (8), array flags (tag 8, flags 8), then
+  // the dimensions' tag: type int32 (5) and its size, 8 bytes for two.
+  const auto set_word = [&](std::size_t at, std::uint32_t value) {
+    std::memcpy(bytes.data() + at, &value, 4);
+  };
+  std::uint32_t size = 0;
+  std::memcpy(&size, bytes.data() + 192 + 8 + 16 + 4, 4);
+  ASSERT_EQ(size, 8u);
+  set_word(192 + 8, 0x00060000u);           // the flags' type word, as found
+  set_word(192 + 8 + 12, 1u);               // the flags' second word
+  set_word(192 + 8 + 16 + 4, 0xff000008u);  // the dimensions' size
+  write_bytes(path, bytes);
+  expect_data_error(path, "variable #2 (at byte 192) has dimensions claiming 4278190088 bytes");
+}
+
+TEST_F(DamagedMatTest, ACellArrayOfMoreElementsThanItsBytesIsRefusedBeforeAllocating) {
+  // Y1 turned into a cell array (class 1) of 2,000,000 x 1: matio would
+  // allocate a pointer per cell, which 8,000 bytes of data cannot hold.
+  const std::string path = good("v5.mat", MAT_FT_MAT5, MAT_COMPRESSION_NONE);
+  std::vector<unsigned char> bytes = read_bytes(path);
+  const std::size_t class_byte = 192 + 8 + 8;
+  ASSERT_EQ(bytes[class_byte], MAT_C_DOUBLE);
+  bytes[class_byte] = MAT_C_CELL;
+  const std::int32_t rows = 2000000;
+  std::memcpy(bytes.data() + 192 + 8 + 16 + 8, &rows, 4);
+  write_bytes(path, bytes);
+  expect_data_error(path, "claims 2000000 elements of a cell, structure or function array");
+}
+
 TEST_F(DamagedMatTest, TruncatedV73IsReportedThroughHdf5) {
   // HDF5 opens the file only to log "File has been truncated"; without our
   // log function it would print its error stack to stderr.
