@@ -35,6 +35,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "foglab/core/error.h"
@@ -49,24 +50,24 @@ namespace {
 // decides what the file is — text with "\n", "\r\n" or "\r" line ends,
 // UTF-16 with a byte-order mark (converted to UTF-8 with iconv), or binary
 // data (a NUL byte, a MAT or HDF5 signature), which is refused at once.
+// The file and the converter are owned by their members, so that they are
+// closed when the constructor throws (a binary or HDF5 file refused on its
+// first block), which runs no destructor: each refused file had left its
+// descriptor open, and a long run (the fuzzer's) ran out of them.
 class LineReader {
  public:
   explicit LineReader(const std::string& path) : path_(path) {
     if (path == "-") {
       file_ = stdin;
     } else {
-      file_ = std::fopen(path.c_str(), "rb");
-      if (file_ == nullptr) {
+      owned_file_.reset(std::fopen(path.c_str(), "rb"));
+      if (owned_file_ == nullptr) {
         throw UsageError(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
       }
-      owned_ = true;
+      file_ = owned_file_.get();
     }
     buffer_.resize(kBlockBytes);
     first_block();
-  }
-  ~LineReader() {
-    if (owned_) std::fclose(file_);
-    if (converter_ != nullptr) iconv_close(converter_);
   }
   LineReader(const LineReader&) = delete;
   LineReader& operator=(const LineReader&) = delete;
@@ -121,13 +122,13 @@ class LineReader {
     const std::string_view head(reinterpret_cast<const char*>(raw_.data()), got);
     const bool le = head.starts_with("\xFF\xFE");
     if (le || head.starts_with("\xFE\xFF")) {
-      converter_ = iconv_open("UTF-8", le ? "UTF-16LE" : "UTF-16BE");
-      if (converter_ == reinterpret_cast<iconv_t>(-1)) {
-        converter_ = nullptr;
+      const iconv_t converter = iconv_open("UTF-8", le ? "UTF-16LE" : "UTF-16BE");
+      if (converter == reinterpret_cast<iconv_t>(-1)) {
         throw_data_error(path_,
                          "the file is UTF-16 text, which this system cannot convert: "
                          "save it as UTF-8");
       }
+      converter_.reset(converter);
       raw_.erase(raw_.begin(), raw_.begin() + 2);
       convert();
     } else {
@@ -176,7 +177,7 @@ class LineReader {
     std::size_t in_left = raw_.size();
     char* out = buffer_.data() + end_;
     std::size_t out_left = buffer_.size() - end_;
-    const std::size_t result = iconv(converter_, &in, &in_left, &out, &out_left);
+    const std::size_t result = iconv(converter_.get(), &in, &in_left, &out, &out_left);
     if (result == static_cast<std::size_t>(-1) && errno == EILSEQ) {
       throw_data_error(path_,
                        fmt::format("the UTF-16 text is not valid near line {}", line_number_ + 1));
@@ -214,12 +215,19 @@ class LineReader {
     }
   }
 
+  struct FileCloser {
+    void operator()(std::FILE* file) const { std::fclose(file); }
+  };
+  struct ConverterCloser {
+    void operator()(iconv_t converter) const { iconv_close(converter); }
+  };
+
   std::string path_;
-  std::FILE* file_ = nullptr;
-  bool owned_ = false;
+  std::unique_ptr<std::FILE, FileCloser> owned_file_;
+  std::FILE* file_ = nullptr;  // owned_file_, or standard input
   std::vector<char> buffer_;
   std::vector<unsigned char> raw_;  // UTF-16 bytes not yet converted
-  iconv_t converter_ = nullptr;
+  std::unique_ptr<std::remove_pointer_t<iconv_t>, ConverterCloser> converter_;
   char line_end_ = '\n';
   std::size_t begin_ = 0;
   std::size_t end_ = 0;

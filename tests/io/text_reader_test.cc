@@ -394,6 +394,27 @@ TEST_F(TextReaderTest, AMatFileUnderAnotherNameIsRecognised) {
               HasSubstr("'" + path + "': this is a MAT file, not text"));
 }
 
+TEST_F(TextReaderTest, AFileRefusedOnItsFirstBlockIsClosed) {
+  // Binary, MAT and HDF5 files are refused while the reader is being
+  // constructed; each had left its descriptor open (a fuzzing finding: a
+  // long run ran out of descriptors).
+  const auto open_descriptors = [] {
+    return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator{});
+  };
+  const std::string binary = write("record.dat", std::string("\x01\x02\xf0\x3f\x00\x02", 6));
+  const std::string mat = write("record.txt",
+                                "MATLAB 5.0 MAT-file, Platform: x, Created on: Sat Nov 21\n"
+                                "  \x00\x01IM\x0e\x00\x00\x00");
+  const std::string hdf5 = write("record.csv", std::string("\x89HDF\r\n\x1a\n", 8));
+  const auto before = open_descriptors();
+  for (int k = 0; k < 20; ++k) {
+    for (const std::string& path : {binary, mat, hdf5}) {
+      EXPECT_THROW(read_series(path, with_fs(1.0)), DataError) << path;
+    }
+  }
+  EXPECT_EQ(open_descriptors(), before);
+}
+
 TEST_F(TextReaderTest, HeaderWithoutRowsIsReported) {
   const std::string path = write("header.csv", "# only names\nt,rate\n\n# nothing else\n");
   EXPECT_EQ(message_of<DataError>([&] { read_series(path, {}); }),
