@@ -2,7 +2,7 @@
 // mode change, a knock that shifts the sensor), found and levelled before
 // the statistics, with what was done stated.
 //
-// At window lengths W = 64, 128, ... samples (up to a sixteenth of the
+// At window lengths W = 64, 128, ... samples (up to a 64th of the
 // record) the difference D(k) between the means of the W samples after k
 // and the W before is compared with its own robust spread (1.4826 times the
 // median absolute deviation from the median of D over the record, which a
