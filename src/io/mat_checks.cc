@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -65,9 +66,10 @@ std::uint32_t decode_u32(const unsigned char* bytes, bool little_endian) {
 //   (a 4 GB claim in a 56-byte element: an 8.5 GB allocation);
 // - the name's tag is the long form when its type word is exactly int8,
 //   else the short one (up to 4 characters inside the tag);
-// - a cell array, a structure or a function handle then allocates a
-//   pointer per element; each element is at least a tag (8 bytes) of what
-//   follows in the element.
+// - a cell array or a function handle then allocates a pointer per
+//   element, a structure one per element and field (after its field
+//   names); each is at least a tag (8 bytes) of what follows in the
+//   element.
 // Fuzzing findings, fuzz/regressions/mat_reader/ (a 4 GB name in an
 // 848-byte element, the dimensions above).
 void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::size_t index,
@@ -130,13 +132,39 @@ void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::siz
   } else {
     at += 8;
   }
+  // A structure's field names come first: a tag giving their length (type
+  // int32, either form), then their characters (a long int8 tag; matio
+  // allocates what it claims); a pointer per element and field follows.
+  // Without fields nothing is allocated for the elements.
+  double pointers_per_element = 1.0;
+  if (matrix_class == MAT_C_STRUCT) {
+    pointers_per_element = 0.0;
+    if (at + 16 <= bytes) {
+      std::uint32_t length_tag[2], names_tag[2];
+      read_words(at, length_tag, 2);
+      read_words(at + 8, names_tag, 2);
+      if ((length_tag[0] & 0xffffu) == MAT_T_INT32 && length_tag[1] > 0 &&
+          names_tag[0] == MAT_T_INT8) {
+        check_claim("field names", at + 8, names_tag[1]);
+        pointers_per_element = std::floor(double{names_tag[1]} / length_tag[1]);
+        at += 16 + (std::uint64_t{names_tag[1]} + 7) / 8 * 8;
+      }
+    }
+  }
   if (has_pointers) {
+    // Each element (or field of one) is at least a tag of what follows.
     const double rest = at < bytes ? static_cast<double>(bytes - at) : 0.0;
-    if (elements * 8.0 > rest) {
+    const double parts = elements * pointers_per_element;
+    if (parts * 8.0 > rest) {
+      const std::string what =
+          matrix_class == MAT_C_CELL ? fmt::format("{} cells", elements)
+          : matrix_class == MAT_C_STRUCT
+              ? fmt::format("{} elements of {} fields", elements, pointers_per_element)
+              : fmt::format("{} function handles", elements);
       corrupt(
-          fmt::format("claims {} elements of a cell, structure or function array in the "
-                      "{} bytes left of its element",
-                      elements, rest));
+          fmt::format("claims {} in the {} bytes left of its element, which can hold at "
+                      "most {}",
+                      what, rest, std::floor(rest / 8.0)));
     }
   }
 }

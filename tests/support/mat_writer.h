@@ -126,6 +126,38 @@ class MatWriter {
         Mat_VarCreate("data", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, vdims, values.data(), 0));
     write(var);
   }
+  /// A 1 x n structure array with `fields` fields, every value an empty
+  /// double (no fields at all with 0).
+  void structure_array(const std::string& name, std::size_t n, std::size_t fields) {
+    std::vector<std::string> names;
+    std::vector<const char*> pointers;
+    for (std::size_t f = 0; f < fields; ++f) names.push_back("field" + std::to_string(f));
+    for (const std::string& field : names) pointers.push_back(field.c_str());
+    std::size_t dims[2] = {1, n};
+    matvar_t* var =
+        Mat_VarCreateStruct(name.c_str(), 2, dims, fields > 0 ? pointers.data() : nullptr,
+                            static_cast<unsigned>(fields));
+    std::size_t empty[2] = {0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const std::string& field : names) {
+        Mat_VarSetStructFieldByName(
+            var, field.c_str(), i,
+            Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, empty, nullptr, 0));
+      }
+    }
+    write(var);
+  }
+  /// A 1 x n cell array of empty doubles.
+  void empty_cells(const std::string& name, std::size_t n) {
+    std::size_t dims[2] = {1, n};
+    matvar_t* var = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
+    std::size_t empty[2] = {0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      Mat_VarSetCell(var, static_cast<int>(i),
+                     Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, empty, nullptr, 0));
+    }
+    write(var);
+  }
   /// A 1x1 cell holding `values` as a column.
   void cell(const std::string& name, std::vector<double> values) {
     std::size_t dims[2] = {1, 1};
