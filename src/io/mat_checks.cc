@@ -146,7 +146,7 @@ void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::siz
       if ((length_tag[0] & 0xffffu) == MAT_T_INT32 && length_tag[1] > 0 &&
           names_tag[0] == MAT_T_INT8) {
         check_claim("field names", at + 8, names_tag[1]);
-        pointers_per_element = std::floor(double{names_tag[1]} / length_tag[1]);
+        pointers_per_element = std::floor(static_cast<double>(names_tag[1]) / length_tag[1]);
         at += 16 + (std::uint64_t{names_tag[1]} + 7) / 8 * 8;
       }
     }
