@@ -187,6 +187,29 @@ std::optional<double> mat4_variable_bytes(const unsigned char* header, bool litt
              (field[3] != 0 ? 2 : 1);
 }
 
+// The byte order matio 1.5 reads a v4 header in (mat4.c,
+// Mat_VarReadNextInfo4): the type word read in this machine's order
+// (little-endian), swapped when that is outside 0-4052; then the type's
+// thousands digit M, 0 for little-endian and 1 for big-endian, orders the
+// rest. Nothing when matio would find no v4 header there.
+std::optional<bool> mat4_little_endian(const unsigned char* header) {
+  auto type = static_cast<std::int32_t>(decode_u32(header, true));
+  if (type < 0 || type > 4052) type = static_cast<std::int32_t>(decode_u32(header, false));
+  if (type < 0 || type > 4052 || type / 1000 > 1) return std::nullopt;
+  return type / 1000 == 0;
+}
+
+// The bytes of a v4 variable in the byte order matio reads it in: the
+// whole variable when its type is valid there, else the header and the
+// name (which matio allocates first whatever the type says); nothing when
+// matio would find no v4 header.
+std::optional<double> mat4_claimed_bytes(const unsigned char* header) {
+  const std::optional<bool> little_endian = mat4_little_endian(header);
+  if (!little_endian) return std::nullopt;
+  if (const std::optional<double> whole = mat4_variable_bytes(header, *little_endian)) return whole;
+  return 20.0 + decode_u32(header + 16, *little_endian);
+}
+
 }  // namespace
 
 // v5/v7: a 128-byte header, then elements "type (4 bytes), size (4 bytes),
@@ -250,8 +273,9 @@ void check_mat4_layout(const std::string& path, std::uint64_t size) {
     if (size - offset < sizeof(header) || !read_at(file.get(), offset, header, sizeof(header))) {
       throw_truncated(path, index, offset, sizeof(header), size - offset);
     }
-    std::optional<double> bytes = mat4_variable_bytes(header, true);
-    if (!bytes) bytes = mat4_variable_bytes(header, false);
+    const std::optional<bool> little_endian = mat4_little_endian(header);
+    const std::optional<double> bytes =
+        little_endian ? mat4_variable_bytes(header, *little_endian) : std::nullopt;
     if (!bytes) {
       throw_data_error(path, fmt::format("the MAT file is corrupt: variable #{} (at byte {}) has "
                                          "no valid v4 header",
@@ -304,10 +328,12 @@ void probe_mat73_in_child(const std::string& path) {
 }
 
 // Before matio sees a file without v5's header marks ("IM"/"MI" at bytes
-// 126-127): when its first 20 bytes read as a v4 variable header that
-// claims more bytes (name and data) than the file holds, it is refused here
-// — Mat_Open() would otherwise allocate the claimed name length (up to
-// 4 GB) while trying v4 (a fuzzing finding, fuzz/regressions/mat_reader/).
+// 126-127): when its first 20 bytes, read in the byte order matio reads
+// them in, claim more bytes (name and data) than the file holds, it is
+// refused here — Mat_Open() would otherwise allocate the claimed name
+// length (up to 4 GB) while trying v4 (fuzzing findings,
+// fuzz/regressions/mat_reader/: a 1.8 GB name; a 1.7 GB one in a header
+// whose other byte order claims 122 bytes, which the check had taken).
 void check_mat4_first_header(const std::string& path, std::uint64_t size) {
   FilePtr file(std::fopen(path.c_str(), "rb"));
   unsigned char header[128] = {};
@@ -319,17 +345,8 @@ void check_mat4_first_header(const std::string& path, std::uint64_t size) {
     return;  // v5, v7 or v7.3: checked after opening
   }
   if (size < 20) return;
-  bool any_valid = false;
-  double smallest_need = std::numeric_limits<double>::infinity();
-  for (const bool little_endian : {true, false}) {
-    if (const std::optional<double> need = mat4_variable_bytes(header, little_endian)) {
-      any_valid = true;
-      smallest_need = std::min(smallest_need, *need);
-    }
-  }
-  if (any_valid && smallest_need > static_cast<double>(size)) {
-    throw_truncated(path, 1, 0, smallest_need, size);
-  }
+  const std::optional<double> need = mat4_claimed_bytes(header);
+  if (need && *need > static_cast<double>(size)) throw_truncated(path, 1, 0, *need, size);
 }
 
 std::optional<std::uint64_t> hdf5_signature_offset(const std::string& path, std::uint64_t size) {

@@ -275,30 +275,32 @@ TEST_P(CliFuzzFinding, IsADataErrorWithoutHugeAllocationsOrACrash) {
   EXPECT_EQ(test::read_file(dir / "kept.json"), "previous result");
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue7, CliFuzzFinding,
-                         ::testing::Values(
-                             // A 1.5 kB file whose first v4 header claims a 1.8 GB name, which
-                             // Mat_Open() allocated.
-                             FuzzFinding{"oom-v4-name-length", {"truncated", "1828799004 bytes"}},
-                             // An uncompressed v5 matrix whose name claims 4 GB inside an
-                             // 848-byte element, which matio allocated.
-                             FuzzFinding{"oom-v5-name-length", {"variable #2", "4143972352 bytes"}},
-                             // An uncompressed v5 matrix whose dimensions claim 4 GB inside
-                             // a 56-byte element (matio allocated 8.5 GB for them); its array
-                             // flags' tag reads as a short one, which had misled the check.
-                             FuzzFinding{"oom-v5-dims-size",
-                                         {"variable #1", "dimensions claiming 4278190088 bytes"}},
-                             // A compressed v5 header whose inflated dimensions are huge.
-                             FuzzFinding{"oom-v5-compressed-header", {"corrupt"}},
-                             // A damaged v7.3 file on which HDF5 1.10 segfaults inside
-                             // Mat_Open(): probed in a child process, reported as damaged.
-                             FuzzFinding{"crash-v73-hdf5-segv", {"damaged", "HDF5"}}),
-                         [](const auto& info) {
-                           std::string name = info.param.name;
-                           for (char& c : name)
-                             c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Issue7, CliFuzzFinding,
+    ::testing::Values(
+        // A 1.5 kB file whose first v4 header claims a 1.8 GB name, which
+        // Mat_Open() allocated.
+        FuzzFinding{"oom-v4-name-length", {"truncated", "1828799004 bytes"}},
+        // A v4 header whose name claims 1.7 GB in the byte order matio
+        // reads it in (the other order claims 122 bytes).
+        FuzzFinding{"oom-v4-name-byte-order", {"truncated", "needs 1711276052 bytes"}},
+        // An uncompressed v5 matrix whose name claims 4 GB inside an
+        // 848-byte element, which matio allocated.
+        FuzzFinding{"oom-v5-name-length", {"variable #2", "4143972352 bytes"}},
+        // An uncompressed v5 matrix whose dimensions claim 4 GB inside
+        // a 56-byte element (matio allocated 8.5 GB for them); its array
+        // flags' tag reads as a short one, which had misled the check.
+        FuzzFinding{"oom-v5-dims-size", {"variable #1", "dimensions claiming 4278190088 bytes"}},
+        // A compressed v5 header whose inflated dimensions are huge.
+        FuzzFinding{"oom-v5-compressed-header", {"corrupt"}},
+        // A damaged v7.3 file on which HDF5 1.10 segfaults inside
+        // Mat_Open(): probed in a child process, reported as damaged.
+        FuzzFinding{"crash-v73-hdf5-segv", {"damaged", "HDF5"}}),
+    [](const auto& info) {
+      std::string name = info.param.name;
+      for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+      return name;
+    });
 
 }  // namespace
 }  // namespace foglab
