@@ -63,7 +63,10 @@ std::uint32_t decode_u32(const unsigned char* bytes, bool little_endian) {
 // - the first 24 bytes are always the flags' tag, the flags (8 bytes) and
 //   the dimensions' tag, in the long form;
 // - dimensions of type int32 are size/4 numbers, allocated as 8 bytes each
-//   (a 4 GB claim in a 56-byte element: an 8.5 GB allocation);
+//   (a 4 GB claim in a 56-byte element: an 8.5 GB allocation), and read
+//   with 4 bytes of padding after an odd number of them (a size that is no
+//   multiple of 4 moves the name: 3 bytes of dimensions put its tag where
+//   the padding would be, and its 973 MB claim was found there);
 // - the name's tag is the long form when its type word is exactly int8,
 //   else the short one (up to 4 characters inside the tag);
 // - a cell array or a function handle then allocates a pointer per
@@ -107,9 +110,12 @@ void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::siz
   if (head[4] == MAT_T_INT32) {
     const std::uint64_t dims_bytes = head[5];
     check_claim("dimensions", at, dims_bytes);
+    // matio reads size/4 whole dimensions, and 4 bytes of padding after an
+    // odd number of them (ReadRankDims), whatever the size says beyond that.
+    const std::uint64_t rank = dims_bytes / 4;
     if (has_pointers) {
       unsigned char dim[4];
-      for (std::uint64_t k = 0; k + 4 <= dims_bytes; k += 4) {
+      for (std::uint64_t k = 0; k < 4 * rank; k += 4) {
         if (!read_at(file, offset + 8 + at + 8 + k, dim, sizeof(dim))) {
           throw_data_error(
               path, fmt::format("cannot read the MAT file at byte {}", offset + 8 + at + 8 + k));
@@ -117,7 +123,7 @@ void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::siz
         elements *= decode_u32(dim, little_endian);
       }
     }
-    at += 8 + (dims_bytes + 7) / 8 * 8;
+    at += 8 + (rank + 1) / 2 * 8;
   } else {
     at += 8;  // matio refuses dimensions of any other type
   }
