@@ -291,6 +291,11 @@ INSTANTIATE_TEST_SUITE_P(
         // a 56-byte element (matio allocated 8.5 GB for them); its array
         // flags' tag reads as a short one, which had misled the check.
         FuzzFinding{"oom-v5-dims-size", {"variable #1", "dimensions claiming 4278190088 bytes"}},
+        // An uncompressed v5 matrix whose dimensions' size (3 bytes) is no
+        // multiple of 4: matio reads no dimension and takes the name's tag
+        // from the next bytes, which claim 973 MB.
+        FuzzFinding{"oom-v5-name-after-short-dims",
+                    {"variable #1", "a name claiming 973078529 bytes"}},
         // A compressed v5 header whose inflated dimensions are huge.
         FuzzFinding{"oom-v5-compressed-header", {"corrupt"}},
         // A damaged v7.3 file on which HDF5 1.10 segfaults inside
