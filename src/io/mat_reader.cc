@@ -292,7 +292,10 @@ class MatFile {
     size_ = *size;
     if (size_ == 0) throw_data_error(path, "the MAT file is empty");
     check_mat4_first_header(path, size_);
-    if (hdf5_signature_offset(path, size_) == std::uint64_t{512}) probe_mat73_in_child(path);
+    if (hdf5_signature_offset(path, size_) == std::uint64_t{512}) {
+      check_hdf5_driver_block(path, size_, 512);
+      probe_mat73_in_child(path);
+    }
     session_.clear();
     mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
     const auto messages = session_.messages(false);

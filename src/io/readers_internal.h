@@ -147,6 +147,11 @@ void check_mat4_layout(const std::string& path, std::uint64_t size);
 /// A file without v5's header marks whose first bytes read as a v4 header
 /// claiming more than the file holds is refused before matio allocates it.
 void check_mat4_first_header(const std::string& path, std::uint64_t size);
+/// An HDF5 superblock (version 0 or 1) at `signature_at` whose driver
+/// information block claims more than the file's `size` bytes is refused
+/// before HDF5 allocates and zero-fills what it claims.
+void check_hdf5_driver_block(const std::string& path, std::uint64_t size,
+                             std::uint64_t signature_at);
 /// Opens a v7.3 file's metadata in a child process; throws when HDF5 crashes.
 void probe_mat73_in_child(const std::string& path);
 /// The offset of an HDF5 superblock signature (0, 512, 1024, ...), if any.

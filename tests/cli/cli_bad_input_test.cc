@@ -298,6 +298,11 @@ INSTANTIATE_TEST_SUITE_P(
                     {"variable #1", "a name claiming 973078529 bytes"}},
         // A compressed v5 header whose inflated dimensions are huge.
         FuzzFinding{"oom-v5-compressed-header", {"corrupt"}},
+        // A v7.3 file whose HDF5 superblock points at a driver information
+        // block claiming 4 GB, which HDF5 allocated and zero-filled (4.2 GB
+        // of memory and 7 s, in the probe's child and again in the process).
+        FuzzFinding{"oom-v73-driver-block",
+                    {"damaged", "driver information block at byte 541 claims 4294967311"}},
         // A damaged v7.3 file on which HDF5 1.10 segfaults inside
         // Mat_Open(): probed in a child process, reported as damaged.
         FuzzFinding{"crash-v73-hdf5-segv", {"damaged", "HDF5"}}),

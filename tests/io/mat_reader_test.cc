@@ -5,11 +5,13 @@
 // damaged files are made from good ones by cutting, patching or scrambling
 // bytes; matio 1.5.23 reads some of them "successfully" (a short read with
 // status 0), which is what the reader's own checks are for.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <matio.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -570,6 +572,31 @@ TEST_F(DamagedMatTest, ACellArrayOfMoreElementsThanItsBytesIsRefusedBeforeAlloca
   std::memcpy(bytes.data() + 192 + 8 + 16 + 8, &rows, 4);
   write_bytes(path, bytes);
   expect_data_error(path, "variable #2 (at byte 192) claims 2000000 cells in the");
+}
+
+TEST_F(DamagedMatTest, AV73DriverBlockClaimingMoreThanTheFileIsRefusedBeforeHdf5) {
+  // HDF5 allocates and zero-fills what a superblock's driver information
+  // block claims: 4 GB of memory for this file (a fuzzing finding).
+  const std::string path = good("v73.mat", MAT_FT_MAT73, MAT_COMPRESSION_NONE);
+  std::vector<unsigned char> bytes = read_bytes(path);
+  // The superblock at 512: version 0, 8-byte offsets; its driver block
+  // address (relative to the base address, 512) after the base, free-space
+  // and end-of-file addresses, undefined (all ones) as written.
+  ASSERT_EQ(bytes[512 + 8], 0);
+  ASSERT_EQ(bytes[512 + 13], 8);
+  const std::size_t driver_address = 512 + 24 + 3 * 8;
+  ASSERT_EQ(bytes[driver_address], 0xff);
+  // A block in the file's last 16 bytes: version 0, then a size of 4 GB.
+  const std::uint64_t block_at = bytes.size() - 16;
+  const std::uint64_t relative = block_at - 512;
+  std::memcpy(bytes.data() + driver_address, &relative, 8);
+  std::fill(bytes.begin() + static_cast<std::ptrdiff_t>(block_at), bytes.end(), 0);
+  const std::uint32_t claimed = 0xffffffffu;
+  std::memcpy(bytes.data() + block_at + 4, &claimed, 4);
+  write_bytes(path, bytes);
+  expect_data_error(path, fmt::format("driver information block at byte {} claims 4294967311 "
+                                      "bytes, more than the {}-byte file holds",
+                                      block_at, bytes.size()));
 }
 
 TEST_F(DamagedMatTest, TruncatedV73IsReportedThroughHdf5) {
