@@ -30,11 +30,6 @@ namespace {
 
 // --- the layout walk: each top-level element must lie inside the file ---
 
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
 bool read_at(std::FILE* file, std::uint64_t offset, unsigned char* out, std::size_t size) {
   if (offset > static_cast<std::uint64_t>(std::numeric_limits<off_t>::max())) return false;
   return fseeko(file, static_cast<off_t>(offset), SEEK_SET) == 0 &&
@@ -114,13 +109,10 @@ void check_mat5_matrix_header(const std::string& path, std::FILE* file, std::siz
     // odd number of them (ReadRankDims), whatever the size says beyond that.
     const std::uint64_t rank = dims_bytes / 4;
     if (has_pointers) {
-      unsigned char dim[4];
       for (std::uint64_t k = 0; k < 4 * rank; k += 4) {
-        if (!read_at(file, offset + 8 + at + 8 + k, dim, sizeof(dim))) {
-          throw_data_error(
-              path, fmt::format("cannot read the MAT file at byte {}", offset + 8 + at + 8 + k));
-        }
-        elements *= decode_u32(dim, little_endian);
+        std::uint32_t dim = 0;
+        read_words(at + 8 + k, &dim, 1);
+        elements *= dim;
       }
     }
     at += 8 + (rank + 1) / 2 * 8;
@@ -339,8 +331,7 @@ void check_hdf5_driver_block(const std::string& path, std::uint64_t size,
         !read_at(file.get(), static_cast<std::uint64_t>(block_at), block, sizeof(block))) {
       return 16.0;
     }
-    return 16.0 + (std::uint32_t{block[4]} | std::uint32_t{block[5]} << 8 |
-                   std::uint32_t{block[6]} << 16 | std::uint32_t{block[7]} << 24);
+    return 16.0 + decode_u32(block + 4, true);
   }();
   if (block_at + claim > static_cast<double>(size)) {
     throw_data_error(path, fmt::format("the MAT file (v7.3, HDF5) is damaged: its driver "

@@ -51,10 +51,6 @@ double decode(const unsigned char* bytes, std::size_t element_bytes) {
                                      bytes, element_bytes, element_bytes * 8));
 }
 
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
-
 }  // namespace
 
 Series read_raw(const std::string& path, const ReadOptions& options, InputFormat format) {
@@ -79,7 +75,7 @@ Series read_raw(const std::string& path, const ReadOptions& options, InputFormat
   series.variables = series.available_channels;
 
   std::FILE* file = stdin;
-  std::unique_ptr<std::FILE, FileCloser> owned;
+  FilePtr owned;
   if (path != "-") {
     owned.reset(std::fopen(path.c_str(), "rb"));
     if (!owned) {

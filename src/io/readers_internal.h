@@ -9,6 +9,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -19,6 +21,13 @@
 #include "foglab/io/reader.h"
 
 namespace foglab::io::internal {
+
+/// A FILE* the readers own: closed when it goes out of scope, also when a
+/// constructor or a check throws on the way.
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 /// "'PATH'" for a file, "standard input" for "-": how messages name a source.
 std::string quoted_path(const std::string& path);

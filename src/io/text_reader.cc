@@ -215,15 +215,12 @@ class LineReader {
     }
   }
 
-  struct FileCloser {
-    void operator()(std::FILE* file) const { std::fclose(file); }
-  };
   struct ConverterCloser {
     void operator()(iconv_t converter) const { iconv_close(converter); }
   };
 
   std::string path_;
-  std::unique_ptr<std::FILE, FileCloser> owned_file_;
+  FilePtr owned_file_;
   std::FILE* file_ = nullptr;  // owned_file_, or standard input
   std::vector<char> buffer_;
   std::vector<unsigned char> raw_;  // UTF-16 bytes not yet converted
