@@ -131,6 +131,13 @@ void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
                        std::vector<detail::SubsetFit>& fits, const NoiseFitOptions& options) {
   constexpr double kSlowProcessSamples = 100.0;
   constexpr double kResolvedProcessSamples = 10.0;
+  // Takes a bandwidth found again, the points it shaped and the fits over them.
+  const auto adopt = [&](detail::Points& with, detail::BandwidthSearch& found,
+                         std::vector<detail::SubsetFit> refits) {
+    p = std::move(with);
+    bandwidth = std::move(found);
+    fits = std::move(refits);
+  };
   if (!bandwidth.estimate.resolved) {
     // The best candidate with such a process (the chosen one can be without
     // it while the filtered first taus spoil every fit).
@@ -141,10 +148,7 @@ void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
     if (slow == fits.end()) return;
     detail::Points with = p;
     detail::BandwidthSearch found = detail::find_bandwidth(with, options, slow->tc);
-    if (!found.estimate.resolved) return;
-    p = std::move(with);
-    bandwidth = std::move(found);
-    fits = detail::fit_candidates(p, options);
+    if (found.estimate.resolved) adopt(with, found, detail::fit_candidates(with, options));
     return;
   }
   if (fits.empty() || !fits.front().terms.contains(NoiseTerm::gauss_markov) ||
@@ -167,9 +171,7 @@ void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
       if (!beside) beside.emplace(std::move(plain), std::move(again));
       continue;
     }
-    p = std::move(plain);
-    bandwidth = std::move(again);
-    fits = detail::fit_candidates(p, options);
+    adopt(plain, again, detail::fit_candidates(plain, options));
     return;
   }
   // Found beside the process too: when it is another filter than the one
@@ -192,10 +194,9 @@ void recheck_bandwidth(detail::Points& p, detail::BandwidthSearch& bandwidth,
     return;
   }
   std::vector<detail::SubsetFit> refits = detail::fit_candidates(beside->first, options);
-  if (refits.empty() || !(refits.front().deviance < fits.front().deviance)) return;
-  p = std::move(beside->first);
-  bandwidth = std::move(beside->second);
-  fits = std::move(refits);
+  if (!refits.empty() && refits.front().deviance < fits.front().deviance) {
+    adopt(beside->first, beside->second, std::move(refits));
+  }
 }
 
 // The result with fits.front() as the chosen model: its status, the
