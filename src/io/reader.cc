@@ -252,6 +252,14 @@ std::string describe_non_finite(double value) {
   return value > 0 ? "+Inf" : "-Inf";
 }
 
+// A channel whose largest sample (in deg/h, m/s^2 or degC) is below this in
+// magnitude but not 0 is refused: the statistics square the samples (the
+// kurtosis takes fourth powers), and below about 1e-154 a square underflows
+// to 0, so the Allan deviation of such a record came out 0 or denormal and
+// was called noiseless. No sensor's output is that small in these units; a
+// wrong unit or scale is.
+constexpr double kMinLargestMagnitude = 1e-30;
+
 // Checks every sample and converts it to deg/h (m/s^2 for an acceleration
 // unit). In parallel, chunk by chunk: a chunk whose every converted sample is
 // finite and within the limit (which may be infinite) is converted
@@ -265,15 +273,19 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
   const std::size_t n = series.values.size();
   const std::size_t chunks = (n + kChunkSamples - 1) / kChunkSamples;
   std::vector<char> converted(chunks, 0);
+  std::vector<double> largest(chunks, 0.0);
   double* values = series.values.data();
 #pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t begin = c * kChunkSamples, end = std::min(n, begin + kChunkSamples);
     bool within = true;
+    double chunk_largest = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
       const double in_unit = values[i] * factor;  // in - in: 0 if finite, else NaN
       within &= in_unit - in_unit == 0.0 && std::fabs(in_unit) <= max_magnitude;
+      chunk_largest = std::max(chunk_largest, std::fabs(in_unit));
     }
+    largest[c] = chunk_largest;
     if (!within) continue;
     if (factor != 1.0) {  // deg/h in: checked, nothing to write
       for (std::size_t i = begin; i < end; ++i) values[i] *= factor;
@@ -306,6 +318,15 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
                         max_magnitude));
       }
     }
+  }
+  const double record_largest = *std::max_element(largest.begin(), largest.end());
+  if (record_largest > 0.0 && record_largest < kMinLargestMagnitude) {
+    throw_data_error(
+        series.path,
+        fmt::format("channel '{}' has no sample larger than {} {} in magnitude: too small for "
+                    "the statistics, whose squares would underflow (no sensor's output is that "
+                    "small); check the channel, its unit and the file",
+                    series.channel, internal::format_value(record_largest), to_string(target)));
   }
 }
 

@@ -647,6 +647,22 @@ std::vector<Case> catalogue() {
        kWithOptions,
        3,
        {"sample 10", "'Y1'", "too large"}},
+      // samples whose squares underflow: the Allan deviation came out 0 and the
+      // record was called noiseless ("repeats exactly")
+      {"TinyRate",
+       "tiny.csv",
+       csv([](auto& r) {
+         const auto y = rate_samples();
+         for (std::size_t k = 1; k < r.size(); ++k) {
+           char cell[32];
+           std::snprintf(cell, sizeof(cell), "%.6g", y[k - 1] * 1e-300);
+           set_cell(r, k, 1, cell);
+         }
+       }),
+       "",
+       kWithOptions,
+       3,
+       {"'Y1'", "no sample larger than", "too small"}},
       {"OverflowOnUnitConversion",
        "dps.csv",
        csv([](auto& r) { set_cell(r, 4, 1, "1e306"); }),
