@@ -316,9 +316,7 @@ void check_hdf5_driver_block(const std::string& path, std::uint64_t size,
   const unsigned offset_bytes = head[13];
   if (version > 1 || offset_bytes != 8) return;  // MATLAB and matio write 8-byte offsets
   const auto u64 = [](const unsigned char* b) {
-    std::uint64_t v = 0;
-    for (int k = 7; k >= 0; --k) v = v << 8 | b[k];
-    return v;
+    return std::uint64_t{decode_u32(b, true)} | std::uint64_t{decode_u32(b + 4, true)} << 32;
   };
   const std::size_t addresses = version == 0 ? 24 : 28;  // the base address
   const std::uint64_t base = u64(head + addresses);
