@@ -99,6 +99,8 @@ def verdict(j):
     if bw.get("resolved"):
         if bw["kind"] == "moving_average":
             bw_text = f"{bw['moving_average_samples']}-avg {bw['filtered_fraction']:.0%}"
+        elif bw["kind"] == "beyond_memory":
+            bw_text = f"beyond memory c {bw['memory_constant_samples']:.2f}"
         else:
             bw_text = f"{bw['kind']} {bw['cutoff_hz']:.1f} Hz"
     return {
@@ -158,7 +160,7 @@ def main():
             continue
         v = verdict(j)
         bandwidth = v["bandwidth"]
-        if v["bw_resolved"]:
+        if v["bw_resolved"] and v["lag1"] is not None:
             bandwidth += f" (lag-1 {v['lag1']:.2f})"
         if v["bound"]:
             bandwidth += " (best T at the search bound: not resolved)"

@@ -178,22 +178,26 @@ nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
             {"correlated_deviance_drop", number(b.correlated_deviance_drop)},
             {"at_search_bound", b.at_search_bound}};
   }
-  const bool ma = b.bandwidth.moving_average(), bw = b.bandwidth.butterworth();
-  return {
-      {"resolved", true},
-      {"kind", ma   ? "moving_average"
-               : bw ? "butterworth_second_order"
-                    : "first_order"},
-      {"moving_average_samples", b.bandwidth.moving_average_samples},
-      {"time_constant_s", ma || bw ? nlohmann::json(nullptr) : number(b.bandwidth.time_constant_s)},
-      {"cutoff_hz", number(b.cutoff_hz)},
-      {"filtered_fraction", number(b.bandwidth.filtered_fraction)},
-      {"lag1_correlation", number(b.lag1_correlation)},
-      {"first_tau_reduction", number(b.first_tau_reduction)},
-      {"sample_interval_s", number(b.sample_interval_s)},
-      {"deviance_drop", number(b.deviance_drop)},
-      {"correlated_deviance_drop", number(b.correlated_deviance_drop)},
-      {"at_search_bound", b.at_search_bound}};
+  const bool ma = b.bandwidth.moving_average(), bw = b.bandwidth.butterworth(),
+             memory = b.bandwidth.beyond_memory();
+  return {{"resolved", true},
+          {"kind", ma       ? "moving_average"
+                   : bw     ? "butterworth_second_order"
+                   : memory ? "beyond_memory"
+                            : "first_order"},
+          {"moving_average_samples", b.bandwidth.moving_average_samples},
+          {"time_constant_s",
+           ma || bw || memory ? nlohmann::json(nullptr) : number(b.bandwidth.time_constant_s)},
+          {"memory_constant_samples",
+           memory ? number(b.bandwidth.memory_constant_samples) : nlohmann::json(nullptr)},
+          {"cutoff_hz", number(b.cutoff_hz)},
+          {"filtered_fraction", number(b.bandwidth.filtered_fraction)},
+          {"lag1_correlation", number(b.lag1_correlation)},
+          {"first_tau_reduction", number(b.first_tau_reduction)},
+          {"sample_interval_s", number(b.sample_interval_s)},
+          {"deviance_drop", number(b.deviance_drop)},
+          {"correlated_deviance_drop", number(b.correlated_deviance_drop)},
+          {"at_search_bound", b.at_search_bound}};
 }
 
 nlohmann::json spikes_json(const model::AnalysisResult& r) {
@@ -314,6 +318,7 @@ nlohmann::json units_json() {
       {"spectral_lines[].peak_ratio", "1 (PSD over the noise floor)"},
       {"spectral_lines[].adev_at_quarter_period_deg_h", "deg/h"},
       {"sensor_bandwidth.time_constant_s", "s"},
+      {"sensor_bandwidth.memory_constant_samples", "samples"},
       {"sensor_bandwidth.cutoff_hz", "Hz"},
       {"sensor_bandwidth.sample_interval_s", "s"},
       {"sensor_bandwidth.filtered_fraction", "1 (fraction of N^2)"},

@@ -513,6 +513,11 @@ constexpr CatalogueEntry kEntries[] = {
      "time constant {} s, first-order cut-off {} Hz, on {} % of the white noise (lag-1 "
      "correlation of its samples {}); it lowers the Allan variance at the first tau by {} %, and "
      "N is the white level above it"},
+    {Text::an_bandwidth_beyond_memory,
+     "a filter of no modelled kind, known beyond its memory (the first taus, inside it, are left "
+     "out): there the white noise's Allan variance is N^2/tau (1 - c tau0/tau) with c = {} "
+     "samples (a first-order low-pass with the same c would cut off at {} Hz); it lowers the "
+     "Allan variance at the first tau kept by {} %, and N is the white level above it"},
     {Text::an_lines_none, "none found in the PSD"},
     {Text::an_line, "{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor"},
     {Text::an_lines_scale,
@@ -790,8 +795,9 @@ constexpr CatalogueEntry kEntries[] = {
      "the first {} tau(s) ({:.6g} s to {:.6g} s) were left out: no modelled output "
      "filter (first-order, moving average, Butterworth) followed them (the fit's "
      "dispersion was above 4 with them, and leaving them out lowered it by more than "
-     "30 %), so the terms rest on the taus from {:.6g} s; N's interval spans the fits "
-     "with one and two more left out"},
+     "30 %), so the terms rest on the taus from {:.6g} s, beyond the filter's memory, with "
+     "its effect there taken as 1 - c tau0/tau on the white noise; N's interval spans the "
+     "c they do not tell apart"},
     {Text::fit_ramp_set_aside,
      "the model {} had a rate ramp R = {:.4g} deg/h/s [{:.4g}, {:.4g}], but the "
      "record's least-squares slope over its {:.6g} s is {:.4g} deg/h/s, and the "

@@ -114,9 +114,33 @@ std::array<double, 5> butterworth_coefficients(double cutoff_hz, double sample_i
           (1.0 - std::numbers::sqrt2 * k + k * k) * norm};
 }
 
+SensorBandwidth first_order_with_memory(double memory_constant_samples, double sample_interval_s) {
+  const double c = memory_constant_samples;
+  if (!(c > 0.0) || !(sample_interval_s > 0.0)) return {};
+  // c rho^2 + 3 rho - c = 0, its root in (0, 1), as 2 c / (3 + sqrt(9 + 4 c^2))
+  // (no cancellation for small c).
+  const double rho = 2.0 * c / (3.0 + std::sqrt(9.0 + 4.0 * c * c));
+  return SensorBandwidth{1.0, -sample_interval_s / std::log(rho)};
+}
+
+namespace {
+
+// The first-order stand-in for a filter known beyond its memory, on the
+// same fraction of the output.
+SensorBandwidth stand_in(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  SensorBandwidth b = first_order_with_memory(bandwidth.memory_constant_samples, sample_interval_s);
+  b.filtered_fraction = bandwidth.filtered_fraction;
+  return b;
+}
+
+}  // namespace
+
 double power_response(const SensorBandwidth& bandwidth, double frequency_hz,
                       double sample_interval_s) {
   if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
+  if (bandwidth.beyond_memory()) {
+    return power_response(stand_in(bandwidth, sample_interval_s), frequency_hz, sample_interval_s);
+  }
   const double w = 2.0 * std::numbers::pi * frequency_hz * sample_interval_s;  // [rad/sample]
   double h2 = 1.0;
   if (bandwidth.moving_average()) {
@@ -140,6 +164,9 @@ double power_response(const SensorBandwidth& bandwidth, double frequency_hz,
 double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
                             double sample_interval_s) {
   if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
+  if (bandwidth.beyond_memory()) {
+    return flicker_allan_factor(stand_in(bandwidth, sample_interval_s), tau_s, sample_interval_s);
+  }
   const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
   double g = 1.0;
   if (bandwidth.moving_average()) {
@@ -168,6 +195,10 @@ double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
 
 double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s) {
   if (bandwidth.butterworth()) return bandwidth.butterworth_cutoff_hz;
+  if (bandwidth.beyond_memory()) {
+    if (!(sample_interval_s > 0.0)) return std::numeric_limits<double>::infinity();
+    return cutoff_hz(first_order_with_memory(bandwidth.memory_constant_samples, sample_interval_s));
+  }
   if (bandwidth.moving_average()) {
     if (!(sample_interval_s > 0.0)) return std::numeric_limits<double>::infinity();
     // |sin(pi f k tau0) / (k sin(pi f tau0))| = 1/sqrt(2), by bisection on f.
@@ -188,6 +219,11 @@ double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s) {
 }
 
 double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  if (bandwidth.beyond_memory()) {
+    return filtered_lag1(
+        first_order_with_memory(bandwidth.memory_constant_samples, sample_interval_s),
+        sample_interval_s);
+  }
   if (bandwidth.butterworth()) {
     if (!(sample_interval_s > 0.0)) return 0.0;
     const std::vector<double>& a =
@@ -205,6 +241,12 @@ double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s)
 double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
                           double sample_interval_s) {
   if (!bandwidth.any() || !(sample_interval_s > 0.0)) return 1.0;
+  if (bandwidth.beyond_memory()) {
+    const double c = bandwidth.memory_constant_samples;
+    const double m = tau_s / sample_interval_s;
+    if (m >= 2.0 * c) return 1.0 - bandwidth.filtered_fraction * c / m;
+    return white_allan_factor(stand_in(bandwidth, sample_interval_s), tau_s, sample_interval_s);
+  }
   if (bandwidth.moving_average()) {
     const auto m = std::max<std::int64_t>(1, std::llround(tau_s / sample_interval_s));
     const int k = bandwidth.moving_average_samples;
@@ -230,6 +272,7 @@ double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
 
 double white_lag1_correlation(const SensorBandwidth& bandwidth, double sample_interval_s) {
   if (!bandwidth.any()) return 0.0;
+  if (bandwidth.beyond_memory()) return std::numeric_limits<double>::quiet_NaN();
   if (bandwidth.moving_average()) {
     const int k = bandwidth.moving_average_samples;
     return mixed_lag1(bandwidth.filtered_fraction, ma_autocovariance(k, 0),

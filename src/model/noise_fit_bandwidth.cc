@@ -29,6 +29,14 @@
 // at the longest T or k searched (nor at either end of the Butterworth's cut-offs). It is then held
 // for every candidate, and kept only if the best candidate with it beats the best without it by
 // more than those two parameters' cost (noise_fit.cc).
+//
+// On points whose first taus were left out (no modelled kind followed them;
+// noise_fit.cc), the one kind tried is a filter known beyond its memory: its
+// factor 1 - c tau0 / tau (core/sensor_bandwidth.h) holds for every filter
+// shape once tau is past the memory, and c is profiled from 0 to a third of the
+// first kept tau's samples (a grid, then golden section). The same tests
+// resolve it, with one parameter's cost; at that upper end the first kept tau
+// is still inside the memory (noise_fit.cc then leaves out more).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -55,7 +63,10 @@ constexpr std::array kMovingAverageLengths = {
 constexpr int kLongestMovingAverage = kMovingAverageLengths.back();  // samples
 constexpr double kLowestCutoff = 0.016;    // Butterworth f_c, in 1/tau0 (as 1/(2 pi 10 tau0))
 constexpr double kHighestCutoff = 0.45;
-constexpr int kButterworth = 0;  // Trial::k of the Butterworth kind
+constexpr int kButterworth = 0;       // Trial::k of the Butterworth kind
+constexpr int kBeyondMemory = -1;     // Trial::k of a filter known beyond its memory
+constexpr int kMemorySteps = 24;      // the grid of c
+constexpr double kMemoryReach = 3.0;  // the first kept tau is at least this many c [samples]
 constexpr double kSmallestEffect = 0.005;
 
 // The reference model: white noise, flicker, random walk and ramp (and, on
@@ -74,16 +85,18 @@ NoiseTermSet reference_terms(const Points& p, bool gauss_markov) {
   return terms;
 }
 
-// The 95 % point of chi-square with two degrees of freedom.
+// The 95 % points of chi-square with two degrees of freedom and with one.
 constexpr double kTwoParameters95 = 5.991464547107979;
+constexpr double kOneParameter95 = 3.841458820694124;
 
 // One (phi, T) of the first-order filter, (phi, k) of the moving average,
 // or (phi, f_c) of the Butterworth.
 struct Trial {
   double fraction = 0.0;
-  double log_t = 0.0;  // ln(T / tau0); for the Butterworth ln(f_c tau0)
+  double log_t =
+      0.0;  // ln(T / tau0); for the Butterworth ln(f_c tau0); c [samples] for kBeyondMemory
   double deviance = kInf;
-  int k = 1;  // > 1: a moving average over k samples; kButterworth
+  int k = 1;  // > 1: a moving average over k samples; kButterworth; kBeyondMemory
 };
 
 // Golden section of f on [a, b]; returns the best abscissa and value.
@@ -104,15 +117,16 @@ std::pair<double, double> golden(F f, double a, double b) {
 
 class Search {
  public:
-  Search(Points& p, NoiseTermSet terms, double tc, double penalty, bool butterworth)
+  Search(Points& p, NoiseTermSet terms, double tc, double penalty, BandwidthKinds kinds)
       : p_(p),
         terms_(terms),
         tc_(tc),
         tau0_(p.sample_interval_s()),
         penalty_(penalty),
-        butterworth_(butterworth) {}
+        kinds_(kinds) {}
 
   SensorBandwidth bandwidth_of(double fraction, double log_t, int k) const {
+    if (k == kBeyondMemory) return SensorBandwidth{1.0, 0.0, 1, 0.0, log_t};
     if (k == kButterworth) return SensorBandwidth{fraction, 0.0, 1, std::exp(log_t) / tau0_};
     return k > 1 ? SensorBandwidth{fraction, 0.0, k}
                  : SensorBandwidth{fraction, tau0_ * std::exp(log_t), 1};
@@ -136,8 +150,9 @@ class Search {
     p_.flicker_shape.resize(p_.tau.size());
     SensorBandwidth whole = bandwidth;
     whole.filtered_fraction = 1.0;
-    auto [it, added] = flicker_cache_.try_emplace(
-        {whole.moving_average_samples, whole.time_constant_s, whole.butterworth_cutoff_hz});
+    auto [it, added] =
+        flicker_cache_.try_emplace({whole.moving_average_samples, whole.time_constant_s,
+                                    whole.butterworth_cutoff_hz, whole.memory_constant_samples});
     if (added) {
       for (std::size_t i = 0; i < p_.tau.size(); ++i) {
         it->second.push_back(flicker_allan_factor(whole, p_.tau[i], tau0_));
@@ -219,7 +234,32 @@ class Search {
     return best;
   }
 
+  // The largest c tried: a third of the first point's samples (a moving
+  // average's memory ends at 2 c samples, a first-order filter's factor
+  // differs from 1 - c / m by 4/3 exp(-1.5 m / c) of its correction, 1.5 %
+  // at m = 3 c; a cascade's lies between).
+  double largest_memory_constant() const { return p_.tau.front() / tau0_ / kMemoryReach; }
+
+  // A filter known beyond its memory: c on a grid up to
+  // largest_memory_constant(), then golden section around the grid's best.
+  Trial best_beyond_memory() {
+    const double most = largest_memory_constant();
+    const double step = most / kMemorySteps;
+    Trial best;
+    for (int s = 1; s <= kMemorySteps; ++s) {
+      const double d = tried(1.0, step * s, kBeyondMemory);
+      if (d < best.deviance) best = {1.0, step * s, d, kBeyondMemory};
+    }
+    if (!std::isfinite(best.deviance)) return best;
+    const auto [c, d] =
+        golden([&](double x) { return tried(1.0, x, kBeyondMemory); },
+               std::max(1e-3 * step, best.log_t - step), std::min(most, best.log_t + step));
+    if (d < best.deviance) best = {1.0, c, d, kBeyondMemory};
+    return best;
+  }
+
   Trial best() {
+    if (kinds_ == BandwidthKinds::beyond_memory) return best_beyond_memory();
     const double lo = std::log(kShortestT), hi = std::log(kLongestT);
     const double t_step = (hi - lo) / kTSteps;
     Trial best = best_on_grid(lo, t_step, 1);
@@ -255,7 +295,9 @@ class Search {
     // The Butterworth cut-offs.
     const double c_lo = std::log(kLowestCutoff), c_hi = std::log(kHighestCutoff);
     const double c_step = (c_hi - c_lo) / kTSteps;
-    Trial best_bw = butterworth_ ? best_on_grid(c_lo, c_step, kButterworth) : Trial{};
+    Trial best_bw = kinds_ == BandwidthKinds::with_butterworth
+                        ? best_on_grid(c_lo, c_step, kButterworth)
+                        : Trial{};
     // Refinement from the best grid point: phi and T trade off along a
     // narrow valley (0.77 of the noise through a 25 % longer T looks much
     // the same), which steps along one coordinate at a time crawl down, so
@@ -277,10 +319,10 @@ class Search {
   NoiseTermSet terms_;
   double tc_;  // the reference's Gauss-Markov Tc (1 without the term)
   double tau0_;
-  double penalty_;    // one parameter's cost in the selection criterion
-  bool butterworth_;  // whether the Butterworth kind is tried
-  // (k, T, f_c): the flicker factors
-  std::map<std::tuple<int, double, double>, std::vector<double>> flicker_cache_;
+  double penalty_;        // one parameter's cost in the selection criterion
+  BandwidthKinds kinds_;  // the kinds tried
+  // (k, T, f_c, c): the flicker factors
+  std::map<std::tuple<int, double, double, double>, std::vector<double>> flicker_cache_;
 };
 
 // The bandwidth's drop in the points' generalised-least-squares distance
@@ -359,7 +401,7 @@ void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth) {
 }
 
 BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s,
-                               bool butterworth) {
+                               BandwidthKinds kinds) {
   BandwidthSearch result;
   BandwidthEstimate& e = result.estimate;
   e.sample_interval_s = p.sample_interval_s();
@@ -370,7 +412,7 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
   const NoiseTermSet terms = reference_terms(p, gauss_markov);
   if (!terms.contains(NoiseTerm::white)) return result;
   const SubsetFit plain = fit_subset(p, terms, tc, std::nullopt, NonPositive::drop_term);
-  Search search(p, terms, tc, options.penalty, butterworth);
+  Search search(p, terms, tc, options.penalty, kinds);
   const Trial best = search.best();
   set_bandwidth_shapes(p, {});
   result.reference_deviance = plain.deviance;
@@ -378,7 +420,8 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
 
   const SensorBandwidth bandwidth = search.bandwidth_of(best.fraction, best.log_t, best.k);
   const double reduction = 1.0 - white_allan_factor(bandwidth, p.tau.front(), e.sample_interval_s);
-  const int spare = static_cast<int>(p.y.size()) - terms.parameter_count() - 2;
+  const int parameters = best.k == kBeyondMemory ? 1 : 2;  // the kind's
+  const int spare = static_cast<int>(p.y.size()) - terms.parameter_count() - parameters;
   const double dispersion = std::max(1.0, best.deviance / std::max(1, spare));
   e.deviance_drop = plain.deviance - best.deviance;
   // At the longest T searched the data want a correlation longer than a
@@ -392,8 +435,10 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
       best.log_t <= std::log(kLowestCutoff) + 1e-3 || best.log_t >= std::log(kHighestCutoff) - 1e-3;
   e.at_search_bound = best.k > 1               ? best.k == kLongestMovingAverage
                       : best.k == kButterworth ? butterworth_bound
-                                               : best.log_t >= std::log(kLongestT) - 1e-3;
-  const double cost = 2.0 * options.penalty;
+                      : best.k == kBeyondMemory
+                          ? best.log_t >= (1.0 - 1e-3) * search.largest_memory_constant()
+                          : best.log_t >= std::log(kLongestT) - 1e-3;
+  const double cost = parameters * options.penalty;
   if (!(e.deviance_drop > cost * dispersion) || reduction < kSmallestEffect || e.at_search_bound) {
     return result;
   }
@@ -405,8 +450,9 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
   e.cutoff_hz = cutoff_hz(bandwidth, e.sample_interval_s);
   e.lag1_correlation = white_lag1_correlation(bandwidth, e.sample_interval_s);
   e.first_tau_reduction = reduction;
+  const double near = parameters == 1 ? kOneParameter95 : kTwoParameters95;
   for (const Trial& t : search.trials) {
-    if (t.deviance <= best.deviance + kTwoParameters95 * dispersion) {
+    if (t.deviance <= best.deviance + near * dispersion) {
       result.near.push_back(search.bandwidth_of(t.fraction, t.log_t, t.k));
     }
   }

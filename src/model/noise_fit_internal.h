@@ -136,7 +136,8 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
 
 /// What the bandwidth search found: the estimate, and the (phi, T) the data
 /// do not tell from it (reference deviance within the 95 % point of
-/// chi-square with two degrees of freedom, times the dispersion).
+/// chi-square with two degrees of freedom, times the dispersion; with one
+/// for a filter known beyond its memory, whose c is its one parameter).
 struct BandwidthSearch {
   BandwidthEstimate estimate;
   std::vector<SensorBandwidth> near;
@@ -156,12 +157,21 @@ double find_line_scale(Points& p, const NoiseFitOptions& options);
 /// without one).
 void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth);
 
+/// The filter kinds find_bandwidth() tries.
+enum class BandwidthKinds {
+  established,       ///< the first-order low-pass and the moving average
+  with_butterworth,  ///< those and the second-order Butterworth
+  /// only a filter known beyond its memory (SensorBandwidth::
+  /// memory_constant_samples), for points whose first taus are left out
+  beyond_memory,
+};
+
 /// Looks for the sensor bandwidth in the short-tau points and, when the data
 /// resolve it, sets p.white_shape and p.flicker_shape; returns what it found.
 /// `gm_tc_s` > 0 adds a Gauss-Markov process of that correlation time to
 /// the reference model.
 BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s = 0.0,
-                               bool butterworth = true);
+                               BandwidthKinds kinds = BandwidthKinds::with_butterworth);
 
 /// Widens N's interval to the union over the bandwidths the data do not
 /// tell apart (the chosen terms refitted with each): the white level is

@@ -101,6 +101,10 @@ std::string bandwidth_sentence(const model::BandwidthEstimate& b, Language langu
   if (b.bandwidth.butterworth()) {
     return say(language, Text::an_bandwidth_butterworth, g(b.cutoff_hz), percent, lag1, lowered);
   }
+  if (b.bandwidth.beyond_memory()) {
+    return say(language, Text::an_bandwidth_beyond_memory, g(b.bandwidth.memory_constant_samples),
+               g(b.cutoff_hz), lowered);
+  }
   return say(language, Text::an_bandwidth_first_order, g(b.bandwidth.time_constant_s),
              g(b.cutoff_hz), percent, lag1, lowered);
 }

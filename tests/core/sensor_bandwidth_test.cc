@@ -237,5 +237,89 @@ TEST(SensorBandwidth, FactorTendsToTheContinuousFilterAndToOne) {
   EXPECT_TRUE(std::isinf(cutoff_hz(SensorBandwidth{})));
 }
 
+// Any filter, known beyond its memory: a cascade of a k-sample moving
+// average and a first-order low-pass (rho), its impulse response by
+// convolution, its autocorrelation and Allan variance by direct sums, and
+// c = 1.5 sum |j| r_j / sum r_j from that autocorrelation. Past the
+// memory the factor 1 - c / m is the Allan variance's.
+TEST(SensorBandwidth, BeyondItsMemoryAnyFilterFollowsOneConstant) {
+  const double tau0 = 0.01;
+  for (int k : {1, 3, 8}) {
+    for (double rho : {0.0, std::exp(-1.0), 0.8}) {
+      // h = moving average * (1 - rho) rho^i, to rho^i < 1e-18.
+      std::vector<double> h(static_cast<std::size_t>(k) + 200, 0.0);
+      for (int i = 0; i < k; ++i) {
+        double tail = (1.0 - rho) / k;
+        for (std::size_t j = static_cast<std::size_t>(i); j < h.size(); ++j, tail *= rho) {
+          h[j] += tail;
+        }
+      }
+      const auto reach = static_cast<int>(h.size());
+      auto r = [&](int lag) {
+        double sum = 0.0;
+        for (int i = 0; i + std::abs(lag) < reach; ++i) {
+          sum += h[static_cast<std::size_t>(i)] * h[static_cast<std::size_t>(i + std::abs(lag))];
+        }
+        return sum;
+      };
+      double total = 0.0, moment = 0.0;
+      for (int j = -reach + 1; j < reach; ++j) total += r(j), moment += std::abs(j) * r(j);
+      const double c = 1.5 * moment / total;
+      if (k == 1 && rho == 0.0) continue;  // no filter: c = 0
+      const SensorBandwidth bw{.filtered_fraction = 1.0, .memory_constant_samples = c};
+      SCOPED_TRACE(::testing::Message() << "k " << k << ", rho " << rho << ", c " << c);
+      ASSERT_TRUE(bw.any());
+      for (int m : {k + 160, 256, 1000}) {
+        double var = 0.0, cov = 0.0;  // sums over the lags, weighted by their counts
+        for (int j = -m + 1; j < m; ++j) var += (m - std::abs(j)) * r(j);
+        for (int j = 1; j < 2 * m; ++j) cov += (m - std::abs(j - m)) * r(j);
+        const double expected = (var - cov) / m / total;  // over S / m
+        EXPECT_NEAR(white_allan_factor(bw, m * tau0, tau0), expected, 1e-12) << "m " << m;
+      }
+    }
+  }
+  // The moving average alone: c = (k^2 - 1) / (2 k), exact from m = k.
+  for (int k : {2, 4, 11}) {
+    const SensorBandwidth ma{1.0, 0.0, k};
+    const SensorBandwidth memory{.filtered_fraction = 1.0,
+                                 .memory_constant_samples = (k * k - 1.0) / (2.0 * k)};
+    for (int m = k; m <= 4 * k; ++m) {
+      EXPECT_NEAR(white_allan_factor(memory, m * tau0, tau0),
+                  white_allan_factor(ma, m * tau0, tau0), 1e-13)
+          << "k " << k << ", m " << m;
+    }
+  }
+}
+
+TEST(SensorBandwidth, BeyondMemoryStandInIsTheFirstOrderFilterWithTheSameConstant) {
+  const double tau0 = 0.01;
+  for (double c : {0.05, 1.0, 2.5, 40.0}) {
+    const SensorBandwidth memory{.filtered_fraction = 1.0, .memory_constant_samples = c};
+    const SensorBandwidth stand_in = first_order_with_memory(c, tau0);
+    const double rho = filtered_lag1(stand_in, tau0);
+    EXPECT_NEAR(3.0 * rho / (1.0 - rho * rho), c, 1e-12 * c) << c;
+    EXPECT_DOUBLE_EQ(stand_in.filtered_fraction, 1.0);
+    EXPECT_DOUBLE_EQ(filtered_lag1(memory, tau0), rho);
+    EXPECT_DOUBLE_EQ(cutoff_hz(memory, tau0), cutoff_hz(stand_in, tau0));
+    EXPECT_TRUE(std::isnan(white_lag1_correlation(memory, tau0)));
+    for (double f : {0.1, 10.0, 49.0}) {
+      EXPECT_DOUBLE_EQ(power_response(memory, f, tau0), power_response(stand_in, f, tau0));
+    }
+    // Inside 2 c samples the stand-in's factor (positive, below 1), then 1 - c / m.
+    for (int m : {1, 2, 3, 5, 8, 100, 1000}) {
+      const double factor = white_allan_factor(memory, m * tau0, tau0);
+      if (m >= 2.0 * c) {
+        EXPECT_DOUBLE_EQ(factor, 1.0 - c / m);
+      } else {
+        EXPECT_DOUBLE_EQ(factor, white_allan_factor(stand_in, m * tau0, tau0));
+        EXPECT_GT(factor, 0.0);
+      }
+      EXPECT_LT(factor, 1.0);
+      EXPECT_DOUBLE_EQ(flicker_allan_factor(memory, m * tau0, tau0),
+                       flicker_allan_factor(stand_in, m * tau0, tau0));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace foglab

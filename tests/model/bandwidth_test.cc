@@ -171,6 +171,37 @@ TEST(Bandwidth, SecondOrderButterworthIsFoundAndKeepsTheWhiteLevel) {
   }
 }
 
+// c = 1.5 sum |j| r_j / sum r_j (core/sensor_bandwidth.h) of a moving
+// average over k samples, a first-order low-pass of time constant tc_s and
+// a second-order Butterworth at butterworth_hz in a row, from their impulse
+// response (to 4,000 samples, where it is below 1e-30).
+double cascade_memory_constant(double fs_hz, int k, double tc_s, double butterworth_hz) {
+  const std::size_t n = 4000;
+  std::vector<double> h(n, 0.0);
+  for (int i = 0; i < k; ++i) h[static_cast<std::size_t>(i)] = 1.0 / k;
+  if (tc_s > 0.0) {
+    const double rho = std::exp(-1.0 / (fs_hz * tc_s));
+    double y = 0.0;
+    for (double& x : h) x = y = (1.0 - rho) * x + rho * y;
+  }
+  if (butterworth_hz > 0.0) {
+    const auto [b0, b1, b2, a1, a2] = butterworth_coefficients(butterworth_hz, 1.0 / fs_hz);
+    double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (double& x : h) {
+      const double y = b0 * x + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
+      x2 = x1, x1 = x, y2 = y1, y1 = y, x = y;
+    }
+  }
+  double total = 0.0, moment = 0.0;
+  for (std::size_t lag = 0; lag < n; ++lag) {
+    double r = 0.0;
+    for (std::size_t i = 0; i + lag < n; ++i) r += h[i] * h[i + lag];
+    total += (lag == 0 ? 1.0 : 2.0) * r;
+    moment += 2.0 * static_cast<double>(lag) * r;
+  }
+  return 1.5 * moment / total;
+}
+
 TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
   // Two filters in a row (an analog low-pass, then a digital one), which
   // no single modelled kind follows: before the first taus were left out,
@@ -178,8 +209,12 @@ TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
   struct Case {
     double fs_hz, hours, tc_s, butterworth_hz;
     int moving_average;
+    double c_tolerance;  // 3.5 standard deviations of c over seeds 1-12 (10 % and 2.3 %)
   };
-  for (const Case& c : {Case{10.0, 10.0, 0.2, 3.0, 1}, Case{100.0, 2.0, 0.01, 0.0, 3}}) {
+  for (const Case& c :
+       {Case{10.0, 10.0, 0.2, 3.0, 1, 0.35}, Case{100.0, 2.0, 0.01, 0.0, 3, 0.08}}) {
+    const double true_c =
+        cascade_memory_constant(c.fs_hz, c.moving_average, c.tc_s, c.butterworth_hz);
     for (std::uint64_t seed = 1; seed <= 2; ++seed) {
       sim::ErrorModel m;
       m.noise.N = 0.3;
@@ -198,7 +233,12 @@ TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
       EXPECT_LE(r.noise.first_taus_left_out, 4);
       EXPECT_NE(r.noise.first_taus_left_out_why.text().find("left out"), std::string::npos);
       EXPECT_NEAR(r.noise.N.value / 0.3, 1.0, 0.01);
-      // The interval spans the fits with one and two taus more left out.
+      // The rest are fitted with a filter known beyond its memory, whose c
+      // (1.5 sum |j| r_j / sum r_j of the cascade's autocorrelation) the
+      // interval carries.
+      ASSERT_TRUE(r.noise.bandwidth.resolved);
+      EXPECT_TRUE(r.noise.bandwidth.bandwidth.beyond_memory());
+      EXPECT_NEAR(r.noise.bandwidth.bandwidth.memory_constant_samples / true_c, 1.0, c.c_tolerance);
       EXPECT_LE(r.noise.N.ci95_low, 0.3);
       EXPECT_GE(r.noise.N.ci95_high, 0.3);
       EXPECT_EQ(r.noise.B.status, TermStatus::resolved);

@@ -38,6 +38,24 @@
 //
 // The filter acts on the output's flicker noise too; flicker_allan_factor()
 // gives what it does to the flicker plateau.
+//
+// The fourth kind is any filter, known only beyond its memory. A real
+// sensor's output filter can be a cascade (an anti-alias filter, then a
+// decimation filter) that none of the three follows over the first taus.
+// For a filter whose samples are correlated over fewer than m lags, with
+// autocorrelation r_j, the variance of an m-average is (m sum r_j -
+// sum |j| r_j) / m^2 and two neighbouring m-averages share sum_(j>0) j r_j
+// / m^2, so its Allan variance is exactly
+//
+//   AVAR(tau) = N^2 / tau * (1 - c tau0 / tau),  c = 1.5 sum |j| r_j / sum r_j
+//
+// whatever the filter's shape (c = (k^2 - 1) / (2 k) for a moving average
+// over k samples, 3 rho / (1 - rho^2) for the first-order filter, whose
+// memory ends within rho^m). The fit uses it from 3 c samples on, once the
+// first taus are left out (model/noise_fit.cc, noise_fit_bandwidth.cc; a
+// moving average's memory ends at 2 c). Inside 2 c samples, and for the
+// cut-off and the power response, the first-order low-pass with the same
+// c stands in for the unknown shape.
 #pragma once
 
 #include <array>
@@ -52,14 +70,26 @@ struct SensorBandwidth {
   /// > 0: the filter is a second-order Butterworth low-pass at this cut-off
   /// [Hz] instead (T and k unused).
   double butterworth_cutoff_hz = 0.0;
+  /// > 0: a filter known only beyond its memory instead, by c [samples]
+  /// of its factor 1 - phi c tau0 / tau on the white Allan variance (only
+  /// the product phi c shows; the fit takes phi = 1; T, k and f_c unused).
+  double memory_constant_samples = 0.0;
 
   bool moving_average() const { return moving_average_samples > 1; }
   bool butterworth() const { return butterworth_cutoff_hz > 0.0; }
+  bool beyond_memory() const { return memory_constant_samples > 0.0; }
   /// Whether it changes anything.
   bool any() const {
-    return filtered_fraction > 0.0 && (moving_average() || butterworth() || time_constant_s > 0.0);
+    return filtered_fraction > 0.0 &&
+           (moving_average() || butterworth() || beyond_memory() || time_constant_s > 0.0);
   }
 };
+
+/// The first-order low-pass on the whole output whose factor beyond its
+/// memory is 1 - c tau0 / tau: lag-1 correlation rho with
+/// 3 rho / (1 - rho^2) = c, time constant -tau0 / ln(rho). The stand-in for
+/// a filter known only by c (SensorBandwidth::memory_constant_samples).
+SensorBandwidth first_order_with_memory(double memory_constant_samples, double sample_interval_s);
 
 /// The second-order Butterworth low-pass at `cutoff_hz` for samples every
 /// `sample_interval_s`, by the bilinear transform with pre-warping:
@@ -71,17 +101,21 @@ std::array<double, 5> butterworth_coefficients(double cutoff_hz, double sample_i
 
 /// The cut-off [Hz]: 1 / (2 pi T) of the first-order low-pass, the
 /// Butterworth's f_c, or where the moving average's response falls to
-/// 1/sqrt(2) (0.443 fs / k for large k); infinite without a filter. `sample_interval_s` serves the
+/// 1/sqrt(2) (0.443 fs / k for large k), the first-order stand-in's for a
+/// filter known beyond its memory; infinite without a filter. `sample_interval_s` serves the
 /// moving average.
 double cutoff_hz(const SensorBandwidth& bandwidth, double sample_interval_s = 0.0);
 
 /// The lag-1 correlation of the filtered part's samples: exp(-tau0 / T),
-/// (k - 1) / k for the moving average, a_1 / a_0 for the Butterworth.
+/// (k - 1) / k for the moving average, a_1 / a_0 for the Butterworth, the
+/// first-order stand-in's rho for a filter known beyond its memory.
 double filtered_lag1(const SensorBandwidth& bandwidth, double sample_interval_s);
 
 /// The factor on the white term's Allan variance N^2 / tau at tau [s] (an
 /// integer multiple m of the sample interval tau0 [s]): 1 without a
-/// bandwidth, below 1 at short tau, tending to 1 as tau grows.
+/// bandwidth, below 1 at short tau, tending to 1 as tau grows. For a filter
+/// known beyond its memory 1 - phi c / m from m = 2 c, the first-order
+/// stand-in's below.
 double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s, double sample_interval_s);
 
 /// The factor on the flicker term's Allan variance (its plateau
@@ -92,7 +126,8 @@ double white_allan_factor(const SensorBandwidth& bandwidth, double tau_s, double
 /// between averages j samples apart is L(j+1) - 2 L(j) + L(j-1), L(a) =
 /// a^2 ln|a| (up to scale), and the Allan kernel's quadratic form over it,
 /// weighted by the filter's autocorrelation, follows as a fourth difference
-/// of L at step m.
+/// of L at step m. For a filter known beyond its memory, the first-order
+/// stand-in's (the kinds differ by O((c / m)^2) in it).
 double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
                             double sample_interval_s);
 
@@ -101,7 +136,8 @@ double flicker_allan_factor(const SensorBandwidth& bandwidth, double tau_s,
 /// filter's response normalised to 1 at DC — the first-order filter's
 /// (1 - rho)^2 / (1 - 2 rho cos(2 pi f tau0) + rho^2) (rho = exp(-tau0 / T),
 /// the autoregressive sequence above), the moving average's
-/// sin^2(pi f k tau0) / (k sin(pi f tau0))^2, the Butterworth's |H(e^(i 2 pi f tau0))|^2.
+/// sin^2(pi f k tau0) / (k sin(pi f tau0))^2, the Butterworth's |H(e^(i 2 pi f tau0))|^2,
+/// the first-order stand-in's for a filter known beyond its memory.
 /// 1 without a bandwidth. The PSD of the sensor's white (and flicker) noise
 /// is its level times this.
 double power_response(const SensorBandwidth& bandwidth, double frequency_hz,
@@ -109,7 +145,8 @@ double power_response(const SensorBandwidth& bandwidth, double frequency_hz,
 
 /// The lag-1 autocorrelation of the white noise's samples with this
 /// bandwidth (0 without one); for the first-order filter
-/// phi rho (1 - rho) / (1 + rho - 2 phi rho).
+/// phi rho (1 - rho) / (1 + rho - 2 phi rho); NaN for a filter known
+/// beyond its memory (its shape inside the memory is not known).
 double white_lag1_correlation(const SensorBandwidth& bandwidth, double sample_interval_s);
 
 }  // namespace foglab
