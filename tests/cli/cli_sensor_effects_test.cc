@@ -234,6 +234,15 @@ TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
     noted = noted || n.get<std::string>().find(why) != std::string::npos;
   EXPECT_TRUE(noted) << why;
   EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 0.3, 1.0, 0.01);
+  // The rest fitted with the filter known beyond its memory: its c (the
+  // cascade's is 2.006 samples) and no lag-1 correlation (its shape inside
+  // the memory is not known).
+  const json& bw = r.analysis["sensor_bandwidth"];
+  ASSERT_TRUE(bw["resolved"].get<bool>());
+  EXPECT_EQ(bw["kind"], "beyond_memory");
+  EXPECT_NEAR(bw["memory_constant_samples"].get<double>() / 2.006, 1.0, 0.08);
+  EXPECT_TRUE(bw["lag1_correlation"].is_null());
+  EXPECT_TRUE(bw["time_constant_s"].is_null());
 
   const Generated single =
       generate_and_analyze(dir.path(), "--N 0.3 --B 0.1 --fs 100 --hours 2 --filter-tc 0.01", 2);
