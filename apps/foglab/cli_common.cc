@@ -198,7 +198,31 @@ SampleUnit channel_unit(const UnitSpec& spec, const std::string& channel, const 
   return SampleUnit::deg_per_hour;
 }
 
-io::Series load_input(const InputOptions& options) {
+void leave_missing_samples(io::Series& series, std::vector<double>* paired) {
+  const io::MissingSamples left = io::drop_missing_samples(series, paired);
+  if (left.samples > 0) {
+    std::string ends;
+    if (left.at_start > 0) {
+      ends += fmt::format("; the record starts {} sample(s) later", left.at_start);
+    }
+    if (left.at_end > 0) ends += fmt::format("; it ends {} sample(s) earlier", left.at_end);
+    note(fmt::format(
+        "'{}': {} NaN or empty sample(s) in {} stretch(es){} are missing samples, left out{}",
+        series.path, left.samples, left.stretches,
+        paired != nullptr ? " (of the rate or its temperature)" : "", ends));
+  }
+  if (!series.gaps.empty()) {
+    const std::int64_t missing = missing_samples(series.gaps);
+    note(
+        fmt::format("'{}': the record has {} gap(s), {} sample(s) ({:.6g} s) missing; the "
+                    "statistics use the contiguous stretches between them (nothing is "
+                    "interpolated)",
+                    series.path, series.gaps.size(), missing,
+                    static_cast<double>(missing) / series.sample_rate_hz));
+  }
+}
+
+io::Series load_input(const InputOptions& options, bool keep_nan_rows) {
   if (options.path.empty()) {
     io::Series sample = io::builtin_sample();
     note(fmt::format("no FILE given: using the built-in sample ({} samples at {} Hz, {} h)",
@@ -207,17 +231,11 @@ io::Series load_input(const InputOptions& options) {
     return sample;
   }
   progress(fmt::format("reading '{}'", options.path));
-  io::Series series = io::read_series(options.path, read_options(options));
+  io::ReadOptions read = read_options(options);
+  read.nan_is_missing = true;
+  io::Series series = io::read_series(options.path, read);
   for (const Message& m : series.notes) note(m.text());
-  if (!series.gaps.empty()) {
-    const std::int64_t missing = missing_samples(series.gaps);
-    note(
-        fmt::format("'{}': the time axis has {} gap(s), {} sample(s) ({:.6g} s) missing; the "
-                    "statistics use the contiguous stretches between them (nothing is "
-                    "interpolated)",
-                    options.path, series.gaps.size(), missing,
-                    static_cast<double>(missing) / series.sample_rate_hz));
-  }
+  if (!keep_nan_rows) leave_missing_samples(series, nullptr);
   if (options.channel.empty() && series.available_channels.size() > 1) {
     note(fmt::format("'{}' has channels {}; using '{}' (choose with --channel)", options.path,
                      io::list_names(series.available_channels), series.channel));
@@ -291,6 +309,7 @@ nlohmann::json gaps_json(const io::Series& series) {
   const std::int64_t missing = missing_samples(series.gaps);
   return {{"count", series.gaps.size()},
           {"missing_samples", missing},
+          {"missing_value_rows", series.nan_left_out.samples},
           {"missing_s", static_cast<double>(missing) / fs},
           {"first_sample_time_s", series.start_time_s},
           {"treatment", series.gaps.empty() ? "none"

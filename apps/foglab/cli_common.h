@@ -94,8 +94,16 @@ decltype(auto) naming_the_input(const io::Series& series, Work&& work) {
 }
 
 /// Reads the record (or makes the built-in sample when no FILE was given),
-/// printing the reader's notes (an integer MAT class converted, ...).
-io::Series load_input(const InputOptions& options);
+/// printing the reader's notes (an integer MAT class converted, ...). A NaN
+/// sample is a missing one: its row is left out and becomes a gap
+/// (leave_missing_samples()), unless `keep_nan_rows` leaves that to the
+/// caller, which pairs a second channel with the record first.
+io::Series load_input(const InputOptions& options, bool keep_nan_rows = false);
+
+/// Leaves out the rows whose sample is NaN in `series` or in `paired` (may
+/// be null; io::drop_missing_samples()) and says what was left out and
+/// which gaps the record has.
+void leave_missing_samples(io::Series& series, std::vector<double>* paired);
 
 /// A JSON number, or null for NaN/Inf.
 nlohmann::json number(double value);

@@ -124,10 +124,11 @@ void run_time_error(const AllanCommand& c) {
   io::Series series = load_varying_record(c, input);
   if (!series.gaps.empty()) {
     naming_the_input(series, [&]() -> int {
-      throw DataError(fmt::format(
-          "{} gap(s) in the time column: {} across a gap would take the missing time for none; "
-          "analyse each stretch on its own",
-          series.gaps.size(), stats::to_string(kind)));
+      throw DataError(
+          fmt::format("{} gap(s) (in the time column, or NaN samples left out): {} across a gap "
+                      "would take the missing time for none; "
+                      "analyse each stretch on its own",
+                      series.gaps.size(), stats::to_string(kind)));
     });
   }
   progress(fmt::format("{} of {} samples", stats::to_string(kind), series.values.size()));

@@ -133,6 +133,7 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   read.channel = name;
   read.sample_rate_hz = series.sample_rate_hz;  // the rate's, already checked
   read.unit = RateUnit::deg_per_hour;           // identity: degC stay degC
+  read.nan_is_missing = true;                   // a NaN temperature leaves its row out
   io::Series t = io::read_series(path, read);
   for (const Message& m : t.notes) note(m.text());
   if (t.values.size() != series.values.size()) {
@@ -164,7 +165,12 @@ ChannelAnalysis analyse_series(const AnalyzeCommand& c, io::Series series,
   ChannelAnalysis a;
   std::vector<std::string> notes;
   Temperature temperature;
-  if (read_temperature) temperature = load_temperature(c, series, notes);
+  if (read_temperature) {
+    // A row is missing when its rate or its temperature is NaN (load_input
+    // left the NaN rows in for this).
+    temperature = load_temperature(c, series, notes);
+    leave_missing_samples(series, temperature.channel.empty() ? nullptr : &temperature.values_c);
+  }
   if (temperature.channel.empty() && c.temp_degree != "auto") {
     const std::string text =
         fmt::format("--temp-degree {} ignored: there is no temperature", c.temp_degree);
@@ -223,7 +229,7 @@ void run(const AnalyzeCommand& c) {
   }
   const model::AnalysisOptions options = checked_analysis_options(c);
   const ChannelAnalysis a =
-      analyse_series(c, load_input(c.input), options, !c.report_path.empty(), true);
+      analyse_series(c, load_input(c.input, true), options, !c.report_path.empty(), true);
   const model::AnalysisResult& result = a.result;
   const report::ReportInput& report_input = a.report_input;
 

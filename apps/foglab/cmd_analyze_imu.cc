@@ -297,6 +297,7 @@ void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& n
       io::ReadOptions read = read_options(in);
       read.channel = run.name;
       read.unit = run.unit;
+      read.nan_is_missing = true;  // left out below, with the temperature's NaN rows
       progress(fmt::format("reading '{}' channel {}", c.input.path,
                            run.name.empty() ? "(default)" : run.name));
       series = io::read_series(c.input.path, read);
@@ -314,6 +315,9 @@ void run_imu_analysis(const AnalyzeCommand& c, const std::vector<std::string>& n
     }
     for (const std::string& text : run.notes) note(text);
     Temperature temperature = bag ? Temperature{} : temperatures.get(c, series, run.notes);
+    if (!bag) {
+      leave_missing_samples(series, temperature.channel.empty() ? nullptr : &temperature.values_c);
+    }
     const double record_mean = temperature.channel.empty() ? compensated_mean(series.values) : NAN;
 
     run.json_input.input = input_json(series);

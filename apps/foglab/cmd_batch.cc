@@ -354,7 +354,7 @@ std::string analyse_unit(const BatchCommand& c, const std::string& file, const s
     }
     series = bag_axis_series(*bag, channel, file, c.analyze.input.sample_rate_hz.has_value());
   } else {
-    series = load_input(one.input);
+    series = load_input(one.input, true);  // analyse_series() leaves the NaN rows out
   }
   ChannelAnalysis a = analyse_series(one, std::move(series), options, false, !from_bag);
   a.json_input.notes.insert(a.json_input.notes.begin(), notes.begin(), notes.end());

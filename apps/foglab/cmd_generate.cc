@@ -48,6 +48,7 @@ struct GenerateCommand {
   std::string spikes;
   std::optional<double> lsb;
   std::vector<std::string> drops;
+  std::string drop_mark;  // "time", "nan"; empty: time, nan for a raw file
   // A 6-axis IMU (--imu): the mems-imu model, the gyroscope options above
   // for its three gyroscopes, these for its accelerometers [m/s^2 units].
   bool imu = false;
@@ -287,6 +288,11 @@ void run_imu(const GenerateCommand& c) {
         "--imu takes --drop of the sensor-output options; the filter, sine, step, spike and "
         "LSB options are a single gyroscope's (deg/h) and are not applied to an IMU");
   }
+  if (!c.drop_mark.empty()) {
+    throw UsageError(
+        "--drop-mark is a single gyroscope's file's; an IMU's dropped samples are rows left "
+        "out (.csv, .mat) or messages missing (.bag)");
+  }
   sim::ImuModel imu = sim::mems_imu_model();
   const sim::SensorOutput output = sensor_output_of(c);
   for (std::size_t a = 0; a < 6; ++a) {
@@ -445,22 +451,39 @@ Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
 
   std::vector<std::string> variables;
   const bool raw = format == OutFormat::f32 || format == OutFormat::f64;
-  if (raw && !model.output.dropouts.empty()) {
+  if (raw && c.drop_mark == "time" && !model.output.dropouts.empty()) {
     throw UsageError(
-        fmt::format("--drop: '{}' is a raw file, which has no time column to show "
-                    "the gaps; write a .mat or .csv file",
+        fmt::format("--drop-mark time: '{}' is a raw file, which has no time column to show "
+                    "the gaps; write a .mat or .csv file, or mark the lost samples NaN "
+                    "(--drop-mark nan, the default for a raw file)",
                     shown_out));
   }
   if (raw) {
     // streamed block by block: constant memory whatever the length
     io::RawFileWriter writer(out, format == OutFormat::f32 ? io::RawType::f32 : io::RawType::f64);
-    sim::generate(model, temperature, options,
-                  [&](const sim::Block& block) { writer.append(block.rate_deg_h); });
+    std::vector<double> marked;
+    sim::generate(model, temperature, options, [&](const sim::Block& block) {
+      if (model.output.dropouts.empty()) {
+        writer.append(block.rate_deg_h);
+        return;
+      }
+      marked.assign(block.rate_deg_h.begin(), block.rate_deg_h.end());
+      sim::mark_dropouts_nan(marked, block.first_index, samples, model.output,
+                             options.sample_rate_hz);
+      writer.append(marked);
+    });
     writer.commit();
     variables = {"rate"};
   } else {
     sim::Recording rec = sim::generate(model, temperature, options);
-    sim::remove_dropouts(rec, model.output);
+    if (c.drop_mark == "nan") {
+      // the lost rows stay, rate and temperature NaN (the time goes on)
+      const auto total = static_cast<std::int64_t>(rec.rate_deg_h.size());
+      sim::mark_dropouts_nan(rec.rate_deg_h, 0, total, model.output, rec.sample_rate_hz);
+      sim::mark_dropouts_nan(rec.temperature_c, 0, total, model.output, rec.sample_rate_hz);
+    } else {
+      sim::remove_dropouts(rec, model.output);
+    }
     if (format == OutFormat::mat) {
       const double f = rec.sample_rate_hz;
       const std::vector<io::NamedVector> vars = {
@@ -683,8 +706,13 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--spikes", c->spikes, "spikes RATE:SIZE (mean per hour, deg/h each)");
   cmd->add_option("--lsb", c->lsb, "output word: round each sample to this step [deg/h]");
   cmd->add_option("--drop", c->drops,
-                  "dropped samples T:D (from time s on, for D s; the time column shows the gap); "
-                  "repeatable");
+                  "dropped samples T:D (from time s on, for D s; the time column shows the gap, "
+                  "or see --drop-mark); repeatable");
+  cmd->add_option("--drop-mark", c->drop_mark,
+                  "how the file shows a dropped sample: time (its row left out, the time column "
+                  "shows the gap; .mat and .csv) or nan (its row kept with a NaN rate and "
+                  "temperature; the default for .f32/.f64)")
+      ->check(CLI::IsMember({"time", "nan"}));
   cmd->add_flag("--imu", c->imu,
                 "a 6-axis IMU (mems-imu model, 400 Hz): gyro_x..z [deg/h] and accel_x..z "
                 "[m/s^2] to .csv, .mat or a ROS 1 .bag (sensor_msgs/Imu on /imu, rad/s and "

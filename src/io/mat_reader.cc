@@ -382,10 +382,19 @@ class MatFile {
       fail_read(var, messages.empty() ? matio_error_text(error) : summary(messages));
     }
     // matio fills the array from its start, so a short read leaves the
-    // marker at the end: O(1) unless the read stopped early. (A marker left
-    // anywhere else is a NaN, which the reader's finite check refuses.)
+    // marker at the end. A marker anywhere else would be a NaN that a
+    // reader taking NaN for a missing sample (ReadOptions::nan_is_missing)
+    // would accept: it is looked for too.
     std::size_t read = values.size();
     while (read > 0 && std::bit_cast<std::uint64_t>(values[read - 1]) == kUnreadBits) --read;
+    const auto unread =
+        std::find_if(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(read),
+                     [](double v) { return std::bit_cast<std::uint64_t>(v) == kUnreadBits; });
+    if (unread != values.begin() + static_cast<std::ptrdiff_t>(read)) {
+      throw_data_error(path_, fmt::format("the MAT file is corrupt: sample {} of variable '{}' "
+                                          "({}) was not read",
+                                          unread - values.begin() + 1, var.name, describe(fresh)));
+    }
     if (read < values.size()) {
       throw_data_error(path_, fmt::format("the MAT file is corrupt or truncated: variable "
                                           "'{}' ({}) ends after {} samples",

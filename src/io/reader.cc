@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -264,7 +265,7 @@ constexpr double kMinLargestMagnitude = 1e-30;
 // unit). In parallel, chunk by chunk: a chunk whose every converted sample is
 // finite and within the limit (which may be infinite) is converted
 // at once; a chunk that is not is walked sample by sample for the message.
-void finish_values(Series& series, RateUnit unit, double max_magnitude) {
+void finish_values(Series& series, RateUnit unit, double max_magnitude, bool nan_is_missing) {
   if (series.values.empty()) {
     throw_data_error(series.path, fmt::format("channel '{}' has no samples", series.channel));
   }
@@ -296,6 +297,7 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
     if (converted[c]) continue;
     for (std::size_t i = c * kChunkSamples; i < std::min(n, (c + 1) * kChunkSamples); ++i) {
       const double value = values[i];
+      if (nan_is_missing && std::isnan(value)) continue;  // a missing sample, left as NaN
       if (!std::isfinite(value)) {
         throw_data_error(series.path, fmt::format("sample {} of '{}' is {}", i + 1, series.channel,
                                                   describe_non_finite(value)));
@@ -317,6 +319,7 @@ void finish_values(Series& series, RateUnit unit, double max_magnitude) {
                         unit == target ? std::string() : fmt::format(" {}", to_string(unit)),
                         max_magnitude));
       }
+      values[i] = in_unit;
     }
   }
   const double record_largest = *std::max_element(largest.begin(), largest.end());
@@ -416,8 +419,71 @@ Series read_series(const std::string& path, const ReadOptions& options) {
     series.sample_rate_hz = *options.sample_rate_hz;
     series.sample_rate_source = SampleRateSource::option;
   }
-  finish_values(series, options.unit, options.max_magnitude);
+  finish_values(series, options.unit, options.max_magnitude, options.nan_is_missing);
   return series;
+}
+
+MissingSamples drop_missing_samples(Series& series, std::vector<double>* paired) {
+  std::vector<double>& values = series.values;
+  const std::size_t n = values.size();
+  if (paired != nullptr && paired->size() != n) {
+    throw std::invalid_argument("drop_missing_samples: the paired channel's length differs");
+  }
+  auto missing = [&](std::size_t i) {
+    return std::isnan(values[i]) || (paired != nullptr && std::isnan((*paired)[i]));
+  };
+  MissingSamples dropped;
+  std::size_t first_missing = 0;
+  while (first_missing < n && !missing(first_missing)) ++first_missing;
+  if (first_missing == n) return dropped;
+
+  // Row i lies at i + (samples the time axis skips before it) on the
+  // record's grid; a kept row more than one step after the one before is a
+  // gap, whether the time axis or left-out rows made it.
+  std::vector<Gap> gaps;
+  std::size_t g = 0;
+  std::int64_t skipped = 0;
+  std::int64_t first_kept = -1, previous = -1;
+  std::size_t kept = 0;
+  bool in_run = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (g < series.gaps.size() && series.gaps[g].before_sample == static_cast<std::int64_t>(i)) {
+      skipped += series.gaps[g++].missing_samples;
+    }
+    if (missing(i)) {
+      ++dropped.samples;
+      dropped.stretches += in_run ? 0 : 1;
+      in_run = true;
+      continue;
+    }
+    in_run = false;
+    const std::int64_t at = static_cast<std::int64_t>(i) + skipped;
+    if (first_kept < 0) {
+      first_kept = at;
+      dropped.at_start = dropped.samples;
+    } else if (at - previous > 1) {
+      gaps.push_back({static_cast<std::int64_t>(kept), at - previous - 1});
+    }
+    values[kept] = values[i];
+    if (paired != nullptr) (*paired)[kept] = (*paired)[i];
+    ++kept;
+    previous = at;
+  }
+  if (kept == 0) {
+    throw_data_error(series.path,
+                     fmt::format("channel '{}'{} has no sample left: all {} are NaN (missing)",
+                                 series.channel, paired != nullptr ? " with its pair" : "", n));
+  }
+  std::size_t last_kept = n - 1;
+  while (missing(last_kept)) --last_kept;
+  dropped.at_end = static_cast<std::int64_t>(n - 1 - last_kept);
+  values.resize(kept);
+  // the capacity stays: the Allan integration grows the record by one in place
+  if (paired != nullptr) paired->resize(kept);
+  series.gaps = std::move(gaps);
+  series.start_time_s += static_cast<double>(first_kept) / series.sample_rate_hz;
+  series.nan_left_out = dropped;
+  return dropped;
 }
 
 std::vector<std::string> list_channels(const std::string& path, InputFormat format) {

@@ -31,6 +31,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -579,6 +580,10 @@ Series read_text(const std::string& path, const ReadOptions& options) {
     double value = 0.0;
     if (parse_number(field, value)) return value;
     if (options.decimal_comma && parse_comma_number(field, value)) return value;
+    // An empty cell of the channel is a missing sample, as a spreadsheet or
+    // pandas writes one (a time cell is never missing).
+    if (field.empty() && options.nan_is_missing && index == column)
+      return std::numeric_limits<double>::quiet_NaN();
     if (field.empty()) {
       throw_data_error(
           path, fmt::format("line {}, {} is empty", line_number, column_label(layout, index)));

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -149,6 +150,17 @@ std::vector<Gap> remove_dropouts(Recording& rec, const SensorOutput& output) {
     throw UsageError("SensorOutput::dropouts lose every sample of the record");
   }
   return dropout_gaps(output, rec.sample_rate_hz, samples);
+}
+
+void mark_dropouts_nan(std::span<double> values, std::int64_t first_index, std::int64_t samples,
+                       const SensorOutput& output, double sample_rate_hz) {
+  const auto end_index = first_index + static_cast<std::int64_t>(values.size());
+  for (const auto& [first, end] : lost_ranges(output, sample_rate_hz, samples)) {
+    const std::int64_t from = std::max(first, first_index), to = std::min(end, end_index);
+    for (std::int64_t k = from; k < to; ++k) {
+      values[static_cast<std::size_t>(k - first_index)] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
 }
 
 double output_filter_gain(const SensorOutput& output, double frequency_hz, double sample_rate_hz) {

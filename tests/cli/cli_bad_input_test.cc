@@ -76,12 +76,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "",
                 3,
                 {"cell.csv", "line 4", "column 2", "rate", "'abc'"}},
-        BadCase{"NaNSample",
-                "1\n2\n3\n4\nnan\n6\n",
+        // a NaN is a missing sample (a gap); a record of nothing else has none
+        BadCase{"OnlyNaNSamples",
+                "nan\nNaN\nnan\n",
                 "nan.txt",
                 "--fs 1",
                 3,
-                {"nan.txt", "sample 5", "NaN"}},
+                {"nan.txt", "channel '1'", "all 3 are NaN"}},
         BadCase{
             "InfSample", "1\n2\ninf\n4\n", "inf.txt", "--fs 1", 3, {"inf.txt", "sample 3", "Inf"}},
         BadCase{

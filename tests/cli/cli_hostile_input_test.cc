@@ -254,6 +254,8 @@ const char* name_of(Cmd c) {
 const std::vector<Cmd> kAll = {Cmd::allan, Cmd::psd, Cmd::analyze, Cmd::lab2};
 const std::vector<Cmd> kWithOptions = {Cmd::allan, Cmd::psd, Cmd::analyze};  // lab2 has no --fs
 const std::vector<Cmd> kWithTemperature = {Cmd::analyze, Cmd::lab2};
+// allan, psd and analyze take a NaN sample for a missing one (a gap)
+const std::vector<Cmd> kRefusingNaN = {Cmd::lab2};
 
 struct Case {
   std::string name;
@@ -317,7 +319,7 @@ std::vector<Case> catalogue() {
        "empty_cell.csv",
        csv([](auto& r) { set_cell(r, 12, 1, ""); }),
        "",
-       kAll,
+       kRefusingNaN,  // the others take it for a missing sample
        3,
        {"line 13", "Y1", "empty"}},
       {"RaggedRow",
@@ -367,7 +369,7 @@ std::vector<Case> catalogue() {
        "nan.csv",
        csv([](auto& r) { set_cell(r, 33, 1, "NaN"); }),
        "",
-       kAll,
+       kRefusingNaN,
        3,
        {"sample 33", "'Y1'", "NaN"}},
       {"InfSample",
@@ -388,7 +390,7 @@ std::vector<Case> catalogue() {
        "nan_temp.csv",
        csv([](auto& r) { set_cell(r, 5, 2, "nan"); }),
        "",
-       kWithTemperature,
+       kRefusingNaN,
        3,
        {"sample 5", "'T1'", "NaN"}},
       {"NaNTime",
@@ -408,7 +410,7 @@ std::vector<Case> catalogue() {
          };
        }),
        "",
-       kAll,
+       kRefusingNaN,
        3,
        {"sample 100", "'Y1'", "NaN"}},
       // -- one sample ----------------------------------------------------------

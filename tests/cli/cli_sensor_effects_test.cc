@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/cli.h"
@@ -295,10 +296,58 @@ TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {
     EXPECT_EQ(json::parse(allan.out)["n"][0], 720000 - 93050 - 4);
   }
   // a raw file has no time column for the gaps
-  const test::CliRun raw =
-      test::run_foglab("generate " + model + " --out " + test::quote(dir.path() / "x.f64"));
+  const test::CliRun raw = test::run_foglab("generate " + model + " --drop-mark time --out " +
+                                            test::quote(dir.path() / "x.f64"));
   EXPECT_EQ(raw.exit_code, 2);
-  EXPECT_NE(raw.err.find("--drop"), std::string::npos) << raw.err;
+  EXPECT_NE(raw.err.find("--drop-mark"), std::string::npos) << raw.err;
+}
+
+TEST(SensorEffects, NanSamplesAreTheSameGapsAsTheTimeColumns) {
+  // The same three dropouts written as NaN rows (rate and temperature NaN,
+  // the time going on) and, in a raw file without a time column, as NaN
+  // samples: analyze leaves the rows out and finds the gaps the time
+  // column shows. With the same samples and gaps left, the analysis is
+  // the time column's, number for number.
+  const test::TempDir dir;
+  const std::string model =
+      "--N 0.2 --B 0.02 --K 0.002 --fs 100 --hours 2 --drop 600:30 --drop 3000:0.5 "
+      "--drop 5000:900 --seed 4";
+  auto analyse = [&](const std::string& name, const std::string& generate_extra,
+                     const std::string& analyze_extra) {
+    const fs::path out = dir.path() / name;
+    const test::CliRun g =
+        test::run_foglab("generate " + model + generate_extra + " --out " + test::quote(out));
+    EXPECT_EQ(g.exit_code, 0) << g.err;
+    const test::CliRun a =
+        test::run_foglab("analyze " + test::quote(out) + analyze_extra + " --json -");
+    EXPECT_EQ(a.exit_code, 0) << a.err;
+    return std::make_pair(a.err, a.exit_code == 0 ? json::parse(a.out) : json());
+  };
+  const auto [time_err, by_time] = analyse("time.csv", "", "");
+  ASSERT_TRUE(by_time.is_object());
+  ASSERT_EQ(by_time["input"]["gaps"]["count"], 3);
+  EXPECT_EQ(by_time["input"]["gaps"]["missing_value_rows"], 0);
+  for (const char* name : {"nan.csv", "nan.mat", "nan.f64"}) {
+    SCOPED_TRACE(name);
+    const bool raw = std::string(name).ends_with(".f64");
+    const auto [err, r] = analyse(name, raw ? "" : " --drop-mark nan", raw ? " --fs 100" : "");
+    ASSERT_TRUE(r.is_object());
+    EXPECT_NE(err.find("93050 NaN or empty sample(s) in 3 stretch(es)"), std::string::npos) << err;
+    const json& gaps = r["input"]["gaps"];
+    EXPECT_EQ(gaps["missing_value_rows"], 93050);
+    EXPECT_EQ(gaps["list"], by_time["input"]["gaps"]["list"]);
+    EXPECT_EQ(r["input"]["samples"], by_time["input"]["samples"]);
+    const json& nm = r["noise_model"];
+    if (raw) {  // no temperature beside it: the analysis differs; N is still right
+      EXPECT_NEAR(nm["N"]["value"].get<double>() / 0.2, 1.0, 0.03);
+    } else {
+      for (const char* term : {"N", "B", "K"}) {
+        EXPECT_DOUBLE_EQ(nm[term]["value"].get<double>(),
+                         by_time["noise_model"][term]["value"].get<double>())
+            << term;
+      }
+    }
+  }
 }
 
 TEST(SensorEffects, BadEffectOptionsAreUsageErrorsNamingTheFlag) {

@@ -440,6 +440,68 @@ TEST_F(TextReaderTest, NanAndInfAreReportedWithTheirSampleIndex) {
             "'" + inf + "': sample 4 of '1' is -Inf");
 }
 
+TEST_F(TextReaderTest, NanSamplesAreMissingSamplesWhenAskedAndBecomeGaps) {
+  // rows (t = 0.0 .. 1.1 s at 10 Hz, 0.5 s lost in the time column):
+  // NaN at 0.0 (the record starts later), an empty cell at 0.2, NaN at
+  // 0.4 beside the time column's gap at 0.5 (one gap of two samples), NaN
+  // at 1.1 (the record ends earlier); the temperature NaN at 0.8 only
+  const std::string path = write("nan_rows.csv",
+                                 "t,rate,T\n0,nan,20\n0.1,1,20\n0.2,,20\n0.3,3,20\n0.4,NaN,20\n"
+                                 "0.6,6,20\n0.7,7,20\n0.8,8,nan\n0.9,9,20\n1,10,20\n1.1,nan,20\n");
+  ReadOptions options;
+  options.channel = "rate";
+  // without the option an empty cell and a NaN are errors, as before
+  EXPECT_EQ(message_of<DataError>([&] { read_series(path, options); }),
+            "'" + path + "': line 4, column 2 (rate) is empty");
+  EXPECT_EQ(message_of<DataError>(
+                [&] { read_series(write("nan_only.csv", "t,rate\n0,1\n0.1,nan\n"), options); }),
+            "'" + dir_.file("nan_only.csv") + "': sample 2 of 'rate' is NaN");
+  options.nan_is_missing = true;
+  Series series = read_series(path, options);
+  ASSERT_EQ(series.values.size(), 11u);  // every row, the NaN kept
+  ASSERT_EQ(series.gaps.size(), 1u);     // the time axis' gap, before row 5 (0.6 s)
+  EXPECT_EQ(series.gaps[0].before_sample, 5);
+  EXPECT_EQ(series.gaps[0].missing_samples, 1);
+
+  ReadOptions temperature_options = with_fs(series.sample_rate_hz);
+  temperature_options.channel = "T";
+  temperature_options.nan_is_missing = true;
+  Series temperature = read_series(path, temperature_options);
+  ASSERT_EQ(temperature.values.size(), 11u);
+
+  const MissingSamples left = drop_missing_samples(series, &temperature.values);
+  EXPECT_EQ(left.samples, 5);
+  EXPECT_EQ(left.stretches, 5);
+  EXPECT_EQ(left.at_start, 1);
+  EXPECT_EQ(left.at_end, 1);
+  EXPECT_THAT(series.values, ElementsAre(1, 3, 6, 7, 9, 10));
+  EXPECT_THAT(temperature.values, ElementsAre(20, 20, 20, 20, 20, 20));
+  // kept at 0.1, 0.3, 0.6, 0.7, 0.9, 1.0 s: gaps of 1 (0.2), 2 (0.4, 0.5) and 1 (0.8)
+  ASSERT_EQ(series.gaps.size(), 3u);
+  EXPECT_EQ(series.gaps[0].before_sample, 1);
+  EXPECT_EQ(series.gaps[0].missing_samples, 1);
+  EXPECT_EQ(series.gaps[1].before_sample, 2);
+  EXPECT_EQ(series.gaps[1].missing_samples, 2);
+  EXPECT_EQ(series.gaps[2].before_sample, 4);
+  EXPECT_EQ(series.gaps[2].missing_samples, 1);
+  EXPECT_NEAR(series.start_time_s, 0.1, 1e-12);
+  EXPECT_EQ(series.nan_left_out.samples, 5);
+
+  // an infinity is still an error; a channel of NaN only has nothing left
+  ReadOptions raw = with_fs(1.0);
+  raw.nan_is_missing = true;
+  const std::string inf = write("inf_rows.txt", "1\nnan\n-inf\n");
+  EXPECT_EQ(message_of<DataError>([&] { read_series(inf, raw); }),
+            "'" + inf + "': sample 3 of '1' is -Inf");
+  Series empty = read_series(write("all_nan.txt", "nan\nnan\n"), raw);
+  EXPECT_THAT(message_of<DataError>([&] { drop_missing_samples(empty, nullptr); }),
+              HasSubstr("all 2 are NaN"));
+  // without a NaN nothing changes
+  Series whole = read_series(write("whole.txt", "1\n2\n"), raw);
+  EXPECT_EQ(drop_missing_samples(whole, nullptr).samples, 0);
+  EXPECT_THAT(whole.values, ElementsAre(1, 2));
+}
+
 TEST_F(TextReaderTest, UnitsAreConvertedToDegPerHour) {
   const std::string path = write("dps.txt", "1\n-0.5\n");
   ReadOptions options = with_fs(1.0);

@@ -25,7 +25,9 @@
 // interpolated. Non-monotonic time and irregular steps (neither within 1 %
 // of the reference nor a gap) are data errors whose message says to give
 // ReadOptions::sample_rate_hz to ignore the time; that option skips every
-// time check (and finds no gaps).
+// time check (and finds no gaps). With ReadOptions::nan_is_missing a NaN
+// sample (an empty text cell) is a missing sample: drop_missing_samples()
+// leaves its row out and makes a gap of it, with or without a time axis.
 // An explicit ReadOptions::time_channel is used before `f`. Text headers
 // match the time names without regard to case, except that a column named
 // exactly `T` is the lab's temperature. The reference step is the median of
@@ -53,6 +55,7 @@
 // column or sample index, and what was expected.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -119,10 +122,24 @@ struct ReadOptions {
   /// stream (/dev/zero, a FIFO) ends with a message, not the machine's
   /// memory.
   std::optional<std::size_t> max_samples;
+  /// A NaN sample of the channel is a missing sample, not an error: it is
+  /// kept as NaN (so is an empty cell of the channel in a text table), for
+  /// drop_missing_samples() to turn into gaps. An infinity is still a
+  /// DataError. Off by default; the CLI's record analyses set it.
+  bool nan_is_missing = false;
 };
 
 /// A limit for ReadOptions::max_magnitude (core/units.h).
 inline constexpr double kMaxSampleMagnitude = foglab::kMaxSampleMagnitude;
+
+/// What drop_missing_samples() took out of a record (rows whose sample, or
+/// whose paired sample, is NaN).
+struct MissingSamples {
+  std::int64_t samples = 0;    ///< rows left out
+  std::int64_t stretches = 0;  ///< runs of consecutive rows left out
+  std::int64_t at_start = 0;   ///< rows before the first one kept (the record starts later)
+  std::int64_t at_end = 0;     ///< rows after the last one kept (the record ends earlier)
+};
 
 /// One channel read from a file, converted to foglab's units.
 struct Series {
@@ -139,6 +156,8 @@ struct Series {
   /// Stretches of missing samples the time axis shows (empty without a
   /// time axis, or with ReadOptions::sample_rate_hz).
   std::vector<Gap> gaps;
+  /// The NaN rows drop_missing_samples() left out (none before it runs).
+  MissingSamples nan_left_out;
   /// [s] The time axis' first time (0 without one).
   double start_time_s = 0.0;
   /// Every data channel the file holds (for messages and listings). MAT:
@@ -157,11 +176,23 @@ struct Series {
 };
 
 /// Reads one channel. Checks that the values are finite (a NaN or Inf is a
-/// DataError naming the 1-based sample index), no larger in magnitude than
+/// DataError naming the 1-based sample index; a NaN is kept with
+/// ReadOptions::nan_is_missing), no larger in magnitude than
 /// ReadOptions::max_magnitude (an absurd value such as 1e308 is then a
 /// DataError too), and that there is at least one sample. Throws UsageError
 /// / DataError as described above.
 Series read_series(const std::string& path, const ReadOptions& options);
+
+/// Leaves out every row whose sample is NaN in `series` or in `paired` (a
+/// channel read from the same rows, such as the temperature; may be null):
+/// a NaN is a missing sample. Series::gaps (read from the time axis, with
+/// Series::values still holding every row) are rebuilt so that each run of
+/// left-out rows inside the record is a gap, merged with a gap of the time
+/// axis beside it; rows left out at either end shorten the record
+/// (Series::start_time_s moves to the first sample kept); what was left
+/// out is stored in Series::nan_left_out too. Nothing is interpolated. Throws DataError naming the
+/// file and the channel when no row is left. Without a NaN it changes nothing.
+MissingSamples drop_missing_samples(Series& series, std::vector<double>* paired);
 
 /// Whether `path` can be read only once: standard input ("-"), a FIFO, a
 /// device. Such a source is opened once, and a second channel (a

@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,12 @@ std::vector<Gap> dropout_gaps(const SensorOutput& output, double sample_rate_hz,
 /// the gaps (as dropout_gaps(), indices among the samples kept). Throws
 /// UsageError when no sample would be left.
 std::vector<Gap> remove_dropouts(Recording& recording, const SensorOutput& output);
+
+/// Marks the dropouts' samples NaN instead of removing them, as a logger
+/// that writes NaN for a lost sample does: `values` holds samples
+/// first_index, first_index + 1, ... of a record of `samples` samples.
+void mark_dropouts_nan(std::span<double> values, std::int64_t first_index, std::int64_t samples,
+                       const SensorOutput& output, double sample_rate_hz);
 
 /// The chain of one record, applied block by block in order: it carries the
 /// filters' state from one block to the next. Spikes come from the same
