@@ -222,12 +222,22 @@ nlohmann::json steps_json(const model::AnalysisResult& r) {
   const model::BiasSteps& s = r.steps;
   std::vector<double> times;
   for (std::int64_t k : s.indices) times.push_back(elapsed_s(k, r.gaps, r.sample_rate_hz));
+  nlohmann::json across = nlohmann::json::array();
+  for (const model::GapJump& j : s.across_gaps) {
+    across.push_back({{"before_sample", j.before_sample},
+                      {"time_s", elapsed_s(j.before_sample, r.gaps, r.sample_rate_hz)},
+                      {"size_deg_h", number(j.size_deg_h)},
+                      {"window_samples", j.window_samples},
+                      {"significance", number(j.significance)},
+                      {"significant", j.significant}});
+  }
   return {{"count", s.indices.size()},
           {"removed", s.removed},
           {"times_s", times},
           {"sizes_deg_h", numbers(s.sizes_deg_h)},
           {"window_samples", s.window_samples},
-          {"significance", numbers(s.significance)}};
+          {"significance", numbers(s.significance)},
+          {"across_gaps", across}};
 }
 
 nlohmann::json temperature_quantisation_json(const model::TemperatureQuantisation& t) {
@@ -296,6 +306,10 @@ nlohmann::json units_json() {
       {"steps.sizes_deg_h", "deg/h"},
       {"steps.window_samples", "samples"},
       {"steps.significance", "1 (robust spreads)"},
+      {"steps.across_gaps[].time_s", "s"},
+      {"steps.across_gaps[].size_deg_h", "deg/h"},
+      {"steps.across_gaps[].window_samples", "samples"},
+      {"steps.across_gaps[].significance", "1 (robust spreads)"},
       {"spikes.robust_sd_deg_h", "deg/h"},
       {"spikes.threshold_deg_h", "deg/h"},
       {"spikes.times_s", "s"},

@@ -538,6 +538,9 @@ Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
         {"usable_tau_s", {1.0 / options.sample_rate_hz, options.duration_s / 10.0}},
         {"accuracy_class", std::string(to_string(verdict.accuracy_class))},
         {"class_decided_by", std::string(to_string(verdict.decided_by))}}}};
+  // how the file shows the dropped samples: rows left out (the time column
+  // shows the gap) or rows kept with NaN samples
+  w.truth["sensor_output"]["dropouts"]["mark"] = raw || c.drop_mark == "nan" ? "nan" : "time";
   w.summary = fmt::format(
       "wrote '{}': {} samples at {} Hz ({} h), seed {}, stream {}; model ADEV minimum "
       "{:.4g} deg/h at {:.4g} s, ARW {:.4g} deg/sqrt(h), class {}",

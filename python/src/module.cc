@@ -261,7 +261,7 @@ py::list gaps_list(const std::vector<Gap>& gaps) {
 // read(): one channel of a file as analyze reads it, or the six channels of a ROS bag.
 py::dict read_file(const std::string& path, const std::string& channel,
                    const std::optional<double>& rate_hz, const std::string& units,
-                   const std::string& topic) {
+                   const std::string& topic, bool nan_is_missing) {
   py::dict d;
   if (io::has_bag_extension(path)) {
     io::BagReadOptions options;
@@ -293,10 +293,12 @@ py::dict read_file(const std::string& path, const std::string& channel,
   options.channel = channel;
   options.sample_rate_hz = rate_hz;
   options.unit = rate_unit_from_string(units);
+  options.nan_is_missing = nan_is_missing;
   io::Series series;
   {
     py::gil_scoped_release release;
     series = io::read_series(path, options);
+    if (nan_is_missing) io::drop_missing_samples(series, nullptr);
   }
   d["path"] = series.path;
   d["channel"] = series.channel;
@@ -306,6 +308,7 @@ py::dict read_file(const std::string& path, const std::string& channel,
   d["gaps"] = gaps_list(series.gaps);
   d["channels"] = series.available_channels;
   d["notes"] = english(series.notes);
+  d["missing_value_rows"] = series.nan_left_out.samples;
   d["values"] = to_numpy(std::move(series.values));
   return d;
 }
@@ -530,9 +533,12 @@ PYBIND11_MODULE(_foglab, m) {
         "Welch's two-sided PSD [(unit)^2/Hz] of `data` sampled at `rate` [Hz] (Hann window).");
   m.def("read", &read_file, py::arg("path"), py::arg("channel") = "",
         py::arg("rate_hz") = py::none(), py::arg("units") = "deg/h", py::arg("topic") = "",
+        py::arg("nan_is_missing") = true,
         "One channel of a MAT, text or raw file as `foglab analyze` reads it (values in deg/h, "
         "or m/s^2 for an acceleration unit), or the six channels of a ROS bag's "
-        "sensor_msgs/Imu topic (rad/s and m/s^2); `gaps` lists (before_sample, missing).");
+        "sensor_msgs/Imu topic (rad/s and m/s^2); `gaps` lists (before_sample, missing). "
+        "A NaN sample (an empty text cell) is a missing one, its row left out and counted in "
+        "`missing_value_rows`, runs of them gaps; nan_is_missing=False makes it a DataError.");
   m.def(
       "generate",
       [](const std::string& preset, const std::optional<double>& rate_hz, double hours,

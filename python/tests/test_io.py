@@ -53,10 +53,22 @@ def test_read_errors_name_the_file(tmp_path):
     text = tmp_path / "bad.csv"
     text.write_text("rate\n1.0\nnan\n2.0\n")
     with pytest.raises(foglab.DataError, match="bad.csv"):
-        foglab.read(str(text), rate_hz=10.0)
+        foglab.read(str(text), rate_hz=10.0, nan_is_missing=False)
     with pytest.raises(ValueError, match="is not a ROS bag"):
         foglab.read(str(text), rate_hz=10.0, topic="/imu")
     with pytest.raises(ValueError, match="rate_hz"):
         foglab.generate(N=1.0)
     with pytest.raises(ValueError, match="Z="):
         foglab.generate(rate_hz=10.0, Z=1.0)
+
+
+def test_read_leaves_nan_rows_out_as_gaps_like_analyze(tmp_path):
+    # a logger's lost samples: NaN, and an empty cell (pandas' to_csv)
+    text = tmp_path / "lost.csv"
+    text.write_text("time_s,rate\n0.0,1.0\n0.1,nan\n0.2,\n0.3,2.0\n0.4,3.0\n0.5,nan\n")
+    r = foglab.read(str(text), channel="rate")
+    assert r["values"].tolist() == [1.0, 2.0, 3.0]
+    assert r["missing_value_rows"] == 3
+    assert r["gaps"] == [(1, 2)]  # the trailing NaN shortens the record
+    assert r["sample_rate_hz"] == pytest.approx(10.0)
+

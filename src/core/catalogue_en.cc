@@ -734,6 +734,13 @@ constexpr CatalogueEntry kEntries[] = {
      "the record was levelled (each size subtracted from the samples after it) before "
      "the analysis"},
     {Text::note_steps_kept, "they were left in (not levelled)"},
+    {Text::note_gap_jump_item,
+     "{:+.4g} deg/h where the record resumes at {:.6g} s ({:.3g} spreads)"},
+    {Text::note_gap_jumps,
+     "{} bias jump(s) across gaps: {} (each beyond {:g} robust spreads of the same difference "
+     "of window means taken as far apart where nothing is missing, which holds the drift and "
+     "the noise's own wandering over that time); the stretches are analysed apart, so a jump "
+     "does not enter the statistics, and it is not levelled"},
     {Text::note_spikes,
      "{} spike(s): isolated samples departing from the mean of their neighbours by "
      "more than {:.4g} deg/h ({:.3g} robust standard deviations); {}"},

@@ -473,6 +473,16 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
                          options.steps.threshold,
                          r.steps.removed ? Text::note_steps_levelled : Text::note_steps_kept);
   }
+  if (std::ranges::any_of(r.steps.across_gaps, &GapJump::significant)) {
+    std::vector<Message> list;
+    for (const GapJump& j : r.steps.across_gaps) {
+      if (!j.significant) continue;
+      list.emplace_back(Text::note_gap_jump_item, j.size_deg_h,
+                        elapsed_s(j.before_sample, gaps, sample_rate_hz), j.significance);
+    }
+    const std::size_t count = list.size();
+    r.notes.emplace_back(Text::note_gap_jumps, count, std::move(list), options.steps.threshold);
+  }
   if (r.spikes.heavy_tailed) {
     r.notes.emplace_back(Text::note_heavy_tail, r.spikes.shoulder_count, r.spikes.shoulder_expected,
                          r.spikes.tail_index, r.spikes.threshold_deg_h, r.spikes.excess_kurtosis);

@@ -350,8 +350,8 @@ Refit refit_without_first(const detail::Points& p, int count, const NoiseFitOpti
 // sinusoid had kept its first taus, and N came out 9-12.5 % low with an
 // angle quantisation Q in the model; now within 1.6 %. (This had been
 // left out when a broad line's skirts were not yet part of it, and its
-// bumps further out were taken for Q.) N's interval is widened over the
-// c the remaining taus do not tell apart (widen_over_bandwidths()). It had
+// bumps further out were taken for Q.) The intervals are widened over the
+// c the remaining taus do not tell apart (widen_over_bandwidths()). N's had
 // spanned the fits with one and two taus more left out as well, for the
 // single kind's bend at the first kept taus; with c that union changed no
 // record's coverage (tactical grade, 60 seeds: 96 %) and only widened N's

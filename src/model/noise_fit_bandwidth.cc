@@ -459,9 +459,10 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
     // 1 s low-pass (c = 2) at 1 Hz, 24 h, the taus from 8 s, where flicker
     // soon takes over: N 20 % low. With c near 0 it is not reported (on
     // the ADIS16405 z axes with every fourth sample kept, c came out 0: no
-    // filter left there), but N's interval still spans the c not told
+    // filter left there), but the intervals still span the c not told
     // apart (a Gauss-Markov process beside the same cascade took the bend
-    // and c came out 0: N 17 % low, its interval then short).
+    // and c came out 0: N 17 % low, its interval then short; B, whose
+    // interval had not spanned c, 33-44 % high and outside it).
     collect_near();
     if (reduction < kSmallestEffect) return result;
   } else {
@@ -482,18 +483,22 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
 
 void widen_over_bandwidths(const Points& p, const SubsetFit& chosen,
                            std::span<const SensorBandwidth> near, NoiseFitResult& r) {
-  if (near.empty() || !chosen.terms.contains(NoiseTerm::white)) return;
-  const double n = std::sqrt(chosen.squared(NoiseTerm::white));
-  if (!(n > 0.0)) return;
+  if (near.empty()) return;
   Points q = p;
   q.v = chosen.v;
   for (const SensorBandwidth& b : near) {
     set_bandwidth_shapes(q, b);
     const SubsetFit f = fit_subset(q, chosen.terms, chosen.tc);
     if (!f.feasible) continue;
-    const double ratio = std::sqrt(f.squared(NoiseTerm::white)) / n;
-    r.N.ci95_low = std::min(r.N.ci95_low, r.N.ci95_low * ratio);
-    r.N.ci95_high = std::max(r.N.ci95_high, r.N.ci95_high * ratio);
+    for (const NoiseParameter& parameter : kNoiseParameters) {
+      const NoiseTerm t = parameter.term;
+      if (!chosen.terms.contains(t) || parameter.value == &NoiseModel::gm_tc) continue;
+      ParameterEstimate& e = r.estimate(parameter);
+      if (e.status != TermStatus::resolved || !(chosen.squared(t) > 0.0)) continue;
+      const double ratio = std::sqrt(std::max(0.0, f.squared(t)) / chosen.squared(t));
+      e.ci95_low = std::min(e.ci95_low, e.ci95_low * ratio);
+      e.ci95_high = std::max(e.ci95_high, e.ci95_high * ratio);
+    }
   }
 }
 

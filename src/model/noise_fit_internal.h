@@ -17,7 +17,7 @@
 //      status and one-sided bound of each term left out;
 //   6. widen_over_near_candidates()    noise_fit_intervals.cc
 //      intervals robust to the model choice, and widen_over_bandwidths()
-//      (noise_fit_bandwidth.cc), N's interval over the bandwidths.
+//      (noise_fit_bandwidth.cc), the intervals over the bandwidths.
 // The method is described in include/foglab/model/noise_fit.h.
 #pragma once
 
@@ -173,9 +173,10 @@ enum class BandwidthKinds {
 BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double gm_tc_s = 0.0,
                                BandwidthKinds kinds = BandwidthKinds::with_butterworth);
 
-/// Widens N's interval to the union over the bandwidths the data do not
-/// tell apart (the chosen terms refitted with each): the white level is
-/// read through the filter's shape at the first taus.
+/// Widens each resolved coefficient's interval (Tc held) to the union over
+/// the bandwidths the data do not tell apart (the chosen terms refitted
+/// with each): the white level is read through the filter's shape at the
+/// first taus, and B, K and the rest share those taus with it.
 void widen_over_bandwidths(const Points& p, const SubsetFit& chosen,
                            std::span<const SensorBandwidth> near, NoiseFitResult& r);
 

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <numeric>
+#include <utility>
 
 #include "foglab/core/error.h"
 #include "foglab/core/gaps.h"
@@ -31,25 +34,43 @@ struct Means {
   }
 };
 
+// D(k), the differences of the means of the w samples after k and the w
+// before, every w/8 samples with both windows inside one of `stretches`.
+struct Differences {
+  std::vector<double> values;
+  std::vector<std::int64_t> at;
+  std::vector<std::size_t> in;  // the stretch of each
+};
+
+Differences differences_at(const std::vector<double>& p, std::int64_t w,
+                           std::span<const Stretch> stretches) {
+  const Means raw{p};
+  const std::int64_t stride = std::max<std::int64_t>(1, w / 8);
+  Differences d;
+  for (std::size_t s = 0; s < stretches.size(); ++s) {
+    for (std::int64_t k = stretches[s].begin + w; k + w <= stretches[s].end; k += stride) {
+      d.values.push_back(raw(k, k + w) - raw(k - w, k));
+      d.at.push_back(k);
+      d.in.push_back(s);
+    }
+  }
+  return d;
+}
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Fewer D than this give no spread to judge by.
+constexpr std::size_t kFewestDifferences = 16;
+
 // The most significant step at window length w, from prefix sums p, with
 // every window inside one of the contiguous `stretches`.
 Candidate best_at(const std::vector<double>& p, std::int64_t w,
                   std::span<const Stretch> stretches) {
   const Means raw{p};
   auto d = [&](std::int64_t k) { return raw(k, k + w) - raw(k - w, k); };
-  const std::int64_t stride = std::max<std::int64_t>(1, w / 8);
-  std::vector<double> values;
-  std::vector<std::int64_t> at;
-  std::vector<std::size_t> in;  // the stretch of each
-  for (std::size_t s = 0; s < stretches.size(); ++s) {
-    for (std::int64_t k = stretches[s].begin + w; k + w <= stretches[s].end; k += stride) {
-      values.push_back(d(k));
-      at.push_back(k);
-      in.push_back(s);
-    }
-  }
+  const auto [values, at, in] = differences_at(p, w, stretches);
   Candidate c;
-  if (values.size() < 16) return c;
+  if (values.size() < kFewestDifferences) return c;
   const auto [centre, spread] = robust_spread(values);
   if (!(spread > 0.0)) return c;
   std::size_t top = 0;
@@ -90,6 +111,95 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w,
   return c;
 }
 
+// The robust centre and spread of the difference of the means of w
+// samples `missing` samples apart (the w after k + missing less the w
+// before k), over every place inside `stretches` where nothing is missing:
+// what a jump across a gap of that length would be without one, drift,
+// flicker and random walk included. At most kMostDifferences places, evenly
+// spread (a record with many gaps stays fast).
+constexpr std::size_t kMostDifferences = 4096;
+
+RobustSpread differences_over(const std::vector<double>& p, std::int64_t w, std::int64_t missing,
+                              std::span<const Stretch> stretches) {
+  const Means raw{p};
+  std::int64_t places = 0;
+  for (const Stretch& s : stretches)
+    places += std::max<std::int64_t>(0, s.size() - 2 * w - missing + 1);
+  const std::int64_t stride = std::max<std::int64_t>(
+      std::max<std::int64_t>(1, w / 8), places / static_cast<std::int64_t>(kMostDifferences));
+  std::vector<double> values;
+  for (const Stretch& s : stretches) {
+    for (std::int64_t k = s.begin + w; k + missing + w <= s.end; k += stride) {
+      values.push_back(raw(k + missing, k + missing + w) - raw(k - w, k));
+    }
+  }
+  if (values.size() < kFewestDifferences) return {kNaN, kNaN};
+  return robust_spread(values);
+}
+
+// The bias's jump across each gap between `stretches` (GapJump), from
+// prefix sums p of the record as the steps left it. At each window length
+// w the jump is compared with the same difference taken as far apart
+// inside the stretches (differences_over): its median is the drift over
+// that time, its spread what the noise moves the bias by. The size, over
+// up to 4 w either side, has the record's drift (a least-squares slope)
+// taken out over the time between the windows' centres.
+std::vector<GapJump> jumps_across(const std::vector<double>& p, std::span<const Gap> gaps,
+                                  std::span<const Stretch> stretches, double threshold) {
+  const Means raw{p};
+  const auto n = static_cast<std::int64_t>(p.size()) - 1;
+  // The drift per sample: the least-squares slope common to the stretches,
+  // each with its own level (the steps are levelled by now). The median of
+  // D over the longest window, as the steps take it, had moved a jump of 5
+  // across a gap of 3 x 10^5 samples by 0.2 (white noise of sd 1, 2 x 10^5
+  // samples); this slope's sd there is 8e-8 per sample, 0.02 over the gap.
+  double sxy = 0.0, sxx = 0.0;
+  for (const Stretch& st : stretches) {
+    const double mid = 0.5 * static_cast<double>(st.begin + st.end - 1);
+    const double level = raw(st.begin, st.end);
+    for (std::int64_t k = st.begin; k < st.end; ++k) {
+      const double t = static_cast<double>(k) - mid;
+      const auto i = static_cast<std::size_t>(k);
+      sxy += t * (p[i + 1] - p[i] - level);
+      sxx += t * t;
+    }
+  }
+  const double slope = sxx > 0.0 ? sxy / sxx : 0.0;
+  std::map<std::pair<std::int64_t, std::int64_t>, RobustSpread> apart;  // by (w, missing)
+  std::vector<GapJump> jumps;
+  for (std::size_t g = 0; g < gaps.size(); ++g) {
+    const Stretch& before = stretches[g];
+    const Stretch& after = stretches[g + 1];
+    const std::int64_t missing = gaps[g].missing_samples;
+    GapJump best{after.begin, kNaN, 0, kNaN, false};
+    for (std::int64_t w = 64; 64 * w <= n && before.size() >= w && after.size() >= w; w *= 2) {
+      // gaps of a length (a bag's lost messages: thousands of 1 or 2) share it
+      auto [at, fresh] = apart.try_emplace({w, missing});
+      if (fresh) at->second = differences_over(p, w, missing, stretches);
+      const auto [centre, spread] = at->second;
+      const double z =
+          std::fabs(raw(after.begin, after.begin + w) - raw(before.end - w, before.end) - centre) /
+          spread;
+      // the most significant window; until one is judged, the longest
+      const bool judged = std::isfinite(z) && spread > 0.0;
+      const bool take = judged ? !(best.significance >= z) : !std::isfinite(best.significance);
+      if (!take) continue;
+      const std::int64_t lo = std::max(before.begin, before.end - 4 * w);
+      const std::int64_t hi = std::min(after.end, after.begin + 4 * w);
+      const double distance = 0.5 * static_cast<double>(hi - after.begin) +
+                              static_cast<double>(missing) +
+                              0.5 * static_cast<double>(before.end - lo);
+      best.size_deg_h = raw(after.begin, hi) - raw(lo, before.end) - slope * distance;
+      best.window_samples = w;
+      best.significance = judged ? z : kNaN;
+    }
+    if (best.window_samples == 0) continue;
+    best.significant = best.significance > threshold;
+    jumps.push_back(best);
+  }
+  return jumps;
+}
+
 }  // namespace
 
 BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb_deg_h,
@@ -113,7 +223,7 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
   // steps are levelled in y itself and put back when they are only to be
   // reported).
   std::vector<double> p(y.size() + 1);
-  for (int round = 0; round < options.max_steps; ++round) {
+  const auto fill_prefix_sums = [&] {
     p[0] = 0.0;
     auto v = [&](std::size_t k) { return y[k] - base(k) - mean; };
     // An outlier's departure from its neighbours' mean, h; its neighbours
@@ -131,6 +241,9 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
       }
       p[k + 1] = p[k] + value;
     }
+  };
+  for (int round = 0; round < options.max_steps; ++round) {
+    fill_prefix_sums();
     Candidate best;
     for (std::int64_t w = 64; 64 * w <= n; w *= 2) {
       const Candidate c = best_at(p, w, stretches);
@@ -143,6 +256,10 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
     steps.sizes_deg_h.push_back(best.size);
     steps.window_samples.push_back(best.window);
     steps.significance.push_back(best.z);
+  }
+  if (!gaps.empty()) {  // on the record as the steps left it
+    fill_prefix_sums();
+    steps.across_gaps = jumps_across(p, gaps, stretches, options.threshold);
   }
   if (!options.remove) {
     for (std::size_t i = 0; i < steps.indices.size(); ++i) {
@@ -164,6 +281,7 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
     sorted.significance.push_back(steps.significance[i]);
   }
   sorted.removed = options.remove && !sorted.indices.empty();
+  sorted.across_gaps = std::move(steps.across_gaps);
   return sorted;
 }
 

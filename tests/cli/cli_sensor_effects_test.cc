@@ -134,12 +134,47 @@ TEST(SensorEffects, StepsOnATemperatureRampAcrossAGapAreFoundAndTheLawKept) {
     EXPECT_NEAR(s["sizes_deg_h"][0].get<double>() / 750.0, 1.0, 0.25);
     EXPECT_NEAR(s["sizes_deg_h"][1].get<double>() / -600.0, 1.0, 0.25);
     EXPECT_EQ(r.analysis["input"]["gaps"]["count"], 1);
+    // the law's move across the gap (750 deg/h) is no bias jump
+    ASSERT_EQ(s["across_gaps"].size(), 1u);
+    EXPECT_FALSE(s["across_gaps"][0]["significant"].get<bool>());
+    EXPECT_LT(std::fabs(s["across_gaps"][0]["size_deg_h"].get<double>()), 250.0);
     const json& fit = r.analysis["systematic"];
     const double c1 = fit["coefficients"][1].get<double>();
     const double se = fit["standard_errors"][1].get<double>();
     EXPECT_LT(std::fabs(c1 - 900.0), 3.0 * se) << c1 << " +- " << se;
     EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
   }
+}
+
+TEST(SensorEffects, ABiasJumpAcrossAGapIsMeasuredAndNotLevelled) {
+  // Tactical-grade noise with three dropouts; the bias jumps by -3 deg/h
+  // (one sample spread) during the 0.5 s one. The jump is measured across
+  // it (10 seeds: -2.81 to -3.27, 18-21 robust spreads), and no jump is
+  // found across the 30 s and 15 min ones, across which the random walk
+  // alone moves the bias by 0.1 and 0.6 deg/h (10 seeds without the jump:
+  // none beyond 4.1 spreads there).
+  const test::TempDir dir;
+  const Generated r = generate_and_analyze(
+      dir.path(),
+      "--N 0.3 --B 0.1 --K 0.02 --fs 100 --hours 2 --drop 600:30 --drop 3000:0.5 "
+      "--drop 5000:900 --step 3000.2:-3",
+      1);
+  ASSERT_TRUE(r.analysis.is_object());
+  const json& s = r.analysis["steps"];
+  EXPECT_EQ(s["count"], 0);
+  const json& jumps = s["across_gaps"];
+  ASSERT_EQ(jumps.size(), 3u);
+  const json& gaps = r.analysis["input"]["gaps"]["list"];
+  for (std::size_t g = 0; g < 3; ++g) {
+    EXPECT_EQ(jumps[g]["before_sample"], gaps[g]["before_sample"]);
+    EXPECT_EQ(jumps[g]["significant"].get<bool>(), g == 1) << g;
+  }
+  EXPECT_NEAR(jumps[1]["size_deg_h"].get<double>(), -3.0, 0.5);
+  EXPECT_NEAR(jumps[1]["time_s"].get<double>(), 3000.5, 0.011);
+  EXPECT_NE(r.analysis["notes"].dump().find("1 bias jump(s) across gaps"), std::string::npos)
+      << r.analysis["notes"];
+  // The stretches are analysed apart: N as without the jump.
+  EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 0.3, 1.0, 0.03);
 }
 
 TEST(SensorEffects, AStepSmallerThanAFineOutputWordsStepIsFound) {
@@ -315,22 +350,37 @@ TEST(SensorEffects, NanSamplesAreTheSameGapsAsTheTimeColumns) {
   auto analyse = [&](const std::string& name, const std::string& generate_extra,
                      const std::string& analyze_extra) {
     const fs::path out = dir.path() / name;
-    const test::CliRun g =
-        test::run_foglab("generate " + model + generate_extra + " --out " + test::quote(out));
+    const fs::path truth = dir.path() / (name + ".truth.json");
+    const test::CliRun g = test::run_foglab("generate " + model + generate_extra + " --out " +
+                                            test::quote(out) + " --truth " + test::quote(truth));
     EXPECT_EQ(g.exit_code, 0) << g.err;
+    // the truth says how the file shows the dropouts, and the gaps analyze must find
+    const json dropouts = read_json(truth)["sensor_output"]["dropouts"];
     const test::CliRun a =
         test::run_foglab("analyze " + test::quote(out) + analyze_extra + " --json -");
     EXPECT_EQ(a.exit_code, 0) << a.err;
-    return std::make_pair(a.err, a.exit_code == 0 ? json::parse(a.out) : json());
+    json r = a.exit_code == 0 ? json::parse(a.out) : json();
+    if (r.is_object()) {
+      const json& found = r["input"]["gaps"]["list"];
+      EXPECT_EQ(found.size(), dropouts["gaps"].size());
+      for (std::size_t i = 0; i < std::min(found.size(), dropouts["gaps"].size()); ++i) {
+        EXPECT_EQ(found[i]["before_sample"], dropouts["gaps"][i]["before_sample"]) << i;
+        EXPECT_EQ(found[i]["missing_samples"], dropouts["gaps"][i]["missing_samples"]) << i;
+      }
+    }
+    return std::make_tuple(a.err, std::move(r), dropouts["mark"]);
   };
-  const auto [time_err, by_time] = analyse("time.csv", "", "");
+  const auto [time_err, by_time, time_mark] = analyse("time.csv", "", "");
   ASSERT_TRUE(by_time.is_object());
   ASSERT_EQ(by_time["input"]["gaps"]["count"], 3);
   EXPECT_EQ(by_time["input"]["gaps"]["missing_value_rows"], 0);
-  for (const char* name : {"nan.csv", "nan.mat", "nan.f64"}) {
+  EXPECT_EQ(time_mark, "time");
+  for (const std::string name : {"nan.csv", "nan.mat", "nan.f64"}) {
     SCOPED_TRACE(name);
-    const bool raw = std::string(name).ends_with(".f64");
-    const auto [err, r] = analyse(name, raw ? "" : " --drop-mark nan", raw ? " --fs 100" : "");
+    const bool raw = name.ends_with(".f64");
+    const auto [err, r, mark] =
+        analyse(name, raw ? "" : " --drop-mark nan", raw ? " --fs 100" : "");
+    EXPECT_EQ(mark, "nan");
     ASSERT_TRUE(r.is_object());
     EXPECT_NE(err.find("93050 NaN or empty sample(s) in 3 stretch(es)"), std::string::npos) << err;
     const json& gaps = r["input"]["gaps"];

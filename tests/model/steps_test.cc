@@ -87,6 +87,63 @@ TEST(Steps, AJumpAcrossAGapIsNoStep) {
   // Taken as one stretch, the jump is a step.
   std::vector<double> z = before;
   EXPECT_EQ(find_steps(z).indices.size(), 2u);
+  // Measured on its own: 2 sample sd, over 4 windows of up to 6,250
+  // samples either side (the size's sd about 0.009).
+  ASSERT_EQ(s.across_gaps.size(), 1u);
+  EXPECT_EQ(s.across_gaps[0].before_sample, 200000);
+  EXPECT_NEAR(s.across_gaps[0].size_deg_h, 2.0, 0.04);
+  EXPECT_TRUE(s.across_gaps[0].significant);
+  EXPECT_GT(s.across_gaps[0].significance, 20.0);
+}
+
+TEST(Steps, ADriftThroughAGapIsNoJumpAcrossIt) {
+  // A drift of 1e-4 sample sd per sample goes on through three gaps (1,
+  // 5,000 and 40,000 samples: the last moves the bias by 4 sd): no jump,
+  // each size within 0.1 of 0 (its noise's sd 0.009, the drift's slope
+  // estimated to about 5e-7 per sample over up to 65,000 samples; the
+  // drift over the last gap and its windows is 6.5); then a jump of 0.3
+  // added after the second gap is measured there and nowhere else.
+  const std::vector<Gap> gaps = {{100000, 1}, {200000, 5000}, {300000, 40000}};
+  std::vector<double> y = test::mt_normal(400000, 8, 0.0, 1.0);
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    std::int64_t missing = 0;
+    for (const Gap& g : gaps)
+      missing += static_cast<std::int64_t>(k) >= g.before_sample ? g.missing_samples : 0;
+    y[k] += 1e-4 * static_cast<double>(static_cast<std::int64_t>(k) + missing);
+  }
+  std::vector<double> a = y;
+  const BiasSteps none = find_steps(a, {}, 0.0, gaps);
+  EXPECT_TRUE(none.indices.empty());
+  ASSERT_EQ(none.across_gaps.size(), 3u);
+  for (const GapJump& j : none.across_gaps) {
+    SCOPED_TRACE(j.before_sample);
+    EXPECT_LT(std::fabs(j.size_deg_h), 0.1) << j.window_samples << " z " << j.significance;
+    EXPECT_FALSE(j.significant);
+  }
+  for (std::size_t k = 200000; k < y.size(); ++k) y[k] += 0.3;
+  const BiasSteps one = find_steps(y, {}, 0.0, gaps);
+  EXPECT_TRUE(one.indices.empty());
+  ASSERT_EQ(one.across_gaps.size(), 3u);
+  EXPECT_FALSE(one.across_gaps[0].significant);
+  EXPECT_TRUE(one.across_gaps[1].significant);
+  EXPECT_NEAR(one.across_gaps[1].size_deg_h, 0.3, 0.05);
+  EXPECT_FALSE(one.across_gaps[2].significant);
+}
+
+TEST(Steps, AJumpAcrossAGapLongerThanTheStretchesIsMeasuredNotJudged) {
+  // No stretch holds two windows 300,000 samples apart: nothing to judge
+  // the jump by (its significance is NaN, it is not significant), but its
+  // size is still measured, over the longest windows.
+  std::vector<double> y = test::mt_normal(200000, 9, 0.0, 1.0);
+  for (std::size_t k = 100000; k < y.size(); ++k) y[k] += 5.0;
+  const std::vector<Gap> gaps = {{100000, 300000}};
+  const BiasSteps s = find_steps(y, {}, 0.0, gaps);
+  EXPECT_TRUE(s.indices.empty());
+  ASSERT_EQ(s.across_gaps.size(), 1u);
+  EXPECT_TRUE(std::isnan(s.across_gaps[0].significance));
+  EXPECT_FALSE(s.across_gaps[0].significant);
+  EXPECT_EQ(s.across_gaps[0].window_samples, 2048);  // the longest: 64 W <= 200,000
+  EXPECT_NEAR(s.across_gaps[0].size_deg_h, 5.0, 0.1);
 }
 
 TEST(Steps, AreFoundOnTopOfACurvedBaseline) {

@@ -551,7 +551,9 @@ enum class Text {
   note_steps,      ///< {count} {list} {threshold} {levelled or kept}
   note_steps_levelled,
   note_steps_kept,
-  note_spikes,  ///< {count} {threshold} {sds} {replaced or kept}
+  note_gap_jump_item,  ///< one jump across a gap: {size} {resumes at} {significance}
+  note_gap_jumps,      ///< {count} {list} {threshold}
+  note_spikes,         ///< {count} {threshold} {sds} {replaced or kept}
   note_spikes_replaced,
   note_spikes_kept,
   note_heavy_tail,  ///< {shoulder count} {Gaussian's} {alpha} {threshold} {excess kurtosis}

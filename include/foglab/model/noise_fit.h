@@ -41,16 +41,17 @@
 // candidate (on the white term and, with the same phi, on the flicker term:
 // the filter acts on the output's flicker noise too, which matters where
 // it has cut the white noise by an order of magnitude), N stays the white level, the Gauss-Markov
-// search starts at the shortest tau, and N's interval spans the bandwidths the data cannot tell
-// apart (`NoiseFitResult::bandwidth`).
+// search starts at the shortest tau, and every coefficient's interval (N's, B's, K's, ...)
+// spans the bandwidths the data cannot tell apart (`NoiseFitResult::bandwidth`).
 //
 // When even so the chosen model's dispersion stays above 4 (an output
 // filter none of the kinds follows, such as a cascade of two), the first
 // one to four taus are left out and everything refitted: the fewest that
 // bring the dispersion to 4 or below, else those that lower it most, when
 // that is by more than 30 % (keeping eight points; not with spectral
-// lines): `NoiseFitResult::first_taus_left_out`; N's
-// interval is then the union of the fits with one and two more left out. A
+// lines): `NoiseFitResult::first_taus_left_out`; the rest are fitted
+// with a filter known beyond its memory, whose constant c the intervals
+// span as they span the bandwidths above. A
 // Gauss-Markov candidate whose Tc is within eight samples is no random
 // bias but part of the output's bandwidth, and is left out.
 //

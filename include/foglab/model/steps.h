@@ -15,7 +15,8 @@
 // out. It is levelled (its size subtracted from every later sample) and the
 // search repeats, up to `max_steps` times. The windows stay inside the
 // contiguous stretches between gaps (a jump across a gap is the process
-// moving while nothing was recorded, not a step), and the search runs on
+// moving while nothing was recorded, not a step: it is measured on its
+// own, GapJump), and the search runs on
 // the record less a baseline when one is given (the temperature law, whose
 // curvature would otherwise enter the spread of D or look like a step).
 #pragma once
@@ -40,12 +41,36 @@ struct StepOptions {
   double outlier_clip_deg_h = 0.0;
 };
 
+/// A jump of the bias across a gap (a power glitch that lost samples and
+/// shifted the bias, or the process moving while nothing was recorded). It
+/// is measured, not levelled: the statistics use the stretches apart, so
+/// it does not enter them. At window lengths W = 64, 128, ... (both
+/// stretches holding W) the last W samples before the gap and the first W
+/// after it are compared with the same difference taken as far apart
+/// wherever nothing is missing: its median is the drift over that time,
+/// its robust spread what the noise itself (random walk and flicker
+/// included) moves the bias by across such a gap. The size is the
+/// difference of the means over up to 4 W either side, the record's drift
+/// over the time between them taken out.
+struct GapJump {
+  std::int64_t before_sample = 0;   ///< the gap's: the first sample after it
+  double size_deg_h = 0.0;          ///< [deg/h]
+  std::int64_t window_samples = 0;  ///< W: the most significant one; the longest if none is judged
+  /// |D - median| / spread at W; NaN where no stretch holds two windows
+  /// that far apart (a gap longer than the stretches: not judged)
+  double significance = 0.0;
+  bool significant = false;  ///< beyond StepOptions::threshold
+};
+
 struct BiasSteps {
   std::vector<std::int64_t> indices;         ///< the first sample after each step, in time order
   std::vector<double> sizes_deg_h;           ///< [deg/h]
   std::vector<std::int64_t> window_samples;  ///< W at which each was found
   std::vector<double> significance;          ///< |D - median| / spread there
   bool removed = false;
+  /// Each gap whose stretches either side hold a window (64 samples or
+  /// more, as for the steps), in time order.
+  std::vector<GapJump> across_gaps;
 };
 
 /// Finds the bias steps of `rate_deg_h` and, with options.remove, levels
