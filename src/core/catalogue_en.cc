@@ -803,7 +803,7 @@ constexpr CatalogueEntry kEntries[] = {
      "filter (first-order, moving average, Butterworth) followed them (the fit's "
      "dispersion was above 4 with them, and leaving them out lowered it by more than "
      "30 %), so the terms rest on the taus from {:.6g} s, beyond the filter's memory, with "
-     "its effect there taken as 1 - c tau0/tau on the white noise; N's interval spans the "
+     "its effect there taken as 1 - c tau0/tau on the white noise; the intervals span the "
      "c they do not tell apart"},
     {Text::fit_ramp_set_aside,
      "the model {} had a rate ramp R = {:.4g} deg/h/s [{:.4g}, {:.4g}], but the "

@@ -484,20 +484,30 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
 void widen_over_bandwidths(const Points& p, const SubsetFit& chosen,
                            std::span<const SensorBandwidth> near, NoiseFitResult& r) {
   if (near.empty()) return;
+  // Each coefficient's interval as the chosen bandwidth gives it, moved by
+  // each near bandwidth's ratio: the union of those, not a product (the
+  // ends had been widened in place, each ratio on top of the last: on a 1 Hz
+  // record with 42 near c, N's upper end came out 35 times the estimate
+  // where the largest single ratio was 1.38).
+  std::array<ParameterEstimate, kNoiseParameters.size()> as_chosen;
+  for (std::size_t i = 0; i < kNoiseParameters.size(); ++i) {
+    as_chosen[i] = r.estimate(kNoiseParameters[i]);
+  }
   Points q = p;
   q.v = chosen.v;
   for (const SensorBandwidth& b : near) {
     set_bandwidth_shapes(q, b);
     const SubsetFit f = fit_subset(q, chosen.terms, chosen.tc);
     if (!f.feasible) continue;
-    for (const NoiseParameter& parameter : kNoiseParameters) {
+    for (std::size_t i = 0; i < kNoiseParameters.size(); ++i) {
+      const NoiseParameter& parameter = kNoiseParameters[i];
       const NoiseTerm t = parameter.term;
       if (!chosen.terms.contains(t) || parameter.value == &NoiseModel::gm_tc) continue;
       ParameterEstimate& e = r.estimate(parameter);
       if (e.status != TermStatus::resolved || !(chosen.squared(t) > 0.0)) continue;
       const double ratio = std::sqrt(std::max(0.0, f.squared(t)) / chosen.squared(t));
-      e.ci95_low = std::min(e.ci95_low, e.ci95_low * ratio);
-      e.ci95_high = std::max(e.ci95_high, e.ci95_high * ratio);
+      e.ci95_low = std::min(e.ci95_low, as_chosen[i].ci95_low * ratio);
+      e.ci95_high = std::max(e.ci95_high, as_chosen[i].ci95_high * ratio);
     }
   }
 }

@@ -248,6 +248,40 @@ TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
   }
 }
 
+TEST(Bandwidth, IntervalsOverTheMemoryConstantsAreAUnionNotAProduct) {
+  // The record that showed it: a 3-sample average behind a 1 s low-pass at
+  // 1 Hz, 24 h (c = 2 samples; the white region ends at about 20 s). The
+  // taus from 8 s are kept and 42 memory constants are not told apart.
+  // Each had widened the interval on top of the last: N's upper end came
+  // out 35 times N, where the largest single refit moves N by 1.38. And
+  // B's interval, which had not spanned c at all, now does.
+  sim::ErrorModel m;
+  m.noise.N = 0.3;
+  m.noise.B = 0.1;
+  m.noise.K = 0.02;
+  m.output.moving_average_samples = 3;
+  m.output.filter_time_constant_s = 1.0;
+  sim::GeneratorOptions o;
+  o.sample_rate_hz = 1.0;
+  o.duration_s = 24 * 3600.0;
+  o.seed = 3;
+  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
+  const AnalysisResult r = analyze(rec.rate_deg_h, {}, 1.0);
+  ASSERT_TRUE(r.noise.bandwidth.resolved);
+  ASSERT_TRUE(r.noise.bandwidth.bandwidth.beyond_memory());
+  const ParameterEstimate& n = r.noise.N;
+  EXPECT_LT(n.ci95_high / n.value, 1.6);
+  EXPECT_GT(n.ci95_low / n.value, 0.6);
+  EXPECT_LE(n.ci95_low, 0.3);
+  EXPECT_GE(n.ci95_high, 0.3);
+  // B moves against N over the c: its lower end reaches where the largest
+  // c puts it (own interval alone: 10 % below B)
+  const ParameterEstimate& b = r.noise.B;
+  ASSERT_EQ(b.status, TermStatus::resolved);
+  EXPECT_LT(b.ci95_low / b.value, 0.8);
+  EXPECT_GT(b.ci95_low / b.value, 0.4);
+}
+
 TEST(Bandwidth, CascadedFiltersWithASpectralLineLeaveTheFirstTausOutToo) {
   // The same cascade with a sinusoid in the output: the first taus were
   // kept whenever a line was found, and N came out 11-12 % low with an
