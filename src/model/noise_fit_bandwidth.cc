@@ -461,8 +461,9 @@ BandwidthSearch find_bandwidth(Points& p, const NoiseFitOptions& options, double
     // the ADIS16405 z axes with every fourth sample kept, c came out 0: no
     // filter left there), but the intervals still span the c not told
     // apart (a Gauss-Markov process beside the same cascade took the bend
-    // and c came out 0: N 17 % low, its interval then short; B, whose
-    // interval had not spanned c, 33-44 % high and outside it).
+    // and c came out 0: N 17 % low, B 33-44 % high, both outside their
+    // intervals on three seeds; with the intervals over c, N's holds the
+    // truth on one of them and B's on two).
     collect_near();
     if (reduction < kSmallestEffect) return result;
   } else {
