@@ -168,7 +168,10 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
           {"first_taus_left_out", f.first_taus_left_out},
           {"first_taus_left_out_why", f.first_taus_left_out_why.empty()
                                           ? nlohmann::json(nullptr)
-                                          : nlohmann::json(f.first_taus_left_out_why.text())}};
+                                          : nlohmann::json(f.first_taus_left_out_why.text())},
+          {"shape_free_taus_left_out", f.shape_free_taus_left_out < 0
+                                           ? nlohmann::json(nullptr)
+                                           : nlohmann::json(f.shape_free_taus_left_out)}};
 }
 
 nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {

@@ -518,6 +518,9 @@ constexpr CatalogueEntry kEntries[] = {
      "out): there the white noise's Allan variance is N^2/tau (1 - c tau0/tau) with c = {} "
      "samples (a first-order low-pass with the same c would cut off at {} Hz); it lowers the "
      "Allan variance at the first tau kept by {} %, and N is the white level above it"},
+    {Text::an_bandwidth_shape_free,
+     "; the 95 % intervals also span the fit that assumes no filter kind: the first {} tau(s), "
+     "inside its memory, left out and the rest taken as N^2/tau (1 - c tau0/tau)"},
     {Text::an_lines_none, "none found in the PSD"},
     {Text::an_line, "{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor"},
     {Text::an_lines_scale,

@@ -249,8 +249,10 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   std::future<NoiseFitResult> cubic_noise = std::async(std::launch::async, [&] {
     return fit_noise_model(cubic_allan, options.noise_fit, &cubic_factors, lines);
   });
+  NoiseFitOptions look_options = options.noise_fit;
+  look_options.span_filter_shape = false;  // its model alone is used
   const NoiseFitResult look =
-      fit_noise_model(without_intervals(cubic_allan), options.noise_fit, &cubic_factors, lines);
+      fit_noise_model(without_intervals(cubic_allan), look_options, &cubic_factors, lines);
   fit = choose_temperature_degree(fit, record, look.model, options.systematic);
   subtract_temperature_fit(fit, rate, temperature);
   // `rate` is the final residual now, whichever degree was kept: the

@@ -395,6 +395,53 @@ LeftOut leave_out_unfollowed_first_taus(detail::Points& p, detail::BandwidthSear
   return left_out;
 }
 
+// The modelled kinds (first-order, moving average, Butterworth) each bend
+// the first taus in a shape of their own, and a real filter can be none of
+// them. Where white noise rules only a few octaves before flicker does,
+// that shape decides N: at 1 Hz over 24 h, a 3-sample average behind a 1 s
+// low-pass (tactical grade, N 0.3) was taken for a Butterworth at 0.14 Hz
+// that fitted every tau, and N came out 22 % low with an interval of
+// -4 / +9 % (the Butterworths the taus do not tell apart). So each
+// resolved coefficient's interval also spans the fit that assumes no kind:
+// the taus inside the chosen filter's memory (m below kMemoryReach times
+// its c) left out, the rest fitted with a filter known beyond its memory
+// (one or two more left out when that c still wants the first kept tau),
+// whose own interval spans the c they do not tell apart. Past the memory
+// that fit holds for any filter (here N 0.33 [0.22, 0.34]). It costs
+// width where the kind is right: a 4-sample average at 100 Hz, 2 h, N's
+// interval -0.84 / +0.78 % where the kind's own was +-0.25 %. Returns how
+// many taus it left out (-1: none was made: no bandwidth, or one known
+// only beyond its memory).
+int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSearch& bandwidth,
+                            double known_white, std::span<const SpectralLine> lines,
+                            const NoiseFitOptions& options, NoiseFitResult& r) {
+  constexpr int kMoreLeftOut = 2;
+  const SensorBandwidth& b = bandwidth.estimate.bandwidth;
+  const double tau0 = p.sample_interval_s();
+  if (!bandwidth.estimate.resolved || b.beyond_memory() || !(tau0 > 0.0)) return -1;
+  const double c = detail::memory_constant_of(b, tau0);
+  const auto inside = static_cast<int>(std::count_if(p.tau.begin(), p.tau.end(), [&](double tau) {
+    return tau / tau0 < detail::kMemoryReach * c;
+  }));
+  for (int k = inside; k <= inside + kMoreLeftOut && p.y.size() > static_cast<std::size_t>(7 + k);
+       ++k) {
+    Refit shape_free = refit_without_first(p, k, options);
+    if (shape_free.fits.empty()) return -1;
+    if (shape_free.bandwidth.estimate.at_search_bound) continue;
+    const NoiseFitResult other = conclude(shape_free.points, shape_free.fits, shape_free.bandwidth,
+                                          known_white, lines, options);
+    for (const NoiseParameter& parameter : kNoiseParameters) {
+      ParameterEstimate& e = r.estimate(parameter);
+      const ParameterEstimate& o = other.estimate(parameter);
+      if (e.status != TermStatus::resolved || o.status != TermStatus::resolved) continue;
+      if (std::isfinite(o.ci95_low)) e.ci95_low = std::min(e.ci95_low, o.ci95_low);
+      if (!std::isnan(o.ci95_high)) e.ci95_high = std::max(e.ci95_high, o.ci95_high);
+    }
+    return k;
+  }
+  return -1;
+}
+
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
@@ -439,6 +486,10 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     mark(r);
     r.ramp_set_aside = ramp;
     r.gauss_markov_set_aside = why;
+  }
+  if (left_out.count == 0 && options.span_filter_shape) {
+    r.shape_free_taus_left_out =
+        widen_over_filter_shape(p, bandwidth, known_white, lines, options, r);
   }
   r.message = fit_sentence(r);
   return r;

@@ -69,7 +69,6 @@ constexpr double kHighestCutoff = 0.45;
 constexpr int kButterworth = 0;       // Trial::k of the Butterworth kind
 constexpr int kBeyondMemory = -1;     // Trial::k of a filter known beyond its memory
 constexpr int kMemorySteps = 24;      // the grid of c
-constexpr double kMemoryReach = 3.0;  // the first kept tau is at least this many c [samples]
 constexpr double kSmallestEffect = 0.005;
 
 // The reference model: white noise, flicker, random walk and ramp (and, on
@@ -390,6 +389,15 @@ double find_line_scale(Points& p, const NoiseFitOptions& options) {
   const bool taken = std::isfinite(best) && as_read - best > options.penalty * dispersion;
   set_scale(taken ? std::exp(best_log) : 1.0);
   return p.line_scale;
+}
+
+double memory_constant_of(const SensorBandwidth& bandwidth, double sample_interval_s) {
+  if (bandwidth.beyond_memory())
+    return bandwidth.filtered_fraction * bandwidth.memory_constant_samples;
+  // Far beyond every kind's memory (128 samples, T of 10 samples, f_c of
+  // 0.016 / tau0), where m (1 - factor) is c.
+  constexpr double kFar = 65536.0;
+  return kFar * (1.0 - white_allan_factor(bandwidth, kFar * sample_interval_s, sample_interval_s));
 }
 
 void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth) {

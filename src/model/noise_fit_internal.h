@@ -157,6 +157,14 @@ double find_line_scale(Points& p, const NoiseFitOptions& options);
 /// without one).
 void set_bandwidth_shapes(Points& p, const SensorBandwidth& bandwidth);
 
+/// A filter known beyond its memory is fitted only where the first kept tau
+/// is at least this many c [samples] (noise_fit_bandwidth.cc says why).
+constexpr double kMemoryReach = 3.0;
+
+/// c [samples] of `bandwidth` (its filtered fraction included): the
+/// correction c / m its white factor tends to far beyond its memory.
+double memory_constant_of(const SensorBandwidth& bandwidth, double sample_interval_s);
+
 /// The filter kinds find_bandwidth() tries.
 enum class BandwidthKinds {
   established,       ///< the first-order low-pass and the moving average

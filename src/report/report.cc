@@ -89,24 +89,28 @@ std::string random_bias_answer(const model::AnalysisResult& r, Language language
   return say(language, Text::an_random_bias_none);
 }
 
-std::string bandwidth_sentence(const model::BandwidthEstimate& b, Language language) {
+std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language language) {
+  const model::BandwidthEstimate& b = fit.bandwidth;
   if (!b.resolved) return say(language, Text::an_bandwidth_none);
   const std::string percent = g(100.0 * b.bandwidth.filtered_fraction);
   const std::string lag1 = g(b.lag1_correlation);
   const std::string lowered = g(100.0 * b.first_tau_reduction);
-  if (b.bandwidth.moving_average()) {
-    return say(language, Text::an_bandwidth_moving_average, b.bandwidth.moving_average_samples,
-               g(b.cutoff_hz), percent, lag1, lowered);
-  }
-  if (b.bandwidth.butterworth()) {
-    return say(language, Text::an_bandwidth_butterworth, g(b.cutoff_hz), percent, lag1, lowered);
-  }
   if (b.bandwidth.beyond_memory()) {
     return say(language, Text::an_bandwidth_beyond_memory, g(b.bandwidth.memory_constant_samples),
                g(b.cutoff_hz), lowered);
   }
-  return say(language, Text::an_bandwidth_first_order, g(b.bandwidth.time_constant_s),
-             g(b.cutoff_hz), percent, lag1, lowered);
+  std::string kind =
+      b.bandwidth.moving_average()
+          ? say(language, Text::an_bandwidth_moving_average, b.bandwidth.moving_average_samples,
+                g(b.cutoff_hz), percent, lag1, lowered)
+      : b.bandwidth.butterworth()
+          ? say(language, Text::an_bandwidth_butterworth, g(b.cutoff_hz), percent, lag1, lowered)
+          : say(language, Text::an_bandwidth_first_order, g(b.bandwidth.time_constant_s),
+                g(b.cutoff_hz), percent, lag1, lowered);
+  if (fit.shape_free_taus_left_out >= 0) {
+    kind += say(language, Text::an_bandwidth_shape_free, fit.shape_free_taus_left_out);
+  }
+  return kind;
 }
 
 std::string lines_sentence(const model::NoiseFitResult& fit, Language language) {
@@ -398,7 +402,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
     row(say(l, Text::an_vrw),
         g(velocity_random_walk_m_s_sqrt_h(r.noise.model.N)) + " " + say(l, Text::unit_m_s_sqrt_h));
   }
-  row(say(l, Text::an_bandwidth), bandwidth_sentence(r.noise.bandwidth, l));
+  row(say(l, Text::an_bandwidth), bandwidth_sentence(r.noise, l));
   row(say(l, Text::an_lines), lines_sentence(r.noise, l));
   row(say(l, Text::an_steps),
       r.steps.indices.empty()
@@ -586,7 +590,7 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
     for (const std::string& line : manual_conventions(r, l)) md += "  " + line + "\n";
   }
   md += "- " + say(l, Text::an_eq17) + ": " + eq17_sentence(r.psd_allan, l) + "\n";
-  md += "- " + say(l, Text::an_bandwidth) + ": " + bandwidth_sentence(r.noise.bandwidth, l) + "\n";
+  md += "- " + say(l, Text::an_bandwidth) + ": " + bandwidth_sentence(r.noise, l) + "\n";
   md += "- " + say(l, Text::an_lines) + ": " + lines_sentence(r.noise, l) + "\n";
   md += "- " + say(l, Text::an_md_random_bias) + ": " + random_bias_answer(r, l) + "\n";
   if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary.text(l) + ")\n";

@@ -47,8 +47,9 @@ ParameterText parameter_text(const model::ParameterEstimate& p, Language languag
 /// "a Wiener process (rate random walk), K = ... deg/h/sqrt(s)" etc.
 std::string random_bias_answer(const model::AnalysisResult& r, Language language);
 /// "not resolved ..." or "time constant ... s (first-order cut-off ... Hz) ...":
-/// the sensor bandwidth the fit found.
-std::string bandwidth_sentence(const model::BandwidthEstimate& b, Language language);
+/// the sensor bandwidth the fit found, and whether the intervals span the fit
+/// that assumes no filter kind (NoiseFitResult::shape_free_taus_left_out).
+std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language language);
 /// "none found" or "20.2 Hz (2.85 Hz wide), 882 deg/h rms, ...": the lines.
 std::string lines_sentence(const model::NoiseFitResult& fit, Language language);
 /// "tactical (decided by ...; by bias instability ...; by ARW ...)".

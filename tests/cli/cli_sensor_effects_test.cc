@@ -284,6 +284,15 @@ TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
       generate_and_analyze(dir.path(), "--N 0.3 --B 0.1 --fs 100 --hours 2 --filter-tc 0.01", 2);
   EXPECT_EQ(single.analysis["fit"]["first_taus_left_out"], 0);
   EXPECT_TRUE(single.analysis["fit"]["first_taus_left_out_why"].is_null());
+  // The intervals also span the fit that assumes no kind: the low-pass of
+  // one sample has c = 3 rho / (1 - rho^2) = 1.28 (rho = 1/e), so the taus
+  // of 1 and 2 samples are inside 3 c (two more if that c still wants the
+  // first kept one); with the first taus already left out, none.
+  const json& shape_free = single.analysis["fit"]["shape_free_taus_left_out"];
+  ASSERT_TRUE(shape_free.is_number_integer());
+  EXPECT_GE(shape_free.get<int>(), 2);
+  EXPECT_LE(shape_free.get<int>(), 4);
+  EXPECT_TRUE(fit["shape_free_taus_left_out"].is_null());
 }
 
 TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {

@@ -188,6 +188,11 @@ struct NoiseFitOptions {
   /// Look for the sensor's output bandwidth in the short taus and model it
   /// (core/sensor_bandwidth.h); needs the averaging factors.
   bool model_bandwidth = true;
+  /// With a bandwidth of a modelled kind, widen the resolved coefficients'
+  /// intervals over the fit that assumes no kind (NoiseFitResult::
+  /// shape_free_taus_left_out). false where only the model is wanted (the
+  /// quick first look analyze() takes to choose the temperature degree).
+  bool span_filter_shape = true;
   /// [deg/h/sqrt(Hz)] White rate noise of a known source outside the
   /// sensor, added to every model as the fixed Allan variance N_q^2 / tau:
   /// the rounding of a quantised output word (output_quantisation.h). N is
@@ -313,6 +318,12 @@ struct NoiseFitResult {
   /// one left out and the first one used (0 when none was). The fit's taus
   /// are the octave grid's, which need not be the reported ones.
   double left_out_below_tau_s = 0.0;
+  /// The resolved coefficients' intervals also span the fit that assumes no
+  /// filter kind: this many first taus (those inside the found filter's
+  /// memory) left out and the rest fitted with a filter known beyond its
+  /// memory. -1: no such fit was made (no filter found, or the first taus
+  /// already left out).
+  int shape_free_taus_left_out = -1;
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
