@@ -10,8 +10,10 @@
 # other tests checked. Left out (CMakePresets.json, the asan test preset's
 # exclude): the statistical cases that run a path another
 # kept case runs, only on other numbers (these cost 15-100 s each under ASan
-# and run in the Release half): six of Bandwidth's seven (the flicker one
-# stays, and SensorEffects' filter cases, its Butterworth among them), the
+# and run in the Release half): seven of Bandwidth's ten (the flicker one,
+# the 1 Hz union over the memory constants and the 40-sample moving average
+# stay, and SensorEffects' filter cases, its Butterworth among them, which
+# also run the fit that assumes no filter kind), the
 # Wiener random bias named over six seeds (NoiseFit's Wiener round trip
 # stays), eq. (17) on five generated records (every analysis computes it;
 # PsdAllan's closed-form cases stay), the library's triad (CliCalibrate's
