@@ -248,13 +248,11 @@ TEST(Bandwidth, CascadedFiltersThatNoKindFollowsLeaveTheFirstTausOut) {
   }
 }
 
-TEST(Bandwidth, IntervalsOverTheMemoryConstantsAreAUnionNotAProduct) {
-  // The record that showed it: a 3-sample average behind a 1 s low-pass at
-  // 1 Hz, 24 h (c = 2 samples; the white region ends at about 20 s). The
-  // taus from 8 s are kept and 42 memory constants are not told apart.
-  // Each had widened the interval on top of the last: N's upper end came
-  // out 35 times N, where the largest single refit moves N by 1.38. And
-  // B's interval, which had not spanned c at all, now does.
+// Tactical-grade noise (N 0.3, B 0.1, K 0.02) through a 3-sample average
+// behind a 1 s low-pass, sampled at 1 Hz for 24 h: the filter's memory
+// (c = 2 samples) takes the first octaves of a white region that ends
+// near 20 s.
+sim::Recording one_hertz_cascade(std::uint64_t seed) {
   sim::ErrorModel m;
   m.noise.N = 0.3;
   m.noise.B = 0.1;
@@ -264,8 +262,18 @@ TEST(Bandwidth, IntervalsOverTheMemoryConstantsAreAUnionNotAProduct) {
   sim::GeneratorOptions o;
   o.sample_rate_hz = 1.0;
   o.duration_s = 24 * 3600.0;
-  o.seed = 3;
-  sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
+  o.seed = seed;
+  return sim::generate(m, sim::TemperatureProfile{}, o);
+}
+
+TEST(Bandwidth, IntervalsOverTheMemoryConstantsAreAUnionNotAProduct) {
+  // The record that showed it: a 3-sample average behind a 1 s low-pass at
+  // 1 Hz, 24 h (c = 2 samples; the white region ends at about 20 s). The
+  // taus from 8 s are kept and 42 memory constants are not told apart.
+  // Each had widened the interval on top of the last: N's upper end came
+  // out 35 times N, where the largest single refit moves N by 1.38. And
+  // B's interval, which had not spanned c at all, now does.
+  sim::Recording rec = one_hertz_cascade(3);
   const AnalysisResult r = analyze(rec.rate_deg_h, {}, 1.0);
   ASSERT_TRUE(r.noise.bandwidth.resolved);
   ASSERT_TRUE(r.noise.bandwidth.bandwidth.beyond_memory());
@@ -291,17 +299,7 @@ TEST(Bandwidth, IntervalsSpanTheFitThatAssumesNoFilterKind) {
   // truth, and a filter of a modelled kind must have the fit without it
   // (the taus inside its memory left out) made beside it.
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    sim::ErrorModel m;
-    m.noise.N = 0.3;
-    m.noise.B = 0.1;
-    m.noise.K = 0.02;
-    m.output.moving_average_samples = 3;
-    m.output.filter_time_constant_s = 1.0;
-    sim::GeneratorOptions o;
-    o.sample_rate_hz = 1.0;
-    o.duration_s = 24 * 3600.0;
-    o.seed = seed;
-    sim::Recording rec = sim::generate(m, sim::TemperatureProfile{}, o);
+    sim::Recording rec = one_hertz_cascade(seed);
     // with its temperature, as `foglab analyze` reads the generated file
     // (the temperature law's removal moves the points' covariance: without
     // it seed 1 leaves the first taus out instead)
