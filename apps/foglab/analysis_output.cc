@@ -534,11 +534,6 @@ nlohmann::json sensor_terms_json(const model::AnalysisResult& r, Sensor sensor) 
 
 // ---- CSV: the Allan table of the residual with the fitted model ----------
 
-namespace {
-std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
-
-}  // namespace
-
 std::string analysis_csv(const model::AnalysisResult& r) {
   // The model's deviation, then each term's part of it (sqrt of its variance).
   std::string out =
@@ -547,11 +542,12 @@ std::string analysis_csv(const model::AnalysisResult& r) {
   const stats::AllanResult& a = r.allan;
   const std::vector<double> fitted = model_adev(r);
   for (std::size_t k = 0; k < a.tau_s.size(); ++k) {
-    out += fmt::format("{:.10g},{},{},{},{},{},{},{}", a.tau_s[k], a.m[k], a.n[k], cell(a.dev[k]),
-                       cell(a.edf[k]), cell(a.ci95_low[k]), cell(a.ci95_high[k]), cell(fitted[k]));
+    out += fmt::format("{:.10g},{},{},{},{},{},{},{}", a.tau_s[k], a.m[k], a.n[k],
+                       csv_number(a.dev[k]), csv_number(a.edf[k]), csv_number(a.ci95_low[k]),
+                       csv_number(a.ci95_high[k]), csv_number(fitted[k]));
     for (const NoiseTerm t : kNoiseTerms) {
       out += ',';
-      out += cell(std::sqrt(model::fitted_allan_variance(r.noise, t, a.tau_s[k])));
+      out += csv_number(std::sqrt(model::fitted_allan_variance(r.noise, t, a.tau_s[k])));
     }
     out += "\n";
   }

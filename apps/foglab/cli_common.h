@@ -45,6 +45,9 @@ std::size_t default_max_samples();
 /// instead of an error.
 std::string json_text(const nlohmann::json& document);
 
+/// A number as a CSV cell: 10 significant digits, empty when not finite.
+std::string csv_number(double value);
+
 /// The ReadOptions of `options` (channel, rate, format, units, time,
 /// decimal comma, sample limit, kMaxSampleMagnitude).
 io::ReadOptions read_options(const InputOptions& options);

@@ -69,8 +69,6 @@ nlohmann::json to_json(const stats::AllanResult& r, const io::Series& series,
           {"foglab_version", std::string(version())}};
 }
 
-std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
-
 std::string to_csv(const stats::AllanResult& r, Sensor sensor) {
   const std::string base = sensor == Sensor::gyroscope ? "deg_h" : "m_s2";
   const std::string u = stats::is_time_deviation(r.kind) ? base + "_s" : base;
@@ -78,8 +76,9 @@ std::string to_csv(const stats::AllanResult& r, Sensor sensor) {
       "tau_s,m,n,dev_{0},alpha,edf,ci68_low_{0},ci68_high_{0},ci95_low_{0},ci95_high_{0}\n", u);
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
     out += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{}\n", r.tau_s[k], r.m[k], r.n[k],
-                       cell(r.dev[k]), r.alpha[k], cell(r.edf[k]), cell(r.ci68_low[k]),
-                       cell(r.ci68_high[k]), cell(r.ci95_low[k]), cell(r.ci95_high[k]));
+                       csv_number(r.dev[k]), r.alpha[k], csv_number(r.edf[k]),
+                       csv_number(r.ci68_low[k]), csv_number(r.ci68_high[k]),
+                       csv_number(r.ci95_low[k]), csv_number(r.ci95_high[k]));
   }
   return out;
 }
@@ -158,7 +157,7 @@ void run_time_error(const AllanCommand& c) {
                   series.path, series.channel, series.values.size(), series.sample_rate_hz,
                   to_string(input), "tau [s]", "n", fmt::format("{} [{}]", name, unit));
   for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
-    csv += fmt::format("{:.10g},{},{},{}\n", r.tau_s[k], r.m[k], r.n[k], cell(r.value[k]));
+    csv += fmt::format("{:.10g},{},{},{}\n", r.tau_s[k], r.m[k], r.n[k], csv_number(r.value[k]));
     table += fmt::format("{:>12.6g} {:>10} {:>16.6g}\n", r.tau_s[k], r.n[k], r.value[k]);
   }
   if (!c.json_path.empty()) write_text_file(c.json_path, json);

@@ -90,7 +90,7 @@ nlohmann::json run_json(const sim::Lab2Variant& v, const sim::Lab2Gyro& g, const
         {"class_decided_by", std::string(to_string(g.verdict.decided_by))}}}};
 }
 
-std::string cell(const nlohmann::json& j) {
+std::string json_cell(const nlohmann::json& j) {
   if (j.is_null()) return "";
   if (j.is_string()) return j.get<std::string>();
   if (j.is_boolean()) return j.get<bool>() ? "true" : "false";
@@ -134,7 +134,7 @@ std::string answers_csv(const nlohmann::json& rows) {
   out += "\n";
   for (const nlohmann::json& row : rows) {
     for (const std::string& k : top) {
-      out += cell(row[k]);
+      out += json_cell(row[k]);
       out += ',';
     }
     const nlohmann::json& e = row["expected"];
@@ -142,8 +142,8 @@ std::string answers_csv(const nlohmann::json& rows) {
                        e["polyfit_p"][0].get<double>(), e["polyfit_p"][1].get<double>(),
                        e["polyfit_p"][2].get<double>());
     for (const std::string& k : expected) {
-      out += ',';  // (not "," + cell(): GCC 12 -Wrestrict false positive, bug 105329)
-      out += cell(e[k]);
+      out += ',';  // (not "," + json_cell(): GCC 12 -Wrestrict false positive, bug 105329)
+      out += json_cell(e[k]);
     }
     out += "\n";
   }

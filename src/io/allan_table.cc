@@ -12,14 +12,13 @@
 #include <string_view>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "readers_internal.h"
 
 namespace foglab::io {
 namespace {
 
 using internal::throw_data_error;
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The line's fields, split at commas, semicolons, tabs or runs of spaces.
 std::vector<std::string> fields_of(std::string_view line) {

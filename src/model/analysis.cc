@@ -20,8 +20,6 @@
 namespace foglab::model {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // Least-squares slope of ln y against ln x.
 double log_slope(std::span<const double> x, std::span<const double> y) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "foglab/core/output_model.h"
 #include "foglab/model/noise_fit.h"
 #include "foglab/stats/allan.h"
@@ -18,7 +19,6 @@
 namespace foglab::model {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::int64_t kMinPlateauSamples = 10;
 constexpr double kSameTemperatureC = 0.5;  // plateaus closer than this share a temperature
 constexpr int kMaxNonlinearityDegree = 5;  // the automatic choice's highest

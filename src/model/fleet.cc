@@ -13,8 +13,6 @@
 namespace foglab::model {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // The q-quantile of sorted values, by linear interpolation between order statistics.
 double quantile(const std::vector<double>& sorted, double q) {
   const double at = q * static_cast<double>(sorted.size() - 1);

@@ -17,8 +17,6 @@
 namespace foglab::model {
 namespace {
 
-using detail::kNaN;
-
 // How the fit ended, in the chosen candidate's reweighting loop, and how
 // many of the other candidates stopped at the iteration limit.
 void set_status(const detail::SubsetFit& chosen, std::span<const detail::SubsetFit> fits,

@@ -30,11 +30,11 @@
 #include <vector>
 
 #include "foglab/core/noise_model.h"
+#include "foglab/core/numeric.h"
 #include "foglab/model/noise_fit.h"
 
 namespace foglab::model::detail {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// How each reweighting loop iterates (NoiseFitOptions).

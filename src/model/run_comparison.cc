@@ -5,10 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#include "foglab/core/numeric.h"
+
 namespace foglab::model {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The polynomial's range [deg/h] over the temperatures it was fitted on.
 double polynomial_range(const SystematicFit& s) {

@@ -57,8 +57,6 @@ Differences differences_at(const std::vector<double>& p, std::int64_t w,
   return d;
 }
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // Fewer D than this give no spread to judge by.
 constexpr std::size_t kFewestDifferences = 16;
 

@@ -20,7 +20,6 @@ namespace {
 using detail::block_covariance;
 using detail::TermGroup;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxDegree = 3;
 
 void check_inputs(std::span<const double> rate, std::span<const double> temperature,

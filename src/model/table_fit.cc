@@ -8,13 +8,12 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/noise_model.h"
+#include "foglab/core/numeric.h"
 #include "foglab/model/readings.h"
 #include "foglab/stats/confidence.h"
 
 namespace foglab::model {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // SP 1065's white-FM edf of OADEV at factor m on N phase points.
 double white_fm_oadev_edf(double n_phase, double m) {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "foglab/core/numeric.h"
 #include "foglab/core/version.h"
 #include "report_internal.h"
 
@@ -16,8 +17,6 @@ namespace foglab::report {
 using namespace detail;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The value the fleet statistics take: the estimate of a resolved term.
 double resolved(const FleetTerm& t) { return t.status == "resolved" ? t.value : kNaN; }

@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "foglab/core/numeric.h"
 #include "foglab/core/version.h"
 #include "foglab/report/report.h"
 #include "report_internal.h"
@@ -18,7 +19,6 @@ using namespace detail;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// The fit's 95 % upper bound on a term it left out (0: none).

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "foglab/model/run_comparison.h"
 #include "report_internal.h"
 
@@ -18,8 +19,6 @@ namespace foglab::report {
 namespace {
 
 using namespace detail;
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- cells -------------------------------------------------------------------------
 

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "foglab/core/units.h"
 #include "foglab/core/version.h"
 #include "foglab/report/imu.h"
@@ -243,8 +244,6 @@ std::string record_title(const ReportInput& input, Language language) {
 using namespace detail;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- text helpers --------------------------------------------------------------
 

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "foglab/core/error.h"
+#include "foglab/core/numeric.h"
 #include "foglab/core/units.h"
 #include "foglab/report/report.h"
 #include "report_internal.h"
@@ -20,8 +21,6 @@ namespace foglab::report {
 using namespace detail;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::vector<double> log_space(double lo, double hi, int n) {
   std::vector<double> out;

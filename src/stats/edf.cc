@@ -8,11 +8,12 @@
 #include <cmath>
 #include <limits>
 
+#include "foglab/core/numeric.h"
+
 namespace foglab::stats {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kJmax = 100.0;
 
 // sw(t): the generalised autocovariance kernel of the phase for noise alpha (eq. 7).

@@ -9,11 +9,15 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <string_view>
 #include <vector>
 
 namespace foglab {
+
+/// A quiet NaN: a value not measured, in result fields and tables.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Neumaier (improved Kahan-Babuska) compensated accumulator.
 class CompensatedSum {
