@@ -48,8 +48,10 @@ namespace {
 
 using InputArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// The samples of a one-dimensional array, in place.
-std::span<const double> samples_of(const InputArray& a, const char* name) {
+// The samples of a one-dimensional array, in place. With `nan_is_missing` a NaN is a
+// missing sample, for io::drop_missing_samples() to make a gap of.
+std::span<const double> samples_of(const InputArray& a, const char* name,
+                                   bool nan_is_missing = false) {
   if (a.ndim() != 1) {
     throw UsageError(std::string(name) + " must be a one-dimensional array (got " +
                      std::to_string(a.ndim()) + " dimensions)");
@@ -57,7 +59,12 @@ std::span<const double> samples_of(const InputArray& a, const char* name) {
   const std::span<const double> samples(a.data(), static_cast<std::size_t>(a.shape(0)));
   // As the file readers do: a value that is not finite is refused by its index, before it
   // turns every statistic into NaN.
-  const std::size_t index = first_non_finite(samples);
+  const std::size_t index =
+      nan_is_missing
+          ? static_cast<std::size_t>(std::find_if(samples.begin(), samples.end(),
+                                                  [](double v) { return std::isinf(v); }) -
+                                     samples.begin())
+          : first_non_finite(samples);
   if (index < samples.size()) {
     const double bad = samples[index];
     throw DataError(std::string(name) + "[" + std::to_string(index) + "] is " +
@@ -206,11 +213,23 @@ py::dict psd(const InputArray& data, double rate, std::size_t segment_length, do
   return d;
 }
 
+// Gaps as (before_sample, missing) pairs, the form read() returns them in.
+std::vector<Gap> gaps_of(const std::vector<std::pair<std::int64_t, std::int64_t>>& pairs) {
+  std::vector<Gap> gaps;
+  gaps.reserve(pairs.size());
+  for (const auto& [before_sample, missing] : pairs) gaps.push_back({before_sample, missing});
+  return gaps;
+}
+
 // analyze(): the JSON document of `foglab analyze --json` (docs/json.md), as Python objects.
+// As the CLI reads a file: `gaps` are those of the samples given (read()'s), a NaN sample (or
+// temperature) is a missing row, left out and made a gap, and nothing is interpolated.
 py::object analyze(const InputArray& rate, double rate_hz,
                    const std::optional<InputArray>& temperature, const std::string& units,
-                   const std::string& channel) {
-  const std::span<const double> samples = samples_of(rate, "rate");
+                   const std::string& channel,
+                   const std::vector<std::pair<std::int64_t, std::int64_t>>& gaps,
+                   bool nan_is_missing) {
+  const std::span<const double> samples = samples_of(rate, "rate", nan_is_missing);
   const SampleUnit unit = rate_unit_from_string(units);
   // The analysis consumes its record: a copy, in the internal unit, with room for the angle
   // record's one point more.
@@ -220,7 +239,7 @@ py::object analyze(const InputArray& rate, double rate_hz,
   for (const double v : samples) values.push_back(v * factor);
   std::vector<double> temperature_c;
   if (temperature) {
-    const std::span<const double> t = samples_of(*temperature, "temperature");
+    const std::span<const double> t = samples_of(*temperature, "temperature", nan_is_missing);
     if (t.size() != samples.size()) {
       throw UsageError("temperature has " + std::to_string(t.size()) + " samples, rate " +
                        std::to_string(samples.size()) + ": they must pair one to one");
@@ -232,6 +251,10 @@ py::object analyze(const InputArray& rate, double rate_hz,
   series.channel = channel;
   series.sample_rate_hz = rate_hz;
   series.sample_rate_source = io::SampleRateSource::option;
+  series.gaps = gaps_of(gaps);
+  check_gaps(series.gaps, static_cast<std::int64_t>(samples.size()), "gaps");
+  series.values = std::move(values);
+  if (nan_is_missing) io::drop_missing_samples(series, temperature ? &temperature_c : nullptr);
   const model::AnalysisOptions options;
   cli::AnalysisJsonInput json_input;
   json_input.units = units;
@@ -240,9 +263,10 @@ py::object analyze(const InputArray& rate, double rate_hz,
   {
     py::gil_scoped_release release;
     json_input.input = cli::input_json(series);
-    json_input.input["samples"] = values.size();
-    if (!temperature) json_input.record_mean_deg_h = compensated_mean(values);
-    model::AnalysisResult result = model::analyze(values, temperature_c, rate_hz, options);
+    json_input.input["samples"] = series.values.size();
+    if (!temperature) json_input.record_mean_deg_h = compensated_mean(series.values);
+    model::AnalysisResult result =
+        model::analyze(series.values, temperature_c, rate_hz, options, series.gaps);
     nlohmann::json document = cli::analysis_json(result, json_input, options);
     if (sensor_of(unit) == Sensor::accelerometer) {
       document = cli::accelerometer_json(std::move(document));
@@ -569,6 +593,11 @@ PYBIND11_MODULE(_foglab, m) {
   m.def("analyze", &analyze, py::arg("rate"), py::arg("rate_hz"),
         py::arg("temperature") = py::none(), py::arg("units") = "deg/h",
         py::arg("channel") = "rate",
+        py::arg("gaps") = std::vector<std::pair<std::int64_t, std::int64_t>>{},
+        py::arg("nan_is_missing") = true,
         "The whole analysis of a static record: the document `foglab analyze --json` writes "
-        "(docs/json.md), as dicts and lists.");
+        "(docs/json.md), as dicts and lists. `gaps` are the record's as read() gives them "
+        "((before_sample, missing) pairs); a NaN sample or temperature is a missing one, its "
+        "row left out and runs of them gaps, as the CLI reads a file (nothing is "
+        "interpolated); nan_is_missing=False makes it a DataError.");
 }

@@ -146,7 +146,7 @@ def test_errors_carry_foglabs_message():
     with_nan = np.ones(100)
     with_nan[42] = np.nan
     for call in (lambda: foglab.allan(with_nan, 1.0), lambda: foglab.psd(with_nan, 1.0),
-                 lambda: foglab.analyze(with_nan, 1.0)):
+                 lambda: foglab.analyze(with_nan, 1.0, nan_is_missing=False)):
         with pytest.raises(foglab.DataError, match=r"\[42\] is nan"):
             call()
     with pytest.raises(foglab.DataError) as error:

@@ -55,6 +55,42 @@ def test_analyze_units_and_accelerometers(tactical):
     assert "adev_m_s2" in accel["allan"]
 
 
+def test_analyze_takes_gaps_and_nan_samples_as_the_cli_reads_them(cli, tactical, tmp_path):
+    record, _ = tactical
+    rate = np.fromfile(record, dtype=np.float64)
+    # A logger lost 3 s in the middle: the record with NaN there, and without those samples
+    # but with the gap read() would give, are one record with one gap.
+    start, lost = 90_000, 300
+    with_nan = rate.copy()
+    with_nan[start:start + lost] = np.nan
+    kept = np.delete(rate, np.arange(start, start + lost))
+    by_nan = foglab.analyze(with_nan, 100.0)
+    by_gaps = foglab.analyze(kept, 100.0, gaps=[(start, lost)])
+    stitched = foglab.analyze(kept, 100.0)
+    for result in (by_nan, by_gaps):
+        gaps = result["input"]["gaps"]
+        assert gaps["count"] == 1 and gaps["missing_samples"] == lost
+        assert gaps["list"][0]["before_sample"] == start
+        assert result["input"]["samples"] == kept.size
+    assert by_nan["input"]["gaps"]["missing_value_rows"] == lost
+    assert by_gaps["input"]["gaps"]["missing_value_rows"] == 0
+    # The Allan terms across the gap are left out, not stitched over.
+    assert by_gaps["allan"]["n"][0] < stitched["allan"]["n"][0]
+    # The CLI on the same samples written with empty cells finds the same.
+    table = tmp_path / "lost.csv"
+    table.write_text("i,rate\n" + "".join(
+        f"{i},{'' if np.isnan(v) else repr(float(v))}\n" for i, v in enumerate(with_nan)))
+    cli_result = json.loads(subprocess.run(
+        [cli, "analyze", str(table), "--channel", "rate", "--fs", "100", "--json", "-"],
+        check=True, capture_output=True, text=True).stdout)
+    assert cli_result["input"]["gaps"]["list"] == by_nan["input"]["gaps"]["list"]
+    for key in cli_result:
+        if key not in ("input", "notes"):
+            assert by_nan[key] == cli_result[key] == by_gaps[key], key
+    # The caller's array keeps its NaN.
+    assert np.isnan(with_nan[start:start + lost]).all()
+
+
 def test_analyze_errors():
     with pytest.raises(ValueError, match="furlong"):
         foglab.analyze(np.ones(1000), 100.0, units="furlong/fortnight")
@@ -62,3 +98,9 @@ def test_analyze_errors():
         foglab.analyze(np.ones(1000), 100.0, temperature=np.ones(999))
     with pytest.raises(foglab.DataError):
         foglab.analyze(np.zeros(1000), 100.0)
+    with pytest.raises(ValueError, match="gaps"):
+        foglab.analyze(np.ones(1000), 100.0, gaps=[(0, 5)])
+    with pytest.raises(foglab.DataError, match="no sample left"):
+        foglab.analyze(np.full(1000, np.nan), 100.0)
+    with pytest.raises(foglab.DataError, match=r"rate\[3\] is inf"):
+        foglab.analyze(np.array([1.0, 2.0, 3.0, np.inf]), 100.0)
