@@ -668,6 +668,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_md_class, "accuracy class"},
     {Text::an_plot_gap, "gap ({} found, nothing interpolated)"},
     {Text::an_plot_step, "bias step ({} found, levelled)"},
+    {Text::an_plot_gap_jump, "bias jump across a gap ({} found, measured, not levelled)"},
     {Text::an_plot_spike, "spike ({} found, replaced)"},
     {Text::an_plot_time, "{}: rate and temperature"},
     {Text::an_axis_time, "time [h]"},

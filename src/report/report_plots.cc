@@ -68,8 +68,23 @@ void mark_gaps(Plot& plot, const model::AnalysisResult& r, Language l) {
   }
 }
 
-// The bias steps (vertical lines over the rate's span) and spikes (a mark at
-// the edge of their preview block) the analysis found.
+// A vertical line at `hour` over the rate's span [lo, hi].
+Series vertical_line(std::string title, double hour, double lo, double hi, int dash_type) {
+  Series line;
+  line.title = std::move(title);
+  line.x = {hour, hour};
+  line.y = {lo, hi};
+  line.color = kOrange;
+  line.dash_type = dash_type;
+  line.line_width = 1.5;
+  line.sets_range = false;
+  return line;
+}
+
+// The bias steps (dashed vertical lines over the rate's span; levelled), the
+// jumps of the bias across gaps judged significant (dotted, where the record
+// resumes; measured, not levelled) and spikes (a mark at the edge of their
+// preview block) the analysis found.
 void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const RecordPreview& p,
                            const std::vector<double>& hours, Language l) {
   if (hours.empty() || !(r.sample_rate_hz > 0.0)) return;
@@ -87,16 +102,19 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
     return std::pair{a, b};
   }();
   for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
-    Series step;
-    step.title = i == 0 ? say(l, Text::an_plot_step, r.steps.indices.size()) : std::string();
     const double t = elapsed_s(r.steps.indices[i], r.gaps, r.sample_rate_hz) / kSecondsPerHour;
-    step.x = {t, t};
-    step.y = {lo, hi};
-    step.color = kOrange;
-    step.dash_type = 2;
-    step.line_width = 1.5;
-    step.sets_range = false;
-    plot.series.push_back(std::move(step));
+    plot.series.push_back(vertical_line(
+        i == 0 ? say(l, Text::an_plot_step, r.steps.indices.size()) : std::string(), t, lo, hi, 2));
+  }
+  const auto significant = std::count_if(r.steps.across_gaps.begin(), r.steps.across_gaps.end(),
+                                         [](const model::GapJump& j) { return j.significant; });
+  bool first_jump = true;
+  for (const model::GapJump& j : r.steps.across_gaps) {
+    if (!j.significant) continue;
+    const double t = elapsed_s(j.before_sample, r.gaps, r.sample_rate_hz) / kSecondsPerHour;
+    plot.series.push_back(vertical_line(
+        first_jump ? say(l, Text::an_plot_gap_jump, significant) : std::string(), t, lo, hi, 3));
+    first_jump = false;
   }
   if (r.spikes.indices.empty()) return;
   Series spikes;

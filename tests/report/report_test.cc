@@ -422,6 +422,7 @@ TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
   EXPECT_NEAR(gap->x[1], 1500.0 / 3600.0, 1e-9);
   ASSERT_NE(spike, nullptr);
   EXPECT_NEAR(spike->x[0], 2100.0 / 3600.0, 1e-9);
+  EXPECT_EQ(titled(plots[0], "bias jump"), nullptr);  // the bias did not move across the gap
   // the preview has a point without values inside the gap
   bool hole = false;
   for (std::size_t k = 0; k < in.preview.time_s.size(); ++k) {
@@ -433,6 +434,38 @@ TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
   }
   EXPECT_TRUE(hole);
   EXPECT_NEAR(in.preview.time_s.back(), 3600.0, 2.0);
+}
+
+TEST(Report, TimePlotMarksABiasJumpAcrossAGapWhereTheRecordResumes) {
+  // The same ten minutes lost, and the bias 3000 deg/h higher after them (16
+  // times what a 64-sample mean of this noise spreads by): the jump is
+  // measured, not levelled, and marked where the record resumes.
+  sim::ErrorModel m;
+  m.output.dropouts = {{900.0, 600.0}};
+  sim::Recording rec = effects_hour(m, 3);
+  const std::vector<Gap> gaps = sim::remove_dropouts(rec, m.output);
+  ASSERT_EQ(gaps.size(), 1u);
+  for (auto i = static_cast<std::size_t>(gaps[0].before_sample); i < rec.rate_deg_h.size(); ++i) {
+    rec.rate_deg_h[i] += 3000.0;
+  }
+  ReportInput in;
+  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz, 2000, gaps);
+  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz, {}, gaps);
+  ASSERT_EQ(r.steps.across_gaps.size(), 1u);
+  ASSERT_TRUE(r.steps.across_gaps[0].significant);
+  EXPECT_NEAR(r.steps.across_gaps[0].size_deg_h, 3000.0, 300.0);
+  EXPECT_TRUE(r.steps.indices.empty());  // not a step within a stretch: nothing levelled
+  const std::vector<Plot> plots = report_plots(r, in);
+  const Series* jump = titled(plots[0], "bias jump across a gap (1 found");
+  ASSERT_NE(jump, nullptr);
+  ASSERT_EQ(jump->x.size(), 2u);
+  EXPECT_NEAR(jump->x[0], 1500.0 / 3600.0, 1e-9);
+  EXPECT_EQ(jump->x[1], jump->x[0]);
+  EXPECT_LT(jump->y[0], jump->y[1]);
+  ReportOptions in_russian;
+  in_russian.language = Language::ru;
+  const std::vector<Plot> russian = report_plots(r, in, in_russian);
+  EXPECT_NE(titled(russian[0], "скачок смещения нуля через пропуск (найдено: 1"), nullptr);
 }
 
 TEST(Report, BiasPlotFollowsTheFittedPolynomial) {

@@ -500,6 +500,7 @@ enum class Text {
   an_md_class,                   ///< "accuracy class"
   an_plot_gap,                   ///< legends: {count}
   an_plot_step,                  ///< {count}
+  an_plot_gap_jump,              ///< {count}
   an_plot_spike,                 ///< {count}
   an_plot_time,                  ///< plot title: {record}
   an_axis_time,                  ///< axis labels
