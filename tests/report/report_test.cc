@@ -401,18 +401,35 @@ TEST(Report, PsdPlotShadesTheSpectralLine) {
   EXPECT_EQ(titled(report_plots(none, in)[1], "spectral line"), nullptr);
 }
 
-TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
-  // Ten minutes lost after the first quarter hour: the time plot shades
-  // them, no line crosses them, and a spike after them sits at its true time.
+// An hour (seed 3) with ten minutes lost after the first quarter hour, its
+// samples changed by `edit(samples, gap)` before the preview and analysis.
+struct HourWithAGap {
+  std::vector<Gap> gaps;
+  ReportInput in;
+  model::AnalysisResult r;
+};
+template <typename Edit>
+HourWithAGap hour_with_a_gap(Edit edit) {
   sim::ErrorModel m;
   m.output.dropouts = {{900.0, 600.0}};
   sim::Recording rec = effects_hour(m, 3);
-  const std::vector<Gap> gaps = sim::remove_dropouts(rec, m.output);
-  ASSERT_EQ(gaps.size(), 1u);
-  rec.rate_deg_h[150000] += 60000.0;  // t = 1500 s + 600 s lost = 2100 s
-  ReportInput in;
-  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz, 2000, gaps);
-  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz, {}, gaps);
+  HourWithAGap h;
+  h.gaps = sim::remove_dropouts(rec, m.output);
+  if (h.gaps.size() == 1) edit(rec.rate_deg_h, h.gaps[0]);
+  h.in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz, 2000, h.gaps);
+  h.r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz, {}, h.gaps);
+  return h;
+}
+
+TEST(Report, TimePlotShadesTheGapsAndPlacesTheSpikesOnTheFileTime) {
+  // Ten minutes lost after the first quarter hour: the time plot shades
+  // them, no line crosses them, and a spike after them sits at its true time.
+  const HourWithAGap h = hour_with_a_gap([](std::vector<double>& rate, const Gap&) {
+    rate[150000] += 60000.0;  // t = 1500 s + 600 s lost = 2100 s
+  });
+  ASSERT_EQ(h.gaps.size(), 1u);
+  const ReportInput& in = h.in;
+  const model::AnalysisResult& r = h.r;
   ASSERT_EQ(r.spikes.count, 1);
   const std::vector<Plot> plots = report_plots(r, in);
   const Series* gap = titled(plots[0], "gap (1 found");
@@ -440,17 +457,14 @@ TEST(Report, TimePlotMarksABiasJumpAcrossAGapWhereTheRecordResumes) {
   // The same ten minutes lost, and the bias 3000 deg/h higher after them (16
   // times what a 64-sample mean of this noise spreads by): the jump is
   // measured, not levelled, and marked where the record resumes.
-  sim::ErrorModel m;
-  m.output.dropouts = {{900.0, 600.0}};
-  sim::Recording rec = effects_hour(m, 3);
-  const std::vector<Gap> gaps = sim::remove_dropouts(rec, m.output);
-  ASSERT_EQ(gaps.size(), 1u);
-  for (auto i = static_cast<std::size_t>(gaps[0].before_sample); i < rec.rate_deg_h.size(); ++i) {
-    rec.rate_deg_h[i] += 3000.0;
-  }
-  ReportInput in;
-  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz, 2000, gaps);
-  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz, {}, gaps);
+  const HourWithAGap h = hour_with_a_gap([](std::vector<double>& rate, const Gap& gap) {
+    for (auto i = static_cast<std::size_t>(gap.before_sample); i < rate.size(); ++i) {
+      rate[i] += 3000.0;
+    }
+  });
+  ASSERT_EQ(h.gaps.size(), 1u);
+  const ReportInput& in = h.in;
+  const model::AnalysisResult& r = h.r;
   ASSERT_EQ(r.steps.across_gaps.size(), 1u);
   ASSERT_TRUE(r.steps.across_gaps[0].significant);
   EXPECT_NEAR(r.steps.across_gaps[0].size_deg_h, 3000.0, 300.0);
