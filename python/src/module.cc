@@ -71,7 +71,8 @@ std::span<const double> samples_of(const InputArray& a, const char* name,
                     (std::isnan(bad) ? "nan"
                      : bad > 0       ? "inf"
                                      : "-inf") +
-                    ": every sample must be a finite number");
+                    (nan_is_missing ? ": every sample must be a finite number or NaN (missing)"
+                                    : ": every sample must be a finite number"));
   }
   return samples;
 }

@@ -102,5 +102,6 @@ def test_analyze_errors():
         foglab.analyze(np.ones(1000), 100.0, gaps=[(0, 5)])
     with pytest.raises(foglab.DataError, match="no sample left"):
         foglab.analyze(np.full(1000, np.nan), 100.0)
-    with pytest.raises(foglab.DataError, match=r"rate\[3\] is inf"):
+    with pytest.raises(foglab.DataError,
+                       match=r"rate\[3\] is inf: every sample must be a finite number or NaN"):
         foglab.analyze(np.array([1.0, 2.0, 3.0, np.inf]), 100.0)

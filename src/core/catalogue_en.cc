@@ -521,6 +521,9 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_bandwidth_shape_free,
      "; the 95 % intervals also span the fit that assumes no filter kind: the first {} tau(s), "
      "inside its memory, left out and the rest taken as N^2/tau (1 - c tau0/tau)"},
+    {Text::an_bandwidth_shape_free_all,
+     "; the 95 % intervals also span the fit that assumes no filter kind: no tau lies inside "
+     "its memory, and every tau is taken as N^2/tau (1 - c tau0/tau)"},
     {Text::an_lines_none, "none found in the PSD"},
     {Text::an_line, "{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor"},
     {Text::an_lines_scale,

@@ -108,7 +108,9 @@ std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language langua
           ? say(language, Text::an_bandwidth_butterworth, g(b.cutoff_hz), percent, lag1, lowered)
           : say(language, Text::an_bandwidth_first_order, g(b.bandwidth.time_constant_s),
                 g(b.cutoff_hz), percent, lag1, lowered);
-  if (fit.shape_free_taus_left_out >= 0) {
+  if (fit.shape_free_taus_left_out == 0) {
+    kind += say(language, Text::an_bandwidth_shape_free_all);
+  } else if (fit.shape_free_taus_left_out > 0) {
     kind += say(language, Text::an_bandwidth_shape_free, fit.shape_free_taus_left_out);
   }
   return kind;

@@ -293,6 +293,25 @@ TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
   EXPECT_GE(shape_free.get<int>(), 2);
   EXPECT_LE(shape_free.get<int>(), 4);
   EXPECT_TRUE(fit["shape_free_taus_left_out"].is_null());
+
+  // A low-pass of 0.4 sample (c = 0.19, under a third of a sample): no tau
+  // lies inside its memory, so that fit keeps every tau, and the summary
+  // says so (it had read "the first 0 tau(s), inside its memory, left out").
+  const fs::path mat = dir.path() / "short_memory.mat", out = dir.path() / "short_memory.json";
+  ASSERT_EQ(test::run_foglab("generate --N 0.3 --B 0.1 --fs 100 --hours 0.5 --filter-tc 0.004 "
+                             "--out " +
+                             test::quote(mat))
+                .exit_code,
+            0);
+  const test::CliRun a =
+      test::run_foglab("analyze " + test::quote(mat) + " --json " + test::quote(out));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const json short_memory = read_json(out);
+  ASSERT_EQ(short_memory["sensor_bandwidth"]["kind"], "first_order");
+  EXPECT_EQ(short_memory["fit"]["shape_free_taus_left_out"], 0);
+  EXPECT_NE(a.out.find("no tau lies inside its memory, and every tau is taken as"),
+            std::string::npos);
+  EXPECT_EQ(a.out.find("the first 0 tau(s)"), std::string::npos);
 }
 
 TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {
