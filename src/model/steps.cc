@@ -34,6 +34,23 @@ struct Means {
   }
 };
 
+// visit(D, k, s) for every `stride`-th k from the start of each of
+// `stretches` (s its index) where both windows lie inside it: D the mean of
+// the w samples from k + missing less the mean of the w before k, from
+// prefix sums p. The one walker of the steps (missing 0) and of the jumps
+// across gaps (missing the gap's samples).
+template <class Visit>
+void for_each_difference(const std::vector<double>& p, std::int64_t w, std::int64_t missing,
+                         std::int64_t stride, std::span<const Stretch> stretches, Visit visit) {
+  const Means raw{p};
+  for (std::size_t s = 0; s < stretches.size(); ++s) {
+    for (std::int64_t k = stretches[s].begin + w; k + missing + w <= stretches[s].end;
+         k += stride) {
+      visit(raw(k + missing, k + missing + w) - raw(k - w, k), k, s);
+    }
+  }
+}
+
 // D(k), the differences of the means of the w samples after k and the w
 // before, every w/8 samples with both windows inside one of `stretches`.
 struct Differences {
@@ -44,16 +61,13 @@ struct Differences {
 
 Differences differences_at(const std::vector<double>& p, std::int64_t w,
                            std::span<const Stretch> stretches) {
-  const Means raw{p};
-  const std::int64_t stride = std::max<std::int64_t>(1, w / 8);
   Differences d;
-  for (std::size_t s = 0; s < stretches.size(); ++s) {
-    for (std::int64_t k = stretches[s].begin + w; k + w <= stretches[s].end; k += stride) {
-      d.values.push_back(raw(k, k + w) - raw(k - w, k));
-      d.at.push_back(k);
-      d.in.push_back(s);
-    }
-  }
+  for_each_difference(p, w, 0, std::max<std::int64_t>(1, w / 8), stretches,
+                      [&](double value, std::int64_t k, std::size_t s) {
+                        d.values.push_back(value);
+                        d.at.push_back(k);
+                        d.in.push_back(s);
+                      });
   return d;
 }
 
@@ -119,18 +133,14 @@ constexpr std::size_t kMostDifferences = 4096;
 
 RobustSpread differences_over(const std::vector<double>& p, std::int64_t w, std::int64_t missing,
                               std::span<const Stretch> stretches) {
-  const Means raw{p};
   std::int64_t places = 0;
   for (const Stretch& s : stretches)
     places += std::max<std::int64_t>(0, s.size() - 2 * w - missing + 1);
   const std::int64_t stride = std::max<std::int64_t>(
       std::max<std::int64_t>(1, w / 8), places / static_cast<std::int64_t>(kMostDifferences));
   std::vector<double> values;
-  for (const Stretch& s : stretches) {
-    for (std::int64_t k = s.begin + w; k + missing + w <= s.end; k += stride) {
-      values.push_back(raw(k + missing, k + missing + w) - raw(k - w, k));
-    }
-  }
+  for_each_difference(p, w, missing, stride, stretches,
+                      [&](double value, std::int64_t, std::size_t) { values.push_back(value); });
   if (values.size() < kFewestDifferences) return {kNaN, kNaN};
   return robust_spread(values);
 }
