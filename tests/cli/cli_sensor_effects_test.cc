@@ -294,9 +294,10 @@ TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
   EXPECT_LE(shape_free.get<int>(), 4);
   EXPECT_TRUE(fit["shape_free_taus_left_out"].is_null());
 
-  // A low-pass of 0.4 sample (c = 0.19, under a third of a sample): no tau
-  // lies inside its memory, so that fit keeps every tau, and the summary
-  // says so (it had read "the first 0 tau(s), inside its memory, left out").
+  // A low-pass of 0.4 sample (c = 3 rho / (1 - rho^2) = 0.25 with
+  // rho = e^-2.5, under a third of a sample): no tau lies inside its
+  // memory, so that fit keeps every tau, and the summary says so (it had
+  // read "the first 0 tau(s), inside its memory, left out").
   const fs::path mat = dir.path() / "short_memory.mat", out = dir.path() / "short_memory.json";
   ASSERT_EQ(test::run_foglab("generate --N 0.3 --B 0.1 --fs 100 --hours 0.5 --filter-tc 0.004 "
                              "--out " +
