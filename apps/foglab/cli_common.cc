@@ -80,10 +80,6 @@ std::string json_text(const nlohmann::json& document) {
   return document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-std::string csv_number(double value) {
-  return std::isfinite(value) ? fmt::format("{:.10g}", value) : "";
-}
-
 io::ReadOptions read_options(const InputOptions& options) {
   io::ReadOptions read;
   read.channel = options.channel;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "foglab/core/csv.h"
 #include "foglab/core/error.h"
 #include "foglab/core/units.h"
 #include "foglab/io/reader.h"
@@ -44,9 +45,6 @@ std::size_t default_max_samples();
 /// are not UTF-8 (a file name or a column name in Latin-1) become U+FFFD
 /// instead of an error.
 std::string json_text(const nlohmann::json& document);
-
-/// A number as a CSV cell: 10 significant digits, empty when not finite.
-std::string csv_number(double value);
 
 /// The ReadOptions of `options` (channel, rate, format, units, time,
 /// decimal comma, sample limit, kMaxSampleMagnitude).

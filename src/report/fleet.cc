@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "foglab/core/csv.h"
 #include "foglab/core/numeric.h"
 #include "foglab/core/version.h"
 #include "report_internal.h"
@@ -20,20 +21,6 @@ namespace {
 
 /// The value the fleet statistics take: the estimate of a resolved term.
 double resolved(const FleetTerm& t) { return t.status == "resolved" ? t.value : kNaN; }
-
-/// A CSV number: full precision, empty for none.
-std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
-
-/// A CSV field, quoted when it holds a separator, a quote or a line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char ch : text) {
-    out += ch;
-    if (ch == '"') out += '"';
-  }
-  return out + "\"";
-}
 
 /// "0.0512 [0.0498, 0.0527]", "< 0.0012" or "-".
 std::string term_text(const FleetTerm& t) {

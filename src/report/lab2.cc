@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 
+#include "foglab/core/csv.h"
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
 #include "foglab/model/run_comparison.h"
@@ -499,18 +500,6 @@ std::string temperature_answer(const Lab2Table& t, Language l) {
   if (c.changed.empty()) return text + say(l, Text::lab2_answer_noise_unchanged);
   return text + say(l, Text::lab2_answer_noise_changed, changed_list(c, l));
 }
-
-std::string csv_field(std::string_view text) {
-  if (text.find_first_of(",\"\n") == std::string_view::npos) return std::string(text);
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
 
 std::string file_of(const Lab2Table& t) {
   for (const Lab2Run* r : t.runs) {
