@@ -34,11 +34,15 @@ struct Means {
   }
 };
 
+// D at k: the mean of the w samples from k + missing less the mean of the w
+// before k (missing 0 for a step, a gap's samples for a jump across it).
+double difference(const Means& raw, std::int64_t k, std::int64_t w, std::int64_t missing = 0) {
+  return raw(k + missing, k + missing + w) - raw(k - w, k);
+}
+
 // visit(D, k, s) for every `stride`-th k from the start of each of
-// `stretches` (s its index) where both windows lie inside it: D the mean of
-// the w samples from k + missing less the mean of the w before k, from
-// prefix sums p. The one walker of the steps (missing 0) and of the jumps
-// across gaps (missing the gap's samples).
+// `stretches` (s its index) where both windows lie inside it, from prefix
+// sums p. The one walker of the steps and of the jumps across gaps.
 template <class Visit>
 void for_each_difference(const std::vector<double>& p, std::int64_t w, std::int64_t missing,
                          std::int64_t stride, std::span<const Stretch> stretches, Visit visit) {
@@ -46,7 +50,7 @@ void for_each_difference(const std::vector<double>& p, std::int64_t w, std::int6
   for (std::size_t s = 0; s < stretches.size(); ++s) {
     for (std::int64_t k = stretches[s].begin + w; k + missing + w <= stretches[s].end;
          k += stride) {
-      visit(raw(k + missing, k + missing + w) - raw(k - w, k), k, s);
+      visit(difference(raw, k, w, missing), k, s);
     }
   }
 }
@@ -79,7 +83,6 @@ constexpr std::size_t kFewestDifferences = 16;
 Candidate best_at(const std::vector<double>& p, std::int64_t w,
                   std::span<const Stretch> stretches) {
   const Means raw{p};
-  auto d = [&](std::int64_t k) { return raw(k, k + w) - raw(k - w, k); };
   const auto [values, at, in] = differences_at(p, w, stretches);
   Candidate c;
   if (values.size() < kFewestDifferences) return c;
@@ -111,7 +114,7 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w,
     if (stat > best_stat) best_stat = stat, best = k;
   }
   const double best_dev =
-      std::fabs(d(std::clamp(best, stretch.begin + w, stretch.end - w)) - centre);
+      std::fabs(difference(raw, std::clamp(best, stretch.begin + w, stretch.end - w), w) - centre);
   // Its size from up to 4 W either side (four times the samples of the
   // stretch that found it: half the scatter, where the noise is white).
   const std::int64_t lo = std::max(stretch.begin, best - 4 * w);
@@ -185,9 +188,9 @@ std::vector<GapJump> jumps_across(const std::vector<double>& p, std::span<const 
       auto [at, fresh] = apart.try_emplace({w, missing});
       if (fresh) at->second = differences_over(p, w, missing, stretches);
       const auto [centre, spread] = at->second;
+      // D across the gap, against D as far apart inside the stretches
       const double z =
-          std::fabs(raw(after.begin, after.begin + w) - raw(before.end - w, before.end) - centre) /
-          spread;
+          std::fabs(difference(raw, before.end, w, after.begin - before.end) - centre) / spread;
       // the most significant window; until one is judged, the longest
       const bool judged = std::isfinite(z) && spread > 0.0;
       const bool take = judged ? !(best.significance >= z) : !std::isfinite(best.significance);
