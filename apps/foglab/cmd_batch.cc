@@ -34,6 +34,7 @@
 #include "commands.h"
 #include "foglab/core/error.h"
 #include "foglab/core/output.h"
+#include "foglab/core/text.h"
 #include "foglab/core/version.h"
 #include "foglab/io/channels.h"
 #include "foglab/io/rosbag.h"
@@ -50,9 +51,7 @@ namespace fs = std::filesystem;
 bool is_recording_name(const fs::path& path) {
   static const std::set<std::string> kTypes = {".mat", ".csv", ".tsv", ".txt",
                                                ".dat", ".f32", ".f64", ".bag"};
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  const std::string ext = ascii_lower(path.extension().string());
   return kTypes.contains(ext) && !path.filename().string().starts_with(".");
 }
 

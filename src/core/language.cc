@@ -10,6 +10,7 @@
 
 #include "catalogue.h"
 #include "foglab/core/error.h"
+#include "foglab/core/text.h"
 
 namespace foglab {
 namespace {
@@ -29,8 +30,7 @@ std::string_view to_string(Language language) { return language == Language::ru 
 std::string_view html_lang(Language language) { return to_string(language); }
 
 Language language_from_string(std::string_view text) {
-  std::string lower(text);
-  for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string lower = ascii_lower(text);
   if (lower == "en") return Language::en;
   if (lower == "ru") return Language::ru;
   throw UsageError("the report's language is 'en' or 'ru', got '" + std::string(text) + "'");

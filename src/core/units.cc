@@ -1,23 +1,11 @@
 #include "foglab/core/units.h"
 
-#include <algorithm>
-#include <cctype>
 #include <string>
 
 #include "foglab/core/error.h"
+#include "foglab/core/text.h"
 
 namespace foglab {
-namespace {
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
-}  // namespace
-
 std::string_view to_string(Sensor sensor) {
   return sensor == Sensor::gyroscope ? "gyroscope" : "accelerometer";
 }
@@ -68,7 +56,7 @@ SampleUnit rate_unit_from_string(std::string_view text) {
   // "g" and "mg" are case-sensitive: "G" and "MG" are not units of acceleration.
   if (text == "g") return SampleUnit::standard_gravity;
   if (text == "mg" || text == "milli-g") return SampleUnit::milli_g;
-  const std::string t = lower(text);
+  const std::string t = ascii_lower(text);
   if (t == "deg/h" || t == "dph" || t == "deg/hr") return SampleUnit::deg_per_hour;
   if (t == "deg/s" || t == "dps" || t == "deg/sec") return SampleUnit::deg_per_second;
   if (t == "rad/s" || t == "rps" || t == "rad/sec") return SampleUnit::rad_per_second;
@@ -127,7 +115,7 @@ std::string_view to_string(InputKind kind) {
 }
 
 InputKind input_kind_from_string(std::string_view text) {
-  const std::string t = lower(text);
+  const std::string t = ascii_lower(text);
   if (t == "rate") return InputKind::rate;
   if (t == "phase" || t == "angle") return InputKind::phase;
   throw UsageError("unknown input kind '" + std::string(text) +

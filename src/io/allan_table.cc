@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -13,6 +12,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
+#include "foglab/core/text.h"
 #include "readers_internal.h"
 
 namespace foglab::io {
@@ -49,11 +49,6 @@ std::optional<double> number_of(const std::string& text) {
   return v;
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 enum class Column { none, tau, dev, other_statistic, n, m, alpha, edf, low, high };
 
 // Statistics whose tau dependence differs from the Allan variance's for
@@ -66,7 +61,7 @@ constexpr std::string_view kOtherStatistics[] = {
 // What a header name means; deviation names carry units as a suffix
 // (dev_deg_h, ci68_low_deg_h_s).
 Column column_of(const std::string& raw) {
-  const std::string name = lower(raw);
+  const std::string name = ascii_lower(raw);
   auto starts = [&](std::string_view p) { return name.rfind(p, 0) == 0; };
   if (name == "tau" || starts("tau_s") || starts("tau [") || starts("tau(") || name == "t") {
     return Column::tau;

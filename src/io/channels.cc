@@ -6,22 +6,14 @@
 #include <algorithm>
 #include <cctype>
 
+#include "foglab/core/text.h"
+
 namespace foglab::io {
-namespace {
-
-std::string lower_case(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
-}  // namespace
 
 bool is_time_channel_name(std::string_view name, NameMatch match) {
   const bool ignore_case = match == NameMatch::ignore_case;
   if (ignore_case && name == "T") return false;  // the lab's temperature, not time
-  const std::string key = ignore_case ? lower_case(name) : std::string(name);
+  const std::string key = ignore_case ? ascii_lower(name) : std::string(name);
   return std::find(kTimeChannelNames.begin(), kTimeChannelNames.end(), key) !=
          kTimeChannelNames.end();
 }
@@ -52,16 +44,16 @@ std::optional<std::string> find_channel(const std::vector<std::string>& channels
     if (c == name) return c;
   }
   if (match == NameMatch::exact) return std::nullopt;
-  const std::string key = lower_case(name);
+  const std::string key = ascii_lower(name);
   for (const auto& c : channels) {
     // (any case of t, time, time_s: a time column is no temperature)
-    if (lower_case(c) == key && !is_time_channel_name(key, NameMatch::exact)) return c;
+    if (ascii_lower(c) == key && !is_time_channel_name(key, NameMatch::exact)) return c;
   }
   return std::nullopt;
 }
 
 std::optional<Sensor> sensor_by_name(std::string_view name) {
-  const std::string n = lower_case(name);
+  const std::string n = ascii_lower(name);
   // The name's first word: "gyro_x_dps" -> "gyro", "ax" -> "ax".
   const std::string head = n.substr(0, std::min(n.find_first_of("_.- "), n.size()));
   auto axis_named = [&](char sensor) {

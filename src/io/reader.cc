@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +19,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
+#include "foglab/core/text.h"
 #include "foglab/io/channels.h"
 #include "foglab/io/rosbag.h"
 #include "readers_internal.h"
@@ -212,15 +212,8 @@ namespace {
 using internal::quoted_path;
 using internal::throw_data_error;
 
-std::string lower_case(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
 bool has_extension(const std::string& path, std::string_view extension) {
-  const std::string lower = lower_case(path);
+  const std::string lower = ascii_lower(path);
   return lower.size() > extension.size() &&
          lower.compare(lower.size() - extension.size(), extension.size(), extension) == 0;
 }
@@ -366,7 +359,7 @@ std::string_view to_string(SampleRateSource source) {
 }
 
 InputFormat input_format_from_string(std::string_view text) {
-  const std::string t = lower_case(text);
+  const std::string t = ascii_lower(text);
   if (t == "auto" || t == "automatic") return InputFormat::automatic;
   if (t == "mat") return InputFormat::mat;
   if (t == "text" || t == "csv" || t == "tsv" || t == "txt") return InputFormat::text;

@@ -41,6 +41,7 @@
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
+#include "foglab/core/text.h"
 #include "readers_internal.h"
 
 namespace foglab::io::internal {
@@ -366,13 +367,6 @@ double printed_resolution(std::string_view field) {
   return std::pow(10.0, exponent - decimals);
 }
 
-std::string lower_case(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
 // The first content line of a table and what it says about the columns.
 struct Layout {
   Delimiter delimiter = Delimiter::whitespace;
@@ -483,7 +477,7 @@ std::size_t find_column(const std::string& path, const Layout& layout, const std
       if (layout.names[k] == wanted) return k;
     }
     for (std::size_t k = 0; k < layout.names.size(); ++k) {
-      if (lower_case(layout.names[k]) == lower_case(wanted)) return k;
+      if (ascii_lower(layout.names[k]) == ascii_lower(wanted)) return k;
     }
   }
   const bool digits = !wanted.empty() && std::all_of(wanted.begin(), wanted.end(), [](char c) {
@@ -525,7 +519,7 @@ std::size_t choose_column(const std::string& path, const Layout& layout, const R
   if (layout.has_header) {
     for (std::string_view preferred : kDefaultDataChannels) {
       for (std::size_t k : candidates) {
-        if (lower_case(layout.names[k]) == lower_case(preferred)) return k;
+        if (ascii_lower(layout.names[k]) == ascii_lower(preferred)) return k;
       }
     }
   }
