@@ -785,6 +785,10 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::note_minimum_at_edge,
      "the Allan deviation is lowest at the {} of its tau range ({:.4g} s): the bias "
      "instability may be lower than reported"},
+    {Text::note_minimum_inside_filter,
+     "the Allan deviation is lower inside the output filter's memory ({:.4g} deg/h at "
+     "{:.4g} s; the memory ends near {:.3g} s), where the filter, not the gyro's noise, "
+     "lowers it: the bias instability is read beyond it, {:.4g} deg/h at {:.4g} s"},
     {Text::word_start, "start"},
     {Text::word_end, "end"},
     {Text::note_fit_degenerate,

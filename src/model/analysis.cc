@@ -559,11 +559,17 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.allan = std::move(s.allan);
   r.noise = std::move(s.noise);
 
-  r.adev_readings = read_adev(r.allan.tau_s, r.allan.dev);
+  r.adev_readings = read_adev(r.allan.tau_s, r.allan.dev, r.noise.filter_memory_end_tau_s);
   r.psd_readings = read_psd(r.psd_smoothed.frequency_hz, r.psd_smoothed.psd);
   r.bias_instability_deg_h = r.adev_readings.bias_instability_deg_h;
   r.bias_instability_tau_s = r.adev_readings.bias_instability_tau_s;
   r.bias_instability_at_edge = r.adev_readings.minimum_at_edge;
+  r.bias_instability_from_tau_s = r.noise.filter_memory_end_tau_s;
+  if (const AdevReadings& a = r.adev_readings; std::isfinite(a.lower_inside_filter_deg_h)) {
+    r.notes.emplace_back(Text::note_minimum_inside_filter, a.lower_inside_filter_deg_h,
+                         a.lower_inside_filter_tau_s, r.noise.filter_memory_end_tau_s,
+                         a.bias_instability_deg_h, a.bias_instability_tau_s);
+  }
   if (r.bias_instability_at_edge) {
     r.notes.emplace_back(
         Text::note_minimum_at_edge,

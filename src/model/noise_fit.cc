@@ -489,6 +489,12 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
     r.shape_free_taus_left_out =
         widen_over_filter_shape(p, bandwidth, known_white, lines, options, r);
   }
+  r.filter_memory_end_tau_s = r.left_out_below_tau_s;
+  if (const double tau0 = p.sample_interval_s(); r.bandwidth.resolved && tau0 > 0.0) {
+    r.filter_memory_end_tau_s = std::max(
+        r.filter_memory_end_tau_s,
+        detail::kMemoryReach * detail::memory_constant_of(r.bandwidth.bandwidth, tau0) * tau0);
+  }
   r.message = fit_sentence(r);
   return r;
 }

@@ -64,16 +64,27 @@ std::optional<double> line_value(std::span<const double> x, std::span<const doub
 
 }  // namespace
 
-AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> adev_deg_h) {
+AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> adev_deg_h,
+                       double from_tau_s) {
   check(tau_s, adev_deg_h, "read_adev");
   AdevReadings r;
   r.N = line_value(tau_s, adev_deg_h, -0.5, 1.0);  // AVAR = N^2/tau: N = ADEV(1 s)
   r.K = line_value(tau_s, adev_deg_h, +0.5, 3.0);  // AVAR = K^2 tau/3: K = ADEV(3 s)
-  const auto min = std::min_element(adev_deg_h.begin(), adev_deg_h.end());
+  // The first tau read: the first at or beyond from_tau_s (to rounding).
+  std::size_t first = 0;
+  while (first < tau_s.size() && tau_s[first] < from_tau_s * (1.0 - 1e-9)) ++first;
+  if (first == tau_s.size()) first = 0;
+  const auto min =
+      std::min_element(adev_deg_h.begin() + static_cast<std::ptrdiff_t>(first), adev_deg_h.end());
   const auto i = static_cast<std::size_t>(min - adev_deg_h.begin());
   r.bias_instability_deg_h = *min;
   r.bias_instability_tau_s = tau_s[i];
-  r.minimum_at_edge = i == 0 || i + 1 == adev_deg_h.size();
+  r.minimum_at_edge = i == first || i + 1 == adev_deg_h.size();
+  const auto lowest = std::min_element(adev_deg_h.begin(), adev_deg_h.end());
+  if (*lowest < *min) {
+    r.lower_inside_filter_deg_h = *lowest;
+    r.lower_inside_filter_tau_s = tau_s[static_cast<std::size_t>(lowest - adev_deg_h.begin())];
+  }
   return r;
 }
 

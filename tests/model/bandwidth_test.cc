@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "foglab/core/noise_model.h"
 #include "foglab/core/sensor_bandwidth.h"
 #include "foglab/model/analysis.h"
 #include "foglab/sim/generator.h"
@@ -315,6 +316,18 @@ TEST(Bandwidth, IntervalsSpanTheFitThatAssumesNoFilterKind) {
       EXPECT_GE(e.ci95_high, truth);
       EXPECT_LT(e.ci95_high / e.ci95_low, 2.0);  // still an interval that says something
     }
+    // The bias instability is the floor beyond the filter's memory (the
+    // model's 0.1065 deg/h at 26 s), not the first tau, which the filter
+    // pulls under it (0.071 deg/h at 1 s on seed 1).
+    NoiseModel truth;
+    truth.N = 0.3;
+    truth.B = 0.1;
+    truth.K = 0.02;
+    const double floor = adev_minimum(truth, 1.0, 8640.0).adev_deg_h;
+    EXPECT_GT(r.bias_instability_from_tau_s, 2.0);
+    EXPECT_GE(r.bias_instability_tau_s, r.bias_instability_from_tau_s);
+    EXPECT_NEAR(r.bias_instability_deg_h / floor, 1.0, 0.1);
+    EXPECT_LT(r.adev_readings.lower_inside_filter_deg_h, 0.9 * floor);
   }
 }
 

@@ -80,6 +80,35 @@ TEST(Readings, BiasInstabilityIsTheMinimumOfTheDeviation) {
   EXPECT_NEAR(a.bias_instability_deg_h / (0.6643 * m.noise.B), 1.0, 0.25);
 }
 
+TEST(Readings, TheMinimumIsReadFromTheFilterMemorysEndOn) {
+  // A filtered first tau under the floor (0.07 at 1 s), the floor 0.105 at 32 s.
+  const std::vector<double> tau = {1, 2, 4, 8, 16, 32, 64, 128};
+  const std::vector<double> dev = {0.07, 0.104, 0.122, 0.115, 0.107, 0.105, 0.12, 0.15};
+  const AdevReadings all = read_adev(tau, dev);
+  EXPECT_EQ(all.bias_instability_tau_s, 1.0);
+  EXPECT_TRUE(all.minimum_at_edge);
+  EXPECT_TRUE(std::isnan(all.lower_inside_filter_deg_h));
+
+  const AdevReadings beyond = read_adev(tau, dev, 6.0);  // the memory ends at 6 s
+  EXPECT_EQ(beyond.bias_instability_deg_h, 0.105);
+  EXPECT_EQ(beyond.bias_instability_tau_s, 32.0);
+  EXPECT_FALSE(beyond.minimum_at_edge);
+  EXPECT_EQ(beyond.lower_inside_filter_deg_h, 0.07);
+  EXPECT_EQ(beyond.lower_inside_filter_tau_s, 1.0);
+
+  // a tau at the memory's end itself (to rounding) is read
+  const std::vector<double> rising = {0.2, 0.09, 0.1, 0.11, 0.12, 0.13, 0.14, 0.15};
+  const AdevReadings at = read_adev(tau, rising, 4.0 * (1.0 + 1e-12));
+  EXPECT_EQ(at.bias_instability_tau_s, 4.0);
+  EXPECT_TRUE(at.minimum_at_edge);  // the first tau read
+  EXPECT_EQ(at.lower_inside_filter_tau_s, 2.0);
+
+  // a memory longer than every tau: the whole range, as without one
+  const AdevReadings longer = read_adev(tau, dev, 1000.0);
+  EXPECT_EQ(longer.bias_instability_tau_s, 1.0);
+  EXPECT_TRUE(std::isnan(longer.lower_inside_filter_deg_h));
+}
+
 TEST(Readings, BadCurvesAreUsageErrors) {
   const std::vector<double> one = {1.0}, two = {1.0, 2.0};
   EXPECT_THROW(read_adev(one, one), UsageError);

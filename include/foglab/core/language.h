@@ -566,9 +566,11 @@ enum class Text {
   note_quantised_distorting,
   note_temperature_quantised,  ///< {lsb} {distinct} {changes} {mean hold s}
   note_minimum_at_edge,        ///< {start or end} {tau}
-  word_start,                  ///< the start (of a range)
-  word_end,                    ///< the end (of a range)
-  note_fit_degenerate,         ///< {the fit's outcome}
+  /// {lower deviation} {its tau} {the memory's end} {the reading} {its tau}
+  note_minimum_inside_filter,
+  word_start,           ///< the start (of a range)
+  word_end,             ///< the end (of a range)
+  note_fit_degenerate,  ///< {the fit's outcome}
   note_no_white,
   note_fit,  ///< {a sentence of the noise-model fit}
   fit_others_converged,

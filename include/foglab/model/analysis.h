@@ -77,9 +77,14 @@ struct AnalysisResult {
   AdevReadings adev_readings;
   PsdReadings psd_readings;
   double arw_deg_sqrt_h = 0.0;            ///< N/60 of the fit
-  double bias_instability_deg_h = 0.0;    ///< ADEV minimum
+  /// [deg/h] ADEV minimum over the taus beyond the output filter's memory
+  /// (all of them without a filter: model/readings.h)
+  double bias_instability_deg_h = 0.0;
   double bias_instability_tau_s = 0.0;    ///< [s]
-  bool bias_instability_at_edge = false;  ///< minimum at the end of the tau range
+  bool bias_instability_at_edge = false;  ///< minimum at the end of the taus read
+  /// [s] The shortest tau the minimum is read from (0: every tau;
+  /// NoiseFitResult::filter_memory_end_tau_s).
+  double bias_instability_from_tau_s = 0.0;
   RandomBiasEvidence evidence;
   Spikes spikes;                           ///< what was found (and replaced) before the analysis
   BiasSteps steps;                         ///< the same for bias steps (levelled)

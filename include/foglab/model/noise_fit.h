@@ -318,6 +318,13 @@ struct NoiseFitResult {
   /// one left out and the first one used (0 when none was). The fit's taus
   /// are the octave grid's, which need not be the reported ones.
   double left_out_below_tau_s = 0.0;
+  /// [s] Where the output filter's memory ends: three times the found
+  /// filter's c samples (core/sensor_bandwidth.h), or
+  /// left_out_below_tau_s when the first taus were left out, the longer;
+  /// 0 without either. Below it the filter, not the gyro's noise, sets the
+  /// Allan deviation, so the bias instability is read beyond it
+  /// (model/readings.h).
+  double filter_memory_end_tau_s = 0.0;
   /// The resolved coefficients' intervals also span the fit that assumes no
   /// filter kind: this many first taus (those inside the found filter's
   /// memory) left out and the rest fitted with a filter known beyond its

@@ -5,7 +5,9 @@
 //   * from the Allan deviation: the -1/2 line's value at tau = 1 s is the
 //     white-noise density N [deg/h/sqrt(Hz)] (AVAR = N^2/tau); the +1/2
 //     line's value at tau = 3 s is the Wiener intensity K [deg/h/sqrt(s)]
-//     (AVAR = K^2 tau/3); the minimum is the bias instability and its tau;
+//     (AVAR = K^2 tau/3); the minimum is the bias instability and its tau
+//     (read beyond the output filter's memory where one was found: the
+//     filter, not the gyro's noise, lowers the first taus' deviation);
 //   * from the two-sided PSD: the level of the flat part is N^2, and the -2
 //     slope continued to 1 Hz gives K^2/(2 pi)^2 (S = K^2/(2 pi f)^2).
 // The program finds each line where the curve actually has that slope: the
@@ -18,6 +20,7 @@
 // is itself the answer "not visible in this record".
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -26,11 +29,17 @@ namespace foglab::model {
 struct AdevReadings {
   std::optional<double> N;          ///< [deg/h/sqrt(Hz)] -1/2 line at tau = 1 s
   std::optional<double> K;          ///< [deg/h/sqrt(s)] +1/2 line at tau = 3 s
-  double bias_instability_deg_h = 0.0;  ///< minimum of the deviation [deg/h]
+  /// [deg/h] minimum of the deviation over the taus from `from_tau_s` on
+  double bias_instability_deg_h = 0.0;
   double bias_instability_tau_s = 0.0;  ///< where it is [s]
-  /// The minimum is the last (or first) point: the true minimum may lie
-  /// outside the record's tau range.
+  /// The minimum is the last (or the first read) point: the true minimum
+  /// may lie outside the taus read.
   bool minimum_at_edge = false;
+  /// [deg/h] and [s]: the deviation's minimum over all taus when it lies
+  /// below `from_tau_s` and under the reading (inside an output filter's
+  /// memory); NaN otherwise.
+  double lower_inside_filter_deg_h = std::numeric_limits<double>::quiet_NaN();
+  double lower_inside_filter_tau_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct PsdReadings {
@@ -39,8 +48,11 @@ struct PsdReadings {
 };
 
 /// Readings from an (overlapping) Allan deviation curve: tau [s] increasing,
-/// dev [deg/h]. Throws UsageError for fewer than 2 points or mismatched sizes.
-AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> adev_deg_h);
+/// dev [deg/h]; the minimum over the taus from `from_tau_s` [s] on (all of
+/// them when none is that long: NoiseFitResult::filter_memory_end_tau_s).
+/// Throws UsageError for fewer than 2 points or mismatched sizes.
+AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> adev_deg_h,
+                       double from_tau_s = 0.0);
 
 /// Readings from a two-sided rate PSD (best a log-smoothed one): frequency
 /// [Hz] increasing, psd [(deg/h)^2/Hz]. Same errors.
