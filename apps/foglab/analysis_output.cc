@@ -171,7 +171,8 @@ nlohmann::json fit_json(const model::NoiseFitResult& f, const model::NoiseFitOpt
                                           : nlohmann::json(f.first_taus_left_out_why.text())},
           {"shape_free_taus_left_out", f.shape_free_taus_left_out < 0
                                            ? nlohmann::json(nullptr)
-                                           : nlohmann::json(f.shape_free_taus_left_out)}};
+                                           : nlohmann::json(f.shape_free_taus_left_out)},
+          {"shape_free_N", number(f.shape_free_n)}};
 }
 
 nlohmann::json bandwidth_json(const model::BandwidthEstimate& b) {
@@ -385,6 +386,7 @@ nlohmann::json units_json() {
       {"systematic.criterion", "Wald statistic + penalty x degree (dimensionless)"},
       {"fit.deviance", "gamma deviance (dimensionless)"},
       {"fit.tolerance", "relative change of the fitted Allan variances (dimensionless)"},
+      {"fit.shape_free_N", "deg/h/sqrt(Hz)"},
       {"fit.model", "N, B, K, R, Q, gm_sigma, gm_tc in the units above"},
       {"random_bias_evidence.adev_end_slope", "log-log slope (dimensionless)"},
       {"random_bias_evidence.psd_low_frequency_slope", "log-log slope (dimensionless)"}};

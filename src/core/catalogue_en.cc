@@ -524,6 +524,10 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_bandwidth_shape_free_all,
      "; the 95 % intervals also span the fit that assumes no filter kind: no tau lies inside "
      "its memory, and every tau is taken as N^2/tau (1 - c tau0/tau)"},
+    {Text::an_bandwidth_shape_free_n, ", which gives N = {} deg/h/sqrt(Hz)"},
+    {Text::an_bandwidth_shape_decides,
+     " ({} % from the kind's: the filter's shape at the first taus decides N in this record, "
+     "and N's interval spans both)"},
     {Text::an_lines_none, "none found in the PSD"},
     {Text::an_line, "{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor"},
     {Text::an_lines_scale,

@@ -428,6 +428,7 @@ int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSear
     if (shape_free.bandwidth.estimate.at_search_bound) continue;
     const NoiseFitResult other = conclude(shape_free.points, shape_free.fits, shape_free.bandwidth,
                                           known_white, lines, options);
+    if (other.N.status == TermStatus::resolved) r.shape_free_n = other.N.value;
     for (const NoiseParameter& parameter : kNoiseParameters) {
       ParameterEstimate& e = r.estimate(parameter);
       const ParameterEstimate& o = other.estimate(parameter);

@@ -113,6 +113,16 @@ std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language langua
   } else if (fit.shape_free_taus_left_out > 0) {
     kind += say(language, Text::an_bandwidth_shape_free, fit.shape_free_taus_left_out);
   }
+  if (fit.shape_free_taus_left_out >= 0 && std::isfinite(fit.shape_free_n)) {
+    kind += say(language, Text::an_bandwidth_shape_free_n, g(fit.shape_free_n));
+    // Beyond the kind's own spread where it is right (N within 0.2-0.6 %
+    // over seeds at 100 Hz; docs/validation.md): say that the shape decides.
+    constexpr double kDecides = 0.05;
+    if (const double n = fit.model.N; n > 0.0 && std::fabs(fit.shape_free_n / n - 1.0) > kDecides) {
+      kind += say(language, Text::an_bandwidth_shape_decides,
+                  fmt::format("{:+.0f}", 100.0 * (fit.shape_free_n / n - 1.0)));
+    }
+  }
   return kind;
 }
 

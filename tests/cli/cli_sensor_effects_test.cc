@@ -293,6 +293,12 @@ TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
   EXPECT_GE(shape_free.get<int>(), 2);
   EXPECT_LE(shape_free.get<int>(), 4);
   EXPECT_TRUE(fit["shape_free_taus_left_out"].is_null());
+  EXPECT_TRUE(fit["shape_free_N"].is_null());
+  // That fit's N, beside the kind's: where the kind is right, the same
+  // white level (its interval is the wider: about +-0.8 % at 100 Hz, 2 h).
+  const json& shape_free_n = single.analysis["fit"]["shape_free_N"];
+  ASSERT_TRUE(shape_free_n.is_number());
+  EXPECT_NEAR(shape_free_n.get<double>() / 0.3, 1.0, 0.03);
 
   // A low-pass of 0.4 sample (c = 3 rho / (1 - rho^2) = 0.25 with
   // rho = e^-2.5, under a third of a sample): no tau lies inside its
@@ -313,6 +319,8 @@ TEST(SensorEffects, FiltersNoKindFollowsLeaveTheFirstTausOutAndSaySo) {
   EXPECT_NE(a.out.find("no tau lies inside its memory, and every tau is taken as"),
             std::string::npos);
   EXPECT_EQ(a.out.find("the first 0 tau(s)"), std::string::npos);
+  EXPECT_NE(a.out.find("taken as N^2/tau (1 - c tau0/tau), which gives N = "), std::string::npos);
+  EXPECT_EQ(a.out.find("decides N"), std::string::npos);  // the right kind: the same N
 }
 
 TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {

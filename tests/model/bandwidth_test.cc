@@ -309,6 +309,10 @@ TEST(Bandwidth, IntervalsSpanTheFitThatAssumesNoFilterKind) {
     ASSERT_TRUE(r.noise.bandwidth.resolved);
     if (!r.noise.bandwidth.bandwidth.beyond_memory()) {
       EXPECT_GE(r.noise.shape_free_taus_left_out, 1);
+      // that fit's own N lies inside the interval that spans it
+      ASSERT_TRUE(std::isfinite(r.noise.shape_free_n));
+      EXPECT_GE(r.noise.shape_free_n, r.noise.N.ci95_low);
+      EXPECT_LE(r.noise.shape_free_n, r.noise.N.ci95_high);
     }
     for (const auto& [e, truth] : {std::pair{r.noise.N, 0.3}, std::pair{r.noise.B, 0.1}}) {
       ASSERT_EQ(e.status, TermStatus::resolved);

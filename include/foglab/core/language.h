@@ -378,6 +378,8 @@ enum class Text {
   an_bandwidth_beyond_memory,    ///< {c samples} {stand-in cut-off} {reduction}
   an_bandwidth_shape_free,       ///< {taus left out}: follows a modelled kind's sentence
   an_bandwidth_shape_free_all,   ///< the same when no tau lies inside the filter's memory
+  an_bandwidth_shape_free_n,     ///< {N of that fit}: follows either
+  an_bandwidth_shape_decides,    ///< {percent}: follows it where the two N differ
   an_lines_none,                 ///< lines_sentence(): none
   an_line,                       ///< one line: {frequency} {width} {rms} {peak ratio}
   an_lines_scale,                ///< {factor}: follows the lines

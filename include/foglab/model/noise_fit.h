@@ -331,6 +331,9 @@ struct NoiseFitResult {
   /// memory. -1: no such fit was made (no filter found, or the first taus
   /// already left out).
   int shape_free_taus_left_out = -1;
+  /// [deg/h/sqrt(Hz)] N of that fit (NaN: none was made, or N is not
+  /// resolved in it): beside N, how much the kind's shape decides it.
+  double shape_free_n = std::numeric_limits<double>::quiet_NaN();
   /// [deg/h/sqrt(Hz)] NoiseFitOptions::known_white_deg_h_sqrt_hz as used.
   double known_white_deg_h_sqrt_hz = 0.0;
   ParameterEstimate N, B, K, R, Q, gm_sigma, gm_tc;
