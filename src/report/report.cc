@@ -115,8 +115,8 @@ std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language langua
   }
   if (fit.shape_free_taus_left_out >= 0 && std::isfinite(fit.shape_free_n)) {
     kind += say(language, Text::an_bandwidth_shape_free_n, g(fit.shape_free_n));
-    // Beyond the kind's own spread where it is right (N within 0.2-0.6 %
-    // over seeds at 100 Hz; docs/validation.md): say that the shape decides.
+    // Past what the two differ by where the kind is right (within 0.3 % at
+    // 100 Hz, 3.9 % at 1 Hz; docs/validation.md): say that the shape decides.
     constexpr double kDecides = 0.05;
     if (const double n = fit.model.N; n > 0.0 && std::fabs(fit.shape_free_n / n - 1.0) > kDecides) {
       kind += say(language, Text::an_bandwidth_shape_decides,
