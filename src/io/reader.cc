@@ -27,6 +27,12 @@
 namespace foglab::io {
 namespace internal {
 
+bool has_extension(const std::string& path, std::string_view extension) {
+  const std::string lower = ascii_lower(path);
+  return lower.size() > extension.size() &&
+         lower.compare(lower.size() - extension.size(), extension.size(), extension) == 0;
+}
+
 std::string quoted_path(const std::string& path) {
   return path == "-" ? std::string("standard input") : "'" + path + "'";
 }
@@ -209,14 +215,9 @@ void check_file_sample_rate(const std::string& path, double rate_hz, std::string
 
 namespace {
 
+using internal::has_extension;
 using internal::quoted_path;
 using internal::throw_data_error;
-
-bool has_extension(const std::string& path, std::string_view extension) {
-  const std::string lower = ascii_lower(path);
-  return lower.size() > extension.size() &&
-         lower.compare(lower.size() - extension.size(), extension.size(), extension) == 0;
-}
 
 // The format a file is read as: the option, else by extension.
 InputFormat resolve_format(const std::string& path, InputFormat format) {

@@ -29,6 +29,10 @@ struct FileCloser {
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
+/// Whether `path` ends in `extension` (lower case, with its dot), ASCII case
+/// ignored, with a name before it.
+bool has_extension(const std::string& path, std::string_view extension);
+
 /// "'PATH'" for a file, "standard input" for "-": how messages name a source.
 std::string quoted_path(const std::string& path);
 

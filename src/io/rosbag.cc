@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -602,13 +601,7 @@ class GridSlots {
 
 }  // namespace
 
-bool has_bag_extension(const std::string& path) {
-  constexpr std::string_view kExtension = ".bag";
-  return path.size() > kExtension.size() &&
-         std::equal(kExtension.rbegin(), kExtension.rend(), path.rbegin(), [](char e, char p) {
-           return std::tolower(static_cast<unsigned char>(p)) == e;
-         });
-}
+bool has_bag_extension(const std::string& path) { return internal::has_extension(path, ".bag"); }
 
 std::vector<BagTopic> list_bag_topics(const std::string& path) {
   return plugin().list_topics(path);

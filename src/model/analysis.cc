@@ -564,11 +564,9 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.bias_instability_deg_h = r.adev_readings.bias_instability_deg_h;
   r.bias_instability_tau_s = r.adev_readings.bias_instability_tau_s;
   r.bias_instability_at_edge = r.adev_readings.minimum_at_edge;
-  r.bias_instability_from_tau_s = r.noise.filter_memory_end_tau_s;
-  if (const AdevReadings& a = r.adev_readings; std::isfinite(a.lower_inside_filter_deg_h)) {
-    r.notes.emplace_back(Text::note_minimum_inside_filter, a.lower_inside_filter_deg_h,
-                         a.lower_inside_filter_tau_s, r.noise.filter_memory_end_tau_s,
-                         a.bias_instability_deg_h, a.bias_instability_tau_s);
+  r.bias_instability_from_tau_s = r.adev_readings.from_tau_s;
+  if (Message note = minimum_inside_filter_note(r.adev_readings); !note.empty()) {
+    r.notes.push_back(std::move(note));
   }
   if (r.bias_instability_at_edge) {
     r.notes.emplace_back(

@@ -410,6 +410,13 @@ LeftOut leave_out_unfollowed_first_taus(detail::Points& p, detail::BandwidthSear
 // interval -0.84 / +0.78 % where the kind's own was +-0.25 %. Returns how
 // many taus it left out (-1: none was made: no bandwidth, or one known
 // only beyond its memory).
+// [samples] Where a filter's memory ends: kMemoryReach times its c. The
+// fit that assumes no kind leaves out the taus inside; the bias
+// instability is read beyond it (NoiseFitResult::filter_memory_end_tau_s).
+double memory_reach_samples(const SensorBandwidth& b, double tau0) {
+  return detail::kMemoryReach * detail::memory_constant_of(b, tau0);
+}
+
 int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSearch& bandwidth,
                             double known_white, std::span<const SpectralLine> lines,
                             const NoiseFitOptions& options, NoiseFitResult& r) {
@@ -417,10 +424,9 @@ int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSear
   const SensorBandwidth& b = bandwidth.estimate.bandwidth;
   const double tau0 = p.sample_interval_s();
   if (!bandwidth.estimate.resolved || b.beyond_memory() || !(tau0 > 0.0)) return -1;
-  const double c = detail::memory_constant_of(b, tau0);
-  const auto inside = static_cast<int>(std::count_if(p.tau.begin(), p.tau.end(), [&](double tau) {
-    return tau / tau0 < detail::kMemoryReach * c;
-  }));
+  const double reach = memory_reach_samples(b, tau0);
+  const auto inside = static_cast<int>(
+      std::count_if(p.tau.begin(), p.tau.end(), [&](double tau) { return tau / tau0 < reach; }));
   for (int k = inside; k <= inside + kMoreLeftOut && p.y.size() > static_cast<std::size_t>(7 + k);
        ++k) {
     Refit shape_free = refit_without_first(p, k, options);
@@ -492,9 +498,8 @@ NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> a
   }
   r.filter_memory_end_tau_s = r.left_out_below_tau_s;
   if (const double tau0 = p.sample_interval_s(); r.bandwidth.resolved && tau0 > 0.0) {
-    r.filter_memory_end_tau_s = std::max(
-        r.filter_memory_end_tau_s,
-        detail::kMemoryReach * detail::memory_constant_of(r.bandwidth.bandwidth, tau0) * tau0);
+    r.filter_memory_end_tau_s = std::max(r.filter_memory_end_tau_s,
+                                         memory_reach_samples(r.bandwidth.bandwidth, tau0) * tau0);
   }
   r.message = fit_sentence(r);
   return r;

@@ -74,6 +74,7 @@ AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> ad
   std::size_t first = 0;
   while (first < tau_s.size() && tau_s[first] < from_tau_s * (1.0 - 1e-9)) ++first;
   if (first == tau_s.size()) first = 0;
+  if (first > 0) r.from_tau_s = from_tau_s;
   const auto min =
       std::min_element(adev_deg_h.begin() + static_cast<std::ptrdiff_t>(first), adev_deg_h.end());
   const auto i = static_cast<std::size_t>(min - adev_deg_h.begin());
@@ -86,6 +87,13 @@ AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> ad
     r.lower_inside_filter_tau_s = tau_s[static_cast<std::size_t>(lowest - adev_deg_h.begin())];
   }
   return r;
+}
+
+Message minimum_inside_filter_note(const AdevReadings& a) {
+  if (!std::isfinite(a.lower_inside_filter_deg_h)) return {};
+  return Message(Text::note_minimum_inside_filter, a.lower_inside_filter_deg_h,
+                 a.lower_inside_filter_tau_s, a.from_tau_s, a.bias_instability_deg_h,
+                 a.bias_instability_tau_s);
 }
 
 PsdReadings read_psd(std::span<const double> frequency_hz, std::span<const double> psd) {

@@ -107,10 +107,8 @@ TableFit fit_allan_table(const TableColumns& table, const NoiseFitOptions& optio
   const AdevReadings readings = read_adev(table.tau_s, table.dev, r.fit.filter_memory_end_tau_s);
   r.bias_instability_deg_h = readings.bias_instability_deg_h;
   r.bias_instability_tau_s = readings.bias_instability_tau_s;
-  if (std::isfinite(readings.lower_inside_filter_deg_h)) {
-    r.notes.emplace_back(Text::note_minimum_inside_filter, readings.lower_inside_filter_deg_h,
-                         readings.lower_inside_filter_tau_s, r.fit.filter_memory_end_tau_s,
-                         readings.bias_instability_deg_h, readings.bias_instability_tau_s);
+  if (Message note = minimum_inside_filter_note(readings); !note.empty()) {
+    r.notes.push_back(std::move(note));
   }
   r.arw_deg_sqrt_h = r.fit.status == FitStatus::degenerate    ? kNaN
                      : r.fit.N.status == TermStatus::resolved ? arw_deg_sqrt_h(r.fit.model.N)

@@ -113,7 +113,7 @@ std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language langua
   } else if (fit.shape_free_taus_left_out > 0) {
     kind += say(language, Text::an_bandwidth_shape_free, fit.shape_free_taus_left_out);
   }
-  if (fit.shape_free_taus_left_out >= 0 && std::isfinite(fit.shape_free_n)) {
+  if (std::isfinite(fit.shape_free_n)) {  // set only where that fit was made
     kind += say(language, Text::an_bandwidth_shape_free_n, g(fit.shape_free_n));
     // Past what the two differ by where the kind is right (within 0.3 % at
     // 100 Hz, 3.9 % at 1 Hz; docs/validation.md): say that the shape decides.

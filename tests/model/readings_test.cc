@@ -95,6 +95,12 @@ TEST(Readings, TheMinimumIsReadFromTheFilterMemorysEndOn) {
   EXPECT_FALSE(beyond.minimum_at_edge);
   EXPECT_EQ(beyond.lower_inside_filter_deg_h, 0.07);
   EXPECT_EQ(beyond.lower_inside_filter_tau_s, 1.0);
+  EXPECT_EQ(beyond.from_tau_s, 6.0);
+  EXPECT_TRUE(minimum_inside_filter_note(all).empty());
+  EXPECT_EQ(minimum_inside_filter_note(beyond).text(),
+            "the Allan deviation is lower inside the output filter's memory (0.07 deg/h at 1 s; "
+            "the memory ends near 6 s), where the filter, not the gyro's noise, lowers it: the "
+            "bias instability is read beyond it, 0.105 deg/h at 32 s");
 
   // a tau at the memory's end itself (to rounding) is read
   const std::vector<double> rising = {0.2, 0.09, 0.1, 0.11, 0.12, 0.13, 0.14, 0.15};
@@ -107,6 +113,7 @@ TEST(Readings, TheMinimumIsReadFromTheFilterMemorysEndOn) {
   const AdevReadings longer = read_adev(tau, dev, 1000.0);
   EXPECT_EQ(longer.bias_instability_tau_s, 1.0);
   EXPECT_TRUE(std::isnan(longer.lower_inside_filter_deg_h));
+  EXPECT_EQ(longer.from_tau_s, 0.0);
 }
 
 TEST(Readings, BadCurvesAreUsageErrors) {

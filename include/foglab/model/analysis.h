@@ -83,7 +83,7 @@ struct AnalysisResult {
   double bias_instability_tau_s = 0.0;    ///< [s]
   bool bias_instability_at_edge = false;  ///< minimum at the end of the taus read
   /// [s] The shortest tau the minimum is read from (0: every tau;
-  /// NoiseFitResult::filter_memory_end_tau_s).
+  /// NoiseFitResult::filter_memory_end_tau_s; AdevReadings::from_tau_s).
   double bias_instability_from_tau_s = 0.0;
   RandomBiasEvidence evidence;
   Spikes spikes;                           ///< what was found (and replaced) before the analysis

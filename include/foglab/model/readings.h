@@ -24,6 +24,8 @@
 #include <optional>
 #include <span>
 
+#include "foglab/core/language.h"
+
 namespace foglab::model {
 
 struct AdevReadings {
@@ -35,6 +37,9 @@ struct AdevReadings {
   /// The minimum is the last (or the first read) point: the true minimum
   /// may lie outside the taus read.
   bool minimum_at_edge = false;
+  /// [s] `from_tau_s` as read_adev() used it: 0 when every tau was read
+  /// (none given, or no tau reaches it).
+  double from_tau_s = 0.0;
   /// [deg/h] and [s]: the deviation's minimum over all taus when it lies
   /// below `from_tau_s` and under the reading (inside an output filter's
   /// memory); NaN otherwise.
@@ -53,6 +58,10 @@ struct PsdReadings {
 /// Throws UsageError for fewer than 2 points or mismatched sizes.
 AdevReadings read_adev(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                        double from_tau_s = 0.0);
+
+/// The note that the deviation is lower inside the output filter's memory
+/// than the reading beyond it, with both values; empty when it is not.
+Message minimum_inside_filter_note(const AdevReadings& readings);
 
 /// Readings from a two-sided rate PSD (best a log-smoothed one): frequency
 /// [Hz] increasing, psd [(deg/h)^2/Hz]. Same errors.
