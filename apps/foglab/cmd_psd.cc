@@ -43,14 +43,8 @@ void run(const PsdCommand& c) {
   stats::WelchOptions options;
   options.segment_length = c.segment;
   options.overlap = c.overlap;
-  // welch_psd() needs a segment of at least 16 samples (stats/psd.h): a
-  // shorter record is the data's fault, not an option's.
-  constexpr std::size_t kMinSamples = 16;
-  if (series.values.size() < kMinSamples) {
-    throw DataError(
-        fmt::format("'{}' channel {}: the record has {} sample(s); the PSD needs at least {}",
-                    series.path, series.channel, series.values.size(), kMinSamples));
-  }
+  // A record (or its longest stretch) under welch_psd()'s 16 samples is a
+  // DataError from it, named by naming_the_input().
   const stats::PsdResult psd = naming_the_input(series, [&] {
     return stats::welch_psd(series.values, series.sample_rate_hz, options, series.gaps);
   });

@@ -38,6 +38,12 @@ std::vector<Stretch> contiguous_stretches(std::int64_t samples, std::span<const 
   return stretches;
 }
 
+std::int64_t longest_stretch(std::span<const Stretch> stretches) {
+  std::int64_t longest = 0;
+  for (const Stretch& s : stretches) longest = std::max(longest, s.size());
+  return longest;
+}
+
 double elapsed_s(std::int64_t index, std::span<const Gap> gaps, double sample_rate_hz) {
   std::int64_t missing = 0;
   for (const Gap& gap : gaps) {

@@ -20,6 +20,9 @@
 namespace foglab::model {
 namespace {
 
+// The fewest samples analyze() takes, in a row where the record has gaps.
+constexpr std::size_t kMinAnalysisSamples = 64;
+
 // Least-squares slope of ln y against ln x.
 double log_slope(std::span<const double> x, std::span<const double> y) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -380,8 +383,7 @@ Message gap_note(std::size_t samples, std::span<const Gap> gaps, double fs) {
   const std::int64_t missing = missing_samples(gaps);
   const std::vector<Stretch> stretches =
       contiguous_stretches(static_cast<std::int64_t>(samples), gaps);
-  std::int64_t longest = 0;
-  for (const Stretch& s : stretches) longest = std::max(longest, s.size());
+  const std::int64_t longest = longest_stretch(stretches);
   return Message(Text::note_gaps, gaps.size(), missing, static_cast<double>(missing) / fs,
                  100.0 * static_cast<double>(missing) /
                      static_cast<double>(missing + static_cast<std::int64_t>(samples)),
@@ -417,14 +419,24 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
         "the rate has {} samples but the temperature {}; they must pair sample by sample",
         rate_deg_h.size(), temperature_c.size()));
   }
-  if (rate_deg_h.size() < 64) {
+  if (rate_deg_h.size() < kMinAnalysisSamples) {
     throw DataError(fmt::format(
-        "the record has {} samples; the analysis needs at least 64 (a few hundred for a "
+        "the record has {} samples; the analysis needs at least {} (a few hundred for a "
         "meaningful noise model)",
-        rate_deg_h.size()));
+        rate_deg_h.size(), kMinAnalysisSamples));
   }
   require_varying(rate_deg_h);
   check_gaps(gaps, static_cast<std::int64_t>(rate_deg_h.size()), "analyze");
+  if (const std::vector<Stretch> stretches =
+          contiguous_stretches(static_cast<std::int64_t>(rate_deg_h.size()), gaps);
+      longest_stretch(stretches) < static_cast<std::int64_t>(kMinAnalysisSamples)) {
+    // Each statistic keeps to the stretches (conventions.md §9): a record
+    // cut into short pieces (a sample lost every few) holds no long tau.
+    throw DataError(fmt::format(
+        "the gaps cut the record's {} samples into {} stretches, the longest {} samples; the "
+        "analysis needs at least {} in a row",
+        rate_deg_h.size(), stretches.size(), longest_stretch(stretches), kMinAnalysisSamples));
+  }
   AnalysisResult r;
   r.gaps.assign(gaps.begin(), gaps.end());
   if (!gaps.empty()) r.notes.push_back(gap_note(rate_deg_h.size(), gaps, sample_rate_hz));

@@ -118,14 +118,19 @@ std::size_t default_segment_length(std::size_t n) {
   return std::min(length, n);
 }
 
-void validate(std::size_t n, double sample_rate_hz, const WelchOptions& options) {
+// `n` is the longest contiguous stretch, `stretches` how many there are.
+// Too few samples is the data's fault (a record too short, or cut by its
+// gaps into stretches too short), as allan_deviation() says too.
+void validate(std::size_t n, std::size_t stretches, double sample_rate_hz,
+              const WelchOptions& options) {
   if (!(std::isfinite(sample_rate_hz) && sample_rate_hz > 0.0)) {
     throw UsageError(fmt::format("welch_psd: sample_rate_hz must be positive and finite, got {}",
                                  sample_rate_hz));
   }
   if (n < kMinSegmentLength) {
-    throw UsageError(fmt::format("welch_psd: rate has {} samples; at least {} are needed", n,
-                                 kMinSegmentLength));
+    throw DataError(fmt::format(
+        "the Welch PSD needs at least {} rate samples in a row, the {} {}", kMinSegmentLength,
+        stretches > 1 ? "longest stretch between gaps has" : "record has", n));
   }
   const std::size_t length = options.segment_length;
   if (length != 0 && (length < kMinSegmentLength || length > n)) {
@@ -151,9 +156,9 @@ PsdResult welch_psd(std::span<const double> rate, double sample_rate_hz,
   check_gaps(gaps, static_cast<std::int64_t>(rate.size()), "welch_psd");
   const std::vector<Stretch> stretches =
       contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps);
-  std::size_t n = 0;  // the longest stretch (the record, without gaps)
-  for (const Stretch& s : stretches) n = std::max(n, static_cast<std::size_t>(s.size()));
-  validate(n, sample_rate_hz, options);
+  // the longest stretch (the record, without gaps)
+  const auto n = static_cast<std::size_t>(longest_stretch(stretches));
+  validate(n, stretches.size(), sample_rate_hz, options);
 
   const std::size_t length =
       options.segment_length != 0 ? options.segment_length : default_segment_length(n);

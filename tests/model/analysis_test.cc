@@ -405,6 +405,27 @@ TEST(Analysis, TooShortARecordIsADataErrorThatSaysHowMany) {
             std::string::npos);
 }
 
+// A logger that loses every tenth sample leaves 1000 samples in stretches
+// of 9: no statistic can be taken over 64 in a row, and the error says why
+// (not the PSD's 16, which a caller of analyze() never asked for).
+TEST(Analysis, GapsThatLeaveNo64SamplesInARowAreADataErrorThatSaysSo) {
+  sim::ErrorModel m;
+  m.noise.N = 1.0;
+  const std::vector<double> rate =
+      sim::generate(m, {}, {.sample_rate_hz = 10.0, .duration_s = 100.0, .seed = 3}).rate_deg_h;
+  ASSERT_EQ(rate.size(), 1000u);
+  std::vector<Gap> gaps;
+  for (std::int64_t k = 9; k < 1000; k += 9) gaps.push_back({k, 1});
+  std::vector<double> copy = rate;
+  const std::string why = test::message_of<DataError>([&] { analyze(copy, {}, 10.0, {}, gaps); });
+  EXPECT_NE(why.find("into 112 stretches, the longest 9 samples"), std::string::npos) << why;
+  EXPECT_NE(why.find("at least 64 in a row"), std::string::npos) << why;
+  // One long stretch is enough to go on (the first 50 gaps, then 550 samples).
+  gaps.resize(50);
+  copy = rate;
+  EXPECT_NO_THROW(analyze(copy, {}, 10.0, {}, gaps));
+}
+
 TEST(WorkQueue, KeepGoingRunsEveryJobAndReturnsEachFailure) {
   std::vector<std::atomic<int>> runs(40);
   auto job = [&](std::size_t k) {

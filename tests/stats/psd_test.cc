@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "foglab/core/error.h"
+#include "support/expect.h"
 
 namespace foglab::stats {
 namespace {
@@ -50,21 +51,6 @@ double variance_of(const std::vector<double>& v) {
   double s = 0.0;
   for (double x : v) s += (x - m) * (x - m);
   return s / static_cast<double>(v.size() - 1);
-}
-
-/// The message of the UsageError `f` throws ("" and a test failure if none).
-template <typename F>
-std::string usage_error_message(F f) {
-  try {
-    f();
-  } catch (const UsageError& e) {
-    return e.what();
-  } catch (...) {
-    ADD_FAILURE() << "threw something other than UsageError";
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
 }
 
 TEST(WelchPsd, FillsEveryFieldWithTheDefaultSegment) {
@@ -295,34 +281,41 @@ TEST(LogSmooth, AveragesDecadeAlignedBinsAtGeometricMeanFrequency) {
 TEST(WelchPsd, RejectsBadParametersNamingThem) {
   const auto x = white_noise(100, 1.0, 61);
   for (const double fs : {0.0, -1.0, kNan, kInf}) {
-    const std::string m = usage_error_message([&] { welch_psd(x, fs); });
+    const std::string m = test::message_of<UsageError>([&] { welch_psd(x, fs); });
     EXPECT_THAT(m, HasSubstr("sample_rate_hz"));
     EXPECT_THAT(m, HasSubstr(fmt::format("got {}", fs)));
   }
+  // Too few samples is the data's fault: a short record, or one whose gaps
+  // leave no 16 samples in a row.
   const auto short_record = white_noise(15, 1.0, 62);
-  EXPECT_THAT(usage_error_message([&] { welch_psd(short_record, 1.0); }),
-              HasSubstr("rate has 15 samples"));
-  EXPECT_THAT(usage_error_message([&] { welch_psd(x, 1.0, {.segment_length = 8}); }),
+  EXPECT_THAT(test::message_of<DataError>([&] { welch_psd(short_record, 1.0); }),
+              HasSubstr("at least 16 rate samples in a row, the record has 15"));
+  const std::vector<Gap> every_tenth = {{10, 1}, {20, 1}, {30, 1}, {40, 1}, {50, 1},
+                                        {60, 1}, {70, 1}, {80, 1}, {90, 1}};
+  EXPECT_THAT(test::message_of<DataError>([&] { welch_psd(x, 1.0, {}, every_tenth); }),
+              HasSubstr("the longest stretch between gaps has 10"));
+  EXPECT_THAT(test::message_of<UsageError>([&] { welch_psd(x, 1.0, {.segment_length = 8}); }),
               HasSubstr("segment_length must be 0 (automatic) or in [16, 100]"));
-  EXPECT_THAT(usage_error_message([&] { welch_psd(x, 1.0, {.segment_length = 8}); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { welch_psd(x, 1.0, {.segment_length = 8}); }),
               HasSubstr("got 8"));
-  EXPECT_THAT(usage_error_message([&] { welch_psd(x, 1.0, {.segment_length = 101}); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { welch_psd(x, 1.0, {.segment_length = 101}); }),
               HasSubstr("got 101"));
-  EXPECT_THAT(usage_error_message([&] { welch_psd(x, 1.0, {.overlap = 1.0}); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { welch_psd(x, 1.0, {.overlap = 1.0}); }),
               HasSubstr("overlap must be in [0, 0.95], got 1"));
-  EXPECT_THAT(usage_error_message([&] { welch_psd(x, 1.0, {.overlap = -0.25}); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { welch_psd(x, 1.0, {.overlap = -0.25}); }),
               HasSubstr("overlap must be in [0, 0.95], got -0.25"));
-  EXPECT_THAT(usage_error_message([&] { welch_psd(x, 1.0, {.overlap = kNan}); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { welch_psd(x, 1.0, {.overlap = kNan}); }),
               HasSubstr("overlap"));
 
   const PsdResult r = welch_psd(x, 1.0);
-  EXPECT_THAT(usage_error_message([&] { log_smooth(r, 0.0); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { log_smooth(r, 0.0); }),
               HasSubstr("bins_per_decade must be positive and finite, got 0"));
-  EXPECT_THAT(usage_error_message([&] { log_smooth(r, -3.0); }), HasSubstr("got -3"));
-  EXPECT_THAT(usage_error_message([&] { log_smooth(r, kInf); }), HasSubstr("bins_per_decade"));
+  EXPECT_THAT(test::message_of<UsageError>([&] { log_smooth(r, -3.0); }), HasSubstr("got -3"));
+  EXPECT_THAT(test::message_of<UsageError>([&] { log_smooth(r, kInf); }),
+              HasSubstr("bins_per_decade"));
   PsdResult bad = r;
   bad.frequency_hz[0] = 0.0;
-  EXPECT_THAT(usage_error_message([&] { log_smooth(bad, 10.0); }),
+  EXPECT_THAT(test::message_of<UsageError>([&] { log_smooth(bad, 10.0); }),
               HasSubstr("frequency_hz[0] must be positive"));
 }
 

@@ -41,6 +41,9 @@ void check_gaps(std::span<const Gap> gaps, std::int64_t samples, std::string_vie
 /// (checked as by check_gaps): one stretch without gaps.
 std::vector<Stretch> contiguous_stretches(std::int64_t samples, std::span<const Gap> gaps);
 
+/// The size of the longest of them [samples].
+std::int64_t longest_stretch(std::span<const Stretch> stretches);
+
 /// [s] Time of present sample `index` after the first sample, for samples
 /// every 1/sample_rate_hz with `gaps` (sorted): (index + missing before it) / fs.
 double elapsed_s(std::int64_t index, std::span<const Gap> gaps, double sample_rate_hz);

@@ -52,8 +52,8 @@ struct PsdResult {
 /// core/gaps.h) only segments wholly inside one contiguous stretch are
 /// averaged, and the automatic segment length and the limits below apply to
 /// the longest stretch. Throws UsageError for a non-positive sample rate, a
-/// bad segment length or overlap, a bad gap list, or a record (longest
-/// stretch) shorter than 16 samples.
+/// bad segment length or overlap, or a bad gap list; DataError for a record
+/// (longest stretch) shorter than 16 samples.
 PsdResult welch_psd(std::span<const double> rate, double sample_rate_hz,
                     const WelchOptions& options = {}, std::span<const Gap> gaps = {});
 
