@@ -21,6 +21,7 @@ using detail::block_covariance;
 using detail::TermGroup;
 
 constexpr int kMaxDegree = 3;
+constexpr double kAbsoluteZeroC = -273.15;  ///< [degC]
 
 void check_inputs(std::span<const double> rate, std::span<const double> temperature,
                   double sample_rate_hz) {
@@ -42,6 +43,12 @@ void check_inputs(std::span<const double> rate, std::span<const double> temperat
     if (!std::isfinite(temperature[k])) {
       throw DataError(fmt::format("temperature sample {} is {}; temperatures must be finite", k + 1,
                                   temperature[k]));
+    }
+    if (temperature[k] < kAbsoluteZeroC) {
+      throw DataError(fmt::format(
+          "temperature sample {} is {} degC, below absolute zero ({} degC): the temperature "
+          "channel must be in degC (is it the right channel?)",
+          k + 1, temperature[k], kAbsoluteZeroC));
     }
   }
 }

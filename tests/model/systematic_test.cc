@@ -246,5 +246,19 @@ TEST(Systematic, NonFiniteTemperatureIsADataErrorNamingTheSample) {
             std::string::npos);
 }
 
+// A temperature below absolute zero is no temperature in degC: a wrong
+// channel, or one in another unit. -273.15 itself is the limit, not past it.
+TEST(Systematic, ATemperatureBelowAbsoluteZeroIsADataErrorNamingTheSample) {
+  std::vector<double> rate(100), temperature(100, 25.0);
+  for (std::size_t k = 0; k < rate.size(); ++k) rate[k] = std::sin(0.3 * static_cast<double>(k));
+  temperature[6] = -400.0;
+  const std::string why =
+      test::message_of<DataError>([&] { fit_temperature(rate, temperature, 10.0); });
+  EXPECT_NE(why.find("temperature sample 7 is -400 degC, below absolute zero"), std::string::npos)
+      << why;
+  temperature[6] = -273.15;
+  EXPECT_NO_THROW(fit_temperature(rate, temperature, 10.0));
+}
+
 }  // namespace
 }  // namespace foglab::model

@@ -115,7 +115,8 @@ class TemperatureRecord {
 /// Least-squares fits of degree 0..max_degree; returns the fit of the
 /// requested (or, for auto, the highest admissible) degree, without
 /// standard errors. Throws UsageError for mismatched lengths, fewer than 8
-/// samples or a degree outside 0..3; DataError for a non-finite temperature.
+/// samples or a degree outside 0..3; DataError for a non-finite temperature
+/// or one below absolute zero (-273.15 degC).
 SystematicFit fit_temperature(std::span<const double> rate_deg_h,
                               std::span<const double> temperature_c, double sample_rate_hz,
                               const SystematicOptions& options = {});
