@@ -378,11 +378,11 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
   return e;
 }
 
-// What the analysis did with the gaps of a record of `samples` present samples.
-Message gap_note(std::size_t samples, std::span<const Gap> gaps, double fs) {
+// What the analysis did with the gaps of a record of `samples` present
+// samples, which they cut into `stretches`.
+Message gap_note(std::size_t samples, std::span<const Gap> gaps, std::span<const Stretch> stretches,
+                 double fs) {
   const std::int64_t missing = missing_samples(gaps);
-  const std::vector<Stretch> stretches =
-      contiguous_stretches(static_cast<std::int64_t>(samples), gaps);
   const std::int64_t longest = longest_stretch(stretches);
   return Message(Text::note_gaps, gaps.size(), missing, static_cast<double>(missing) / fs,
                  100.0 * static_cast<double>(missing) /
@@ -427,19 +427,22 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   }
   require_varying(rate_deg_h);
   check_gaps(gaps, static_cast<std::int64_t>(rate_deg_h.size()), "analyze");
-  if (const std::vector<Stretch> stretches =
-          contiguous_stretches(static_cast<std::int64_t>(rate_deg_h.size()), gaps);
-      longest_stretch(stretches) < static_cast<std::int64_t>(kMinAnalysisSamples)) {
+  const std::vector<Stretch> stretches =
+      contiguous_stretches(static_cast<std::int64_t>(rate_deg_h.size()), gaps);
+  if (const std::int64_t longest = longest_stretch(stretches);
+      longest < static_cast<std::int64_t>(kMinAnalysisSamples)) {
     // Each statistic keeps to the stretches (conventions.md §9): a record
     // cut into short pieces (a sample lost every few) holds no long tau.
     throw DataError(fmt::format(
         "the gaps cut the record's {} samples into {} stretches, the longest {} samples; the "
         "analysis needs at least {} in a row",
-        rate_deg_h.size(), stretches.size(), longest_stretch(stretches), kMinAnalysisSamples));
+        rate_deg_h.size(), stretches.size(), longest, kMinAnalysisSamples));
   }
   AnalysisResult r;
   r.gaps.assign(gaps.begin(), gaps.end());
-  if (!gaps.empty()) r.notes.push_back(gap_note(rate_deg_h.size(), gaps, sample_rate_hz));
+  if (!gaps.empty()) {
+    r.notes.push_back(gap_note(rate_deg_h.size(), gaps, stretches, sample_rate_hz));
+  }
   std::vector<double> between_steps;  // a quantised temperature channel's temperature
   if (!temperature_c.empty()) {
     r.temperature_quantisation = find_temperature_quantisation(temperature_c, sample_rate_hz);

@@ -393,6 +393,13 @@ LeftOut leave_out_unfollowed_first_taus(detail::Points& p, detail::BandwidthSear
   return left_out;
 }
 
+// [samples] Where a filter's memory ends: kMemoryReach times its c. The
+// fit that assumes no kind leaves out the taus inside; the bias
+// instability is read beyond it (NoiseFitResult::filter_memory_end_tau_s).
+double memory_reach_samples(const SensorBandwidth& b, double tau0) {
+  return detail::kMemoryReach * detail::memory_constant_of(b, tau0);
+}
+
 // The modelled kinds (first-order, moving average, Butterworth) each bend
 // the first taus in a shape of their own, and a real filter can be none of
 // them. Where white noise rules only a few octaves before flicker does,
@@ -410,13 +417,6 @@ LeftOut leave_out_unfollowed_first_taus(detail::Points& p, detail::BandwidthSear
 // interval -0.84 / +0.78 % where the kind's own was +-0.25 %. Returns how
 // many taus it left out (-1: none was made: no bandwidth, or one known
 // only beyond its memory).
-// [samples] Where a filter's memory ends: kMemoryReach times its c. The
-// fit that assumes no kind leaves out the taus inside; the bias
-// instability is read beyond it (NoiseFitResult::filter_memory_end_tau_s).
-double memory_reach_samples(const SensorBandwidth& b, double tau0) {
-  return detail::kMemoryReach * detail::memory_constant_of(b, tau0);
-}
-
 int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSearch& bandwidth,
                             double known_white, std::span<const SpectralLine> lines,
                             const NoiseFitOptions& options, NoiseFitResult& r) {
