@@ -1,6 +1,7 @@
 // OADEV on an octave grid over 10^8 samples, against the streaming bound
 // measured in the same run: the time to read the record once (both cores)
-// times the number of distinct offset streams {0, m, 2m} the grid needs.
+// times the number of distinct offset streams {0, m, 2m} the grid needs;
+// and analyze's stationarity check of the short taus (BM_AllanDrift).
 //
 //   ./build/bench/bench_allan [--benchmark_filter=...]
 // FOGLAB_BENCH_SAMPLES overrides the record length (default 10^8).
@@ -14,6 +15,7 @@
 #include "bench_support.h"
 #include "foglab/core/numeric.h"
 #include "foglab/stats/allan.h"
+#include "foglab/stats/allan_drift.h"
 
 namespace {
 
@@ -101,9 +103,18 @@ void BM_AllanDeviation(benchmark::State& state) {
                  (options.confidence ? " +CI" : " no CI"));
 }
 
+// analyze's stationarity check of the short taus (allan_drift.h) on the
+// whole record, one stretch.
+void BM_AllanDrift(benchmark::State& state) {
+  const auto& y = record();
+  const std::vector<Stretch> whole = {{0, static_cast<std::int64_t>(y.size())}};
+  for (auto _ : state) benchmark::DoNotOptimize(stats::allan_drift(y, 0.01, whole));
+}
+
 BENCHMARK(BM_ReadOnce)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 BENCHMARK(BM_OadevOctaveFromPhase)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 BENCHMARK(BM_ToPhase)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
+BENCHMARK(BM_AllanDrift)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 BENCHMARK(BM_AllanDeviation)
     ->Args({static_cast<int>(stats::AllanKind::oadev), 0})
     ->Args({static_cast<int>(stats::AllanKind::oadev), 1})

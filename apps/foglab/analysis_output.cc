@@ -288,6 +288,16 @@ nlohmann::json lines_json(const model::NoiseFitResult& f) {
   return lines;
 }
 
+nlohmann::json drift_json(const stats::AllanDrift& d) {
+  return {{"blocks", d.blocks},
+          {"z_threshold", number(d.z_threshold)},
+          {"tau_s", numbers(d.tau_s)},
+          {"trend_z", numbers(d.trend_z)},
+          {"last_to_first_ratio", numbers(d.last_to_first)},
+          {"drifting", d.drifting},
+          {"blocks_used", d.blocks_used}};
+}
+
 nlohmann::json evidence_json(const model::RandomBiasEvidence& e, const model::NoiseFitResult& fit) {
   return {{"deviance_none", number(e.deviance_none)},
           {"deviance_wiener", number(e.deviance_wiener)},
@@ -389,6 +399,9 @@ nlohmann::json units_json() {
       {"fit.shape_free_N", "deg/h/sqrt(Hz)"},
       {"fit.model", "N, B, K, R, Q, gm_sigma, gm_tc in the units above"},
       {"random_bias_evidence.adev_end_slope", "log-log slope (dimensionless)"},
+      {"allan_drift.tau_s", "s"},
+      {"allan_drift.trend_z", "Mann-Kendall z of the blocks' Allan variances (dimensionless)"},
+      {"allan_drift.last_to_first_ratio", "ratio of Allan variances (dimensionless)"},
       {"random_bias_evidence.psd_low_frequency_slope", "log-log slope (dimensionless)"}};
   for (const NoiseParameter& p : kNoiseParameters) units[std::string(p.name)] = p.unit;
   return units;
@@ -426,6 +439,7 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
   return {{"input", input},
           {"systematic", systematic_json(r, in)},
           {"allan", allan_json(r)},
+          {"allan_drift", drift_json(r.allan_drift)},
           {"psd", psd_json(r, options.psd_bins_per_decade)},
           {"noise_model", noise},
           {"sensor_bandwidth", bandwidth_json(r.noise.bandwidth)},

@@ -719,6 +719,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_legend_lines, "{} spectral lines"},
     {Text::an_legend_fit, "fit {}"},
     {Text::an_legend_minimum, "minimum {} deg/h at {} s"},
+    {Text::an_legend_drift, "trends over the run (Mann-Kendall, {} blocks)"},
     {Text::an_caption_time,
      "Rate (block means, with the minimum and maximum of each block) and temperature against "
      "time."},
@@ -767,6 +768,16 @@ constexpr CatalogueEntry kEntries[] = {
      "is taken for a spike; N's 95 % interval is widened for the scatter such a noise "
      "gives its sample variance (excess kurtosis {:.3g}), the other terms' intervals "
      "assume Gaussian noise"},
+    {Text::note_allan_drift,
+     "the Allan variance at {} s changes over the record: cut into {} blocks in time "
+     "order, its values trend (Mann-Kendall |z| {}, beyond {:.3g}: p < 1e-4 at each "
+     "tau), the last eighth's {} times the first "
+     "eighth's; the sensor's short-term noise is not stationary (a warm-up, a resonance "
+     "or a filter moving with the temperature), the whole record's Allan deviation there "
+     "is an average over it, and its 95 % intervals, which assume a stationary record, "
+     "understate how far it may lie from any one state of the sensor"},
+    {Text::range_of, "{:.3g} to {:.3g}"},
+    {Text::one_of, "{:.3g}"},
     {Text::note_no_temperature,
      "no temperature: the systematic part is the mean rate only (removed by the "
      "statistics)"},

@@ -390,6 +390,12 @@ Message gap_note(std::size_t samples, std::span<const Gap> gaps, std::span<const
                  stretches.size(), static_cast<double>(longest) / fs);
 }
 
+// "low to high", or the one value when the two print the same.
+Message range_message(double low, double high) {
+  if (fmt::format("{:.3g}", low) == fmt::format("{:.3g}", high)) return Message(Text::one_of, low);
+  return Message(Text::range_of, low, high);
+}
+
 // N rests on the white noise's sample variance, whose relative variance is
 // (2 + g) / n for n samples of excess kurtosis g; the fit's interval counts
 // the Gaussian 2 / n. Under heavy-tailed noise (spikes.h) the rest, g / n,
@@ -513,6 +519,24 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   AnalysisOptions with_known = options;  // as given, but for the fit's known white noise
   if (const OutputQuantisation& q = r.output_quantisation; q.detected && q.noise_like) {
     with_known.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
+  }
+  // Before the statistics, which consume the record; the temperature law
+  // is still in, and adds nothing measurable at these taus.
+  r.allan_drift = stats::allan_drift(rate_deg_h, 1.0 / sample_rate_hz, stretches, options.drift);
+  if (const stats::AllanDrift& d = r.allan_drift; d.any()) {
+    const auto [first, last] = d.drifting_range();
+    constexpr double kHuge = std::numeric_limits<double>::infinity();
+    double z_low = kHuge, z_high = 0.0, ratio_low = kHuge, ratio_high = 0.0;
+    for (std::size_t i = first; i <= last; ++i) {
+      if (!d.drifting[i]) continue;
+      z_low = std::min(z_low, std::abs(d.trend_z[i]));
+      z_high = std::max(z_high, std::abs(d.trend_z[i]));
+      ratio_low = std::min(ratio_low, d.last_to_first[i]);
+      ratio_high = std::max(ratio_high, d.last_to_first[i]);
+    }
+    r.notes.emplace_back(Text::note_allan_drift, range_message(d.tau_s[first], d.tau_s[last]),
+                         d.blocks, range_message(z_low, z_high), d.z_threshold,
+                         range_message(ratio_low, ratio_high));
   }
   r.sample_rate_hz = sample_rate_hz;
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());

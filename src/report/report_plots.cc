@@ -454,6 +454,37 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title, Languag
     min.y = {r.bias_instability_deg_h};
     plot.series.push_back(std::move(min));
   }
+  if (const stats::AllanDrift& d = r.allan_drift; d.any()) {
+    // The taus whose Allan variance trends over the run, on the measured
+    // curve (log-log interpolated where the reported grid is not octaves).
+    Series drift;
+    drift.title = say(l, Text::an_legend_drift, d.blocks);
+    drift.style = SeriesStyle::points;
+    drift.point_type = 8;
+    drift.point_size = 1.4;
+    drift.color = kOrange;
+    drift.sets_range = false;
+    for (std::size_t i = 0; i < d.tau_s.size(); ++i) {
+      const double tau = d.tau_s[i];
+      if (!d.drifting[i] || tau < a.tau_s.front() || tau > a.tau_s.back()) continue;
+      const auto hi = std::ranges::lower_bound(a.tau_s, tau * (1.0 - 1e-9));
+      const auto k = static_cast<std::size_t>(hi - a.tau_s.begin());
+      double dev = a.dev[k];
+      if (a.tau_s[k] > tau * (1.0 + 1e-9) && k > 0) {
+        const double w = std::log(tau / a.tau_s[k - 1]) / std::log(a.tau_s[k] / a.tau_s[k - 1]);
+        dev = std::exp((1.0 - w) * std::log(a.dev[k - 1]) + w * std::log(a.dev[k]));
+      }
+      drift.x.push_back(tau);
+      drift.y.push_back(dev);
+    }
+    if (!drift.x.empty()) plot.series.push_back(std::move(drift));
+  }
+  // The key sits in the decade of headroom: past ten entries (a filter, a
+  // line, the first taus left out, a drift) its lines are set smaller so
+  // that it stays clear of the first taus.
+  if (std::ranges::count_if(plot.series, [](const Series& s) { return !s.title.empty(); }) > 10) {
+    plot.key_font = ",8";
+  }
   return plot;
 }
 

@@ -546,6 +546,7 @@ enum class Text {
   an_legend_lines,                ///< {count}
   an_legend_fit,                  ///< {terms}
   an_legend_minimum,              ///< {BI} {tau}
+  an_legend_drift,                ///< {blocks}: the taus allan_drift calls
   an_caption_time,                ///< figure captions
   an_caption_bias,                ///< "Bias (block means of the rate) against temperature, wit..."
   an_caption_psd,                 ///< "Square root of the two-sided PSD of the residual, log-l..."
@@ -562,6 +563,10 @@ enum class Text {
   note_spikes_replaced,
   note_spikes_kept,
   note_heavy_tail,  ///< {shoulder count} {Gaussian's} {alpha} {threshold} {excess kurtosis}
+  /// {taus} {blocks} {|z|} {threshold} {last/first}, each a range_of / one_of
+  note_allan_drift,
+  range_of,  ///< {low} {high}: "low to high"
+  one_of,    ///< {value}: the range of one value
   note_no_temperature,
   note_quantised,  ///< {lsb} {distinct} {examined} {level} {percent} {known or distorting}
   note_quantised_known,

@@ -31,6 +31,7 @@
 #include "foglab/model/systematic.h"
 #include "foglab/model/temperature_quantisation.h"
 #include "foglab/stats/allan.h"
+#include "foglab/stats/allan_drift.h"
 #include "foglab/stats/psd.h"
 
 namespace foglab::model {
@@ -47,6 +48,7 @@ struct AnalysisOptions {
   /// Block means used for the detrending factors (systematic.h).
   int detrend_blocks = 512;
   SpikeOptions spikes;  ///< isolated outliers, found and replaced first (spikes.h)
+  stats::AllanDriftOptions drift;  ///< the stationarity check of the short taus
   StepOptions steps;    ///< bias steps, found and levelled next (steps.h)
 };
 
@@ -73,6 +75,9 @@ struct AnalysisResult {
   stats::PsdResult psd;                     ///< Welch PSD of the residual, (deg/h)^2/Hz two-sided
   stats::PsdResult psd_smoothed;            ///< the same, log-smoothed
   stats::AllanResult allan;                 ///< OADEV of the residual with intervals
+  /// Whether the short taus' Allan variance trends over the record
+  /// (stats/allan_drift.h), on the rate without its spikes and steps.
+  stats::AllanDrift allan_drift;
   NoiseFitResult noise;
   AdevReadings adev_readings;
   PsdReadings psd_readings;
