@@ -769,7 +769,7 @@ constexpr CatalogueEntry kEntries[] = {
      "gives its sample variance (excess kurtosis {:.3g}), the other terms' intervals "
      "assume Gaussian noise"},
     {Text::note_allan_drift,
-     "the Allan variance at {} s changes over the record: cut into {} blocks in time "
+     "the Allan variance at tau {} s changes over the record: cut into {} blocks in time "
      "order, its values trend (Mann-Kendall |z| {}, beyond {:.3g}: p < 1e-4 at each "
      "tau), the last eighth's {} times the first "
      "eighth's; the sensor's short-term noise is not stationary (a warm-up, a resonance "

@@ -524,18 +524,19 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   // is still in, and adds nothing measurable at these taus.
   r.allan_drift = stats::allan_drift(rate_deg_h, 1.0 / sample_rate_hz, stretches, options.drift);
   if (const stats::AllanDrift& d = r.allan_drift; d.any()) {
-    const auto [first, last] = d.drifting_range();
+    std::vector<Message> taus;
     constexpr double kHuge = std::numeric_limits<double>::infinity();
     double z_low = kHuge, z_high = 0.0, ratio_low = kHuge, ratio_high = 0.0;
-    for (std::size_t i = first; i <= last; ++i) {
+    for (std::size_t i = 0; i < d.tau_s.size(); ++i) {
       if (!d.drifting[i]) continue;
+      taus.emplace_back(Text::one_of, d.tau_s[i]);
       z_low = std::min(z_low, std::abs(d.trend_z[i]));
       z_high = std::max(z_high, std::abs(d.trend_z[i]));
       ratio_low = std::min(ratio_low, d.last_to_first[i]);
       ratio_high = std::max(ratio_high, d.last_to_first[i]);
     }
-    r.notes.emplace_back(Text::note_allan_drift, range_message(d.tau_s[first], d.tau_s[last]),
-                         d.blocks, range_message(z_low, z_high), d.z_threshold,
+    r.notes.emplace_back(Text::note_allan_drift, std::move(taus), d.blocks,
+                         range_message(z_low, z_high), d.z_threshold,
                          range_message(ratio_low, ratio_high));
   }
   r.sample_rate_hz = sample_rate_hz;

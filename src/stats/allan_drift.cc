@@ -53,15 +53,6 @@ double mann_kendall_z(std::span<const double> v) {
 
 bool AllanDrift::any() const { return std::ranges::find(drifting, true) != drifting.end(); }
 
-std::pair<std::size_t, std::size_t> AllanDrift::drifting_range() const {
-  const auto first = static_cast<std::size_t>(std::ranges::find(drifting, true) - drifting.begin());
-  std::size_t last = first;
-  for (std::size_t i = first; i < drifting.size(); ++i) {
-    if (drifting[i]) last = i;
-  }
-  return {first, last};
-}
-
 AllanDrift allan_drift(std::span<const double> rate, double tau0_s,
                        std::span<const Stretch> stretches, const AllanDriftOptions& options) {
   if (!(tau0_s > 0) || options.blocks < 16 || options.min_clusters < 1) {

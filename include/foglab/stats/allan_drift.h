@@ -4,8 +4,8 @@
 // the same process from the first sample to the last. A real sensor's
 // short-term noise can change during a run: its white level rises a few
 // per cent as it warms up, or a structural resonance moves with the
-// temperature (the ADIS16405 z axes' resonance moves from 21.6 Hz to
-// 20.1 Hz over the first hour of their records, docs/validation.md). The
+// temperature (the ADIS16405 imu1 z axis's resonance moves from about 22 Hz
+// to 20 Hz over the first hour of its record, docs/validation.md). The
 // whole-record Allan variance is then the average of a changing one, and its
 // intervals understate how far it is from any one process.
 //
@@ -28,7 +28,6 @@
 
 #include <cstdint>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "foglab/core/gaps.h"
@@ -58,8 +57,6 @@ struct AllanDrift {
   std::vector<int> blocks_used;
   double z_threshold = 0.0;
   bool any() const;
-  /// The indexes of the first and last drifting taus (any() must hold).
-  std::pair<std::size_t, std::size_t> drifting_range() const;
 };
 
 /// The check on `rate` (any unit; sampled every `tau0_s`), whose contiguous
