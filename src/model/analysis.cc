@@ -522,7 +522,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   }
   // Before the statistics, which consume the record; the temperature law
   // is still in, and adds nothing measurable at these taus.
-  r.allan_drift = stats::allan_drift(rate_deg_h, 1.0 / sample_rate_hz, stretches, options.drift);
+  r.allan_drift = stats::allan_drift(rate_deg_h, 1.0 / sample_rate_hz, gaps, options.drift);
   if (const stats::AllanDrift& d = r.allan_drift; d.any()) {
     std::vector<Message> taus;
     constexpr double kHuge = std::numeric_limits<double>::infinity();

@@ -18,10 +18,6 @@ namespace {
 
 constexpr double kTau0S = 0.01;
 
-std::vector<Stretch> whole(const std::vector<double>& x) {
-  return {{0, static_cast<std::int64_t>(x.size())}};
-}
-
 TEST(AllanDrift, StationaryNoiseRaisesNoCallAndItsZIsStandardNormal) {
   // White noise; white noise through a 3-sample moving average with a
   // random walk; white noise with a strong sine line (a resonance that
@@ -41,7 +37,7 @@ TEST(AllanDrift, StationaryNoiseRaisesNoCallAndItsZIsStandardNormal) {
     } else if (seed % 3 == 2) {
       for (std::size_t i = 0; i < kSamples; ++i) x[i] += 3.0 * std::sin(0.4 * 3.1 * i);
     }
-    const AllanDrift d = allan_drift(x, kTau0S, whole(x));
+    const AllanDrift d = allan_drift(x, kTau0S);
     ASSERT_EQ(d.blocks, 32);
     ASSERT_EQ(d.tau_s.size(), 5u);  // 1, 2, 4, 8, 16 samples: 4096 / 256 = 16
     EXPECT_DOUBLE_EQ(d.tau_s[4], 16 * kTau0S);
@@ -69,7 +65,7 @@ TEST(AllanDrift, AWhiteLevelThatRisesOverTheRecordIsCalledWithItsSize) {
   for (std::size_t i = 0; i < kSamples; ++i) {
     x[i] *= std::sqrt(1.0 + 0.1 * static_cast<double>(i) / kSamples);
   }
-  const AllanDrift d = allan_drift(x, kTau0S, whole(x));
+  const AllanDrift d = allan_drift(x, kTau0S);
   ASSERT_EQ(d.tau_s.size(), 8u);  // 32768 / 256 = 128 samples
   ASSERT_TRUE(d.any());
   for (std::size_t k = 0; k < 4; ++k) {  // 1 to 8 samples, where blocks scatter by under 2 %
@@ -86,7 +82,7 @@ TEST(AllanDrift, AStepOrABurstInOneBlockMovesOneRankOnly) {
   std::vector<double> x = test::white(kSamples, 11, 1.0);
   for (std::size_t i = 70000; i < 70100; ++i) x[i] += 40.0 * ((i % 2) ? 1.0 : -1.0);
   for (std::size_t i = 90000; i < kSamples; ++i) x[i] += 25.0;  // a bias step
-  const AllanDrift d = allan_drift(x, kTau0S, whole(x));
+  const AllanDrift d = allan_drift(x, kTau0S);
   EXPECT_FALSE(d.any());
 }
 
@@ -102,9 +98,7 @@ TEST(AllanDriftGaps, BlocksTheGapsEmptyAreLeftOutAndTheCheckStillSeesADrift) {
   std::vector<Gap> gaps;
   for (std::int64_t at = 100; at < 65536; at += 100) gaps.push_back({at, 1});
   gaps.push_back({600000, 50000});
-  const std::vector<Stretch> stretches =
-      contiguous_stretches(static_cast<std::int64_t>(kSamples), gaps);
-  const AllanDrift d = allan_drift(x, kTau0S, stretches);
+  const AllanDrift d = allan_drift(x, kTau0S, gaps);
   ASSERT_EQ(d.tau_s.size(), 8u);
   EXPECT_EQ(d.blocks_used[0], 32);
   EXPECT_EQ(d.blocks_used[5], 32);  // 32 samples: 37 terms of 100 a stretch, over a quarter
@@ -114,17 +108,17 @@ TEST(AllanDriftGaps, BlocksTheGapsEmptyAreLeftOutAndTheCheckStillSeesADrift) {
   EXPECT_NEAR(d.last_to_first[0], 1.0870, 0.03);
   // The same white noise, stationary, with those gaps: no call.
   const std::vector<double> y = test::white(kSamples, 13, 1.0);
-  EXPECT_FALSE(allan_drift(y, kTau0S, stretches).any());
+  EXPECT_FALSE(allan_drift(y, kTau0S, gaps).any());
 }
 
 TEST(AllanDrift, ARecordTooShortForTheBlocksIsNotChecked) {
   const std::vector<double> x = test::white(8000, 3, 1.0);  // 32 x 256 = 8192 needed
-  const AllanDrift d = allan_drift(x, kTau0S, whole(x));
+  const AllanDrift d = allan_drift(x, kTau0S);
   EXPECT_EQ(d.blocks, 0);
   EXPECT_TRUE(d.tau_s.empty());
   EXPECT_FALSE(d.any());
-  EXPECT_THROW(allan_drift(x, 0.0, whole(x)), UsageError);
-  EXPECT_THROW(allan_drift(x, kTau0S, whole(x), {.blocks = 8}), UsageError);
+  EXPECT_THROW(allan_drift(x, 0.0), UsageError);
+  EXPECT_THROW(allan_drift(x, kTau0S, {}, {.blocks = 8}), UsageError);
 }
 
 }  // namespace

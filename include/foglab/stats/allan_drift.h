@@ -10,8 +10,8 @@
 // intervals understate how far it is from any one process.
 //
 // The check: the record is cut into `blocks` equal pieces of its samples in
-// time order, the Allan variance at m samples is computed inside each
-// (overlapping, the pieces' contiguous stretches pooled as allan.h pools
+// time order, the overlapping Allan variance at m samples is computed
+// inside each by allan_deviation() (the block's gaps pooled as it pools
 // them), and the Mann–Kendall test (Mann 1945; Kendall 1975: S, the sum of
 // sign(v_j - v_i) over the pairs i < j, against its variance
 // n (n - 1) (2 n + 5) / 18 under independent, identically distributed v)
@@ -59,10 +59,9 @@ struct AllanDrift {
   bool any() const;
 };
 
-/// The check on `rate` (any unit; sampled every `tau0_s`), whose contiguous
-/// `stretches` (core/gaps.h; one stretch over the whole record without
-/// gaps) are where the samples follow each other.
-AllanDrift allan_drift(std::span<const double> rate, double tau0_s,
-                       std::span<const Stretch> stretches, const AllanDriftOptions& options = {});
+/// The check on `rate` (any unit; sampled every `tau0_s`) with its `gaps`
+/// (core/gaps.h, as allan_deviation() takes them).
+AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<const Gap> gaps = {},
+                       const AllanDriftOptions& options = {});
 
 }  // namespace foglab::stats
