@@ -289,13 +289,18 @@ nlohmann::json lines_json(const model::NoiseFitResult& f) {
 }
 
 nlohmann::json drift_json(const stats::AllanDrift& d) {
+  nlohmann::json block_adev = nlohmann::json::array();
+  for (const std::vector<double>& per_block : d.block_adev)
+    block_adev.push_back(numbers(per_block));
   return {{"blocks", d.blocks},
           {"z_threshold", number(d.z_threshold)},
           {"tau_s", numbers(d.tau_s)},
           {"trend_z", numbers(d.trend_z)},
           {"last_to_first_ratio", numbers(d.last_to_first)},
           {"drifting", d.drifting},
-          {"blocks_used", d.blocks_used}};
+          {"blocks_used", d.blocks_used},
+          {"block_time_s", numbers(d.block_time_s)},
+          {"block_adev_deg_h", std::move(block_adev)}};
 }
 
 nlohmann::json evidence_json(const model::RandomBiasEvidence& e, const model::NoiseFitResult& fit) {
@@ -402,6 +407,8 @@ nlohmann::json units_json() {
       {"allan_drift.tau_s", "s"},
       {"allan_drift.trend_z", "Mann-Kendall z of the blocks' Allan variances (dimensionless)"},
       {"allan_drift.last_to_first_ratio", "ratio of Allan variances (dimensionless)"},
+      {"allan_drift.block_time_s", "s"},
+      {"allan_drift.block_adev_deg_h", "deg/h"},
       {"random_bias_evidence.psd_low_frequency_slope", "log-log slope (dimensionless)"}};
   for (const NoiseParameter& p : kNoiseParameters) units[std::string(p.name)] = p.unit;
   return units;

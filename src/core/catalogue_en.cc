@@ -720,6 +720,10 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_legend_fit, "fit {}"},
     {Text::an_legend_minimum, "minimum {} deg/h at {} s"},
     {Text::an_legend_drift, "trends over the run (Mann-Kendall, {} blocks)"},
+    {Text::an_plot_drift, "{}: short-tau Allan deviation over the run"},
+    {Text::an_axis_drift_change, "block's Allan deviation, change from the blocks' mean [%]"},
+    {Text::an_legend_drift_tau, "tau {} s: z {}, last eighth / first {}"},
+    {Text::an_legend_drift_steady, "no trend: tau {} s"},
     {Text::an_caption_time,
      "Rate (block means, with the minimum and maximum of each block) and temperature against "
      "time."},
@@ -731,6 +735,12 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_caption_adev,
      "Overlapping Allan deviation of the residual with its 95 % confidence band, the fitted "
      "model and the line of each term, log-log with equal decades."},
+    {Text::an_caption_drift,
+     "The record cut into {} blocks in time order: the overlapping Allan deviation inside each "
+     "block at the short taus, as a change from the blocks' mean, against the block's middle. "
+     "In colour the taus whose values trend (Mann-Kendall test, p < 1e-4 at each tau), the "
+     "ratio of the last eighth's Allan variance to the first eighth's beside them; in grey "
+     "the taus checked that do not trend, which show the scatter of a stationary block."},
     // ---- the analyses' notes ----
     {Text::note_gaps,
      "{} gap(s) in the time axis, {} samples ({:.6g} s, {:.3g} % of the span) missing; "
@@ -791,6 +801,13 @@ constexpr CatalogueEntry kEntries[] = {
      "temperature between the steps (linear between the instants where the reading "
      "changes, at the boundary of the two readings), not against the staircase, "
      "whose error times the law's slope would stay in the residual"},
+    {Text::note_temperature_kelvin,
+     "the temperature reads {:.5g} to {:.5g} degC, above 200 degC throughout, where no gyro "
+     "is tested: the channel is likely in kelvin, and foglab reads degC. The law's "
+     "coefficients about the mean temperature (c1, c2, c3, and the bias at T_ref) do not "
+     "depend on it, but T_ref, the temperatures shown and the lab's constant term (the "
+     "bias extrapolated to 0 degC) are those of a reading 273.15 too high: convert the "
+     "channel (subtract 273.15) for those"},
     {Text::note_quantised_known, "which the fit takes as known: N is the sensor's own white level"},
     {Text::note_quantised_distorting,
      "which the fitted N includes: the step is more than twice the samples' "

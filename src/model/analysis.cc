@@ -458,6 +458,13 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       r.notes.emplace_back(Text::note_temperature_quantised, t.lsb_c, t.distinct_values, t.changes,
                            t.mean_hold_s);
     }
+    // A channel in kelvin reads 200-400 for a test at -73 to +127 degC; no
+    // gyro is tested above 200 degC. Said, not converted: the law's
+    // coefficients about the mean temperature hold either way.
+    constexpr double kHottestTestC = 200.0;
+    if (const auto [lowest, highest] = std::ranges::minmax(temperature_c); lowest > kHottestTestC) {
+      r.notes.emplace_back(Text::note_temperature_kelvin, lowest, highest);
+    }
   }
   r.output_quantisation = find_output_quantisation(rate_deg_h, sample_rate_hz);
   const OutputQuantisation& word = r.output_quantisation;

@@ -652,19 +652,7 @@ Report make_report(const model::AnalysisResult& result, const ReportInput& input
   rep.title = record_title(input, l);
   rep.language = l;
   const std::vector<Plot> plots = report_plots(result, input, options);
-  static constexpr std::pair<const char*, Text> kCaptions[] = {
-      {"time", Text::an_caption_time},
-      {"bias_temperature", Text::an_caption_bias},
-      {"psd", Text::an_caption_psd},
-      {"adev", Text::an_caption_adev},
-  };
-  // No bias plot without a temperature: the captions shift by one.
-  const bool has_bias_plot = plots.size() == 4;
-  std::vector<FigureSpec> specs;
-  for (std::size_t i = 0; i < plots.size(); ++i) {
-    const std::size_t kind = has_bias_plot || i == 0 ? i : i + 1;
-    specs.push_back({kCaptions[kind].first, say(l, kCaptions[kind].second)});
-  }
+  const std::vector<FigureSpec> specs = report_figure_specs(result, input, l);
   RenderedFigures drawn = render_figures(plots, specs, options);
   rep.figures = std::move(drawn.figures);
   rep.plots_skipped = drawn.skipped;

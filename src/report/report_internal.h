@@ -95,4 +95,8 @@ struct RenderedFigures {
 RenderedFigures render_figures(const std::vector<Plot>& plots, const std::vector<FigureSpec>& specs,
                                const ReportOptions& options);
 
+/// The names and captions of report_plots()' figures, in its order.
+std::vector<FigureSpec> report_figure_specs(const model::AnalysisResult& result,
+                                            const ReportInput& input, Language language);
+
 }  // namespace foglab::report::detail

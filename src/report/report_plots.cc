@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include "foglab/core/error.h"
@@ -488,7 +489,83 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title, Languag
   return plot;
 }
 
+// The short taus' Allan deviation block by block over the run (allan_drift),
+// as a change from the blocks' mean (their Allan variances averaged): the
+// taus the trend test calls in colour, the others in grey, which show how
+// far the blocks of a stationary record scatter.
+Plot drift_plot(const stats::AllanDrift& d, const std::string& title, Language l) {
+  static constexpr const char* kColours[] = {kRed, kOrange, kGreen, kBlue, kPurple, kYellow};
+  Plot plot;
+  plot.title = say(l, Text::an_plot_drift, title);
+  plot.x_label = say(l, Text::an_axis_time);
+  plot.y_label = say(l, Text::an_axis_drift_change);
+  plot.key = "top left";
+  std::vector<double> hours;
+  for (const double t : d.block_time_s) hours.push_back(t / kSecondsPerHour);
+  std::string steady_taus;
+  std::optional<std::size_t> first_steady;  // the grey line that carries their legend entry
+  std::size_t called = 0;
+  for (std::size_t i = 0; i < d.tau_s.size(); ++i) {
+    const std::vector<double>& adev = d.block_adev[i];
+    double sum = 0.0;
+    int used = 0;
+    for (const double v : adev) {
+      if (std::isfinite(v)) sum += v * v, ++used;
+    }
+    if (used == 0) continue;
+    const double mean_adev = std::sqrt(sum / used);
+    Series s;
+    s.x = hours;
+    for (const double v : adev) s.y.push_back(100.0 * (v / mean_adev - 1.0));
+    if (d.drifting[i]) {
+      s.title = say(l, Text::an_legend_drift_tau, g(d.tau_s[i]),
+                    fmt::format("{:+.2f}", d.trend_z[i]), g(d.last_to_first[i]));
+      s.style = SeriesStyle::linespoints;
+      s.color = kColours[called++ % std::size(kColours)];
+      s.line_width = 1.5;
+      s.point_size = 0.7;
+    } else {
+      steady_taus += (steady_taus.empty() ? "" : ", ") + g(d.tau_s[i]);
+      if (!first_steady) first_steady = plot.series.size();
+      s.color = kGrey;
+      s.line_width = 1.0;
+    }
+    plot.series.push_back(std::move(s));
+  }
+  if (first_steady) {
+    plot.series[*first_steady].title = say(l, Text::an_legend_drift_steady, steady_taus);
+  }
+  // The lines fill the plot's width: room above them for the key.
+  double low = 0.0, high = 0.0;
+  for (const Series& s : plot.series) {
+    for (const double y : s.y) {
+      if (std::isfinite(y)) low = std::min(low, y), high = std::max(high, y);
+    }
+  }
+  const double pad = 0.05 * (high - low);
+  plot.y_range = AxisRange{low - pad, high + (0.12 + 0.07 * called) * (high - low) + 4.0 * pad};
+  return plot;
+}
+
+bool has_bias_plot(const model::AnalysisResult& r, const ReportInput& in) {
+  return r.systematic && !in.preview.temperature_c.empty();
+}
+
 }  // namespace
+
+std::vector<FigureSpec> detail::report_figure_specs(const model::AnalysisResult& result,
+                                                    const ReportInput& input, Language l) {
+  std::vector<FigureSpec> specs{{"time", say(l, Text::an_caption_time)}};
+  if (has_bias_plot(result, input)) {
+    specs.push_back({"bias_temperature", say(l, Text::an_caption_bias)});
+  }
+  specs.push_back({"psd", say(l, Text::an_caption_psd)});
+  specs.push_back({"adev", say(l, Text::an_caption_adev)});
+  if (result.allan_drift.any()) {
+    specs.push_back({"allan_drift", say(l, Text::an_caption_drift, result.allan_drift.blocks)});
+  }
+  return specs;
+}
 
 RecordPreview preview_record(std::span<const double> rate_deg_h,
                              std::span<const double> temperature_c, double sample_rate_hz,
@@ -562,11 +639,12 @@ std::vector<Plot> report_plots(const model::AnalysisResult& result, const Report
   const std::string title = record_title(input, l);
   std::vector<Plot> plots;
   plots.push_back(time_plot(input, result, title, l));
-  if (result.systematic && !input.preview.temperature_c.empty()) {
+  if (has_bias_plot(result, input)) {
     plots.push_back(bias_plot(*result.systematic, input, title, options.bias_points, l));
   }
   plots.push_back(psd_plot(result, title, l));
   plots.push_back(adev_plot(result, title, l));
+  if (result.allan_drift.any()) plots.push_back(drift_plot(result.allan_drift, title, l));
   if (input.sensor != Sensor::gyroscope) {
     // An accelerometer's plots say m/s^2, and its noise terms by their names.
     for (Plot& p : plots) {

@@ -89,8 +89,12 @@ AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<co
     // A block the gaps leave with fewer than a quarter of its terms is
     // left out of this tau's test.
     std::vector<double> v;
+    std::vector<double> adev(terms.size(), kNaN);
     for (std::size_t b = 0; b < terms.size(); ++b) {
-      if (4 * terms[b][k] >= block) v.push_back(allan_variance[b][k]);
+      if (4 * terms[b][k] >= block) {
+        v.push_back(allan_variance[b][k]);
+        adev[b] = std::sqrt(allan_variance[b][k]);
+      }
     }
     if (v.size() < 16) continue;
     const std::size_t eighth = v.size() / 8;
@@ -102,8 +106,17 @@ AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<co
     r.last_to_first.push_back(first > 0 ? last / first : kNaN);
     r.drifting.push_back(std::abs(z) >= options.z_threshold);
     r.blocks_used.push_back(static_cast<int>(v.size()));
+    r.block_adev.push_back(std::move(adev));
   }
-  if (r.tau_s.empty()) r.blocks = 0;
+  if (r.tau_s.empty()) {
+    r.blocks = 0;
+    return r;
+  }
+  for (int b = 0; b < options.blocks; ++b) {
+    const std::int64_t begin = b * block;
+    const std::int64_t end = b + 1 == options.blocks ? samples : begin + block;
+    r.block_time_s.push_back(elapsed_s(begin + (end - begin) / 2, gaps, fs));
+  }
   return r;
 }
 

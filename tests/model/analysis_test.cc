@@ -341,6 +341,33 @@ TEST(Analysis, WithoutTemperatureTheSystematicStepIsSkippedWithANote) {
             classify(r.bias_instability_deg_h, r.arw_deg_sqrt_h).accuracy_class);
 }
 
+// A temperature channel in kelvin is said, not converted: the law's
+// coefficients about the mean temperature are the same as in degC (the
+// polynomial is in T - T_ref), T_ref and the lab's constant term are not.
+TEST(Analysis, ATemperatureInKelvinIsNotedAndTheLawAboutItsMeanHolds) {
+  sim::Lab2Options o;
+  o.seed = 11;
+  const sim::Lab2Variant v = sim::lab2_variant(1, o);
+  const sim::Lab2Gyro& gyro = v.gyros[0];
+  const sim::Lab2Run& run = gyro.runs[1];  // FOG1's 10 degC ramp
+  sim::Recording rec = sim::generate(gyro.model, run.temperature, run.generator);
+  std::vector<double> rate = rec.rate_deg_h;
+  std::vector<double> kelvin = rec.temperature_c;
+  for (double& t : kelvin) t += 273.15;
+  const AnalysisResult c = analyze(rec.rate_deg_h, rec.temperature_c, rec.sample_rate_hz);
+  const AnalysisResult k = analyze(rate, kelvin, rec.sample_rate_hz);
+  EXPECT_FALSE(contains(c.notes, "kelvin"));
+  EXPECT_TRUE(contains(k.notes, "likely in kelvin"));
+  ASSERT_TRUE(c.systematic && k.systematic);
+  ASSERT_EQ(c.systematic->degree, k.systematic->degree);
+  for (std::size_t j = 0; j < c.systematic->coefficients.size(); ++j) {
+    const double cj = c.systematic->coefficients[j];
+    EXPECT_NEAR(k.systematic->coefficients[j], cj, 1e-6 * (std::abs(cj) + 1e-3)) << "c" << j;
+  }
+  EXPECT_NEAR(k.systematic->t_ref_c - c.systematic->t_ref_c, 273.15, 1e-6);
+  EXPECT_NEAR(k.noise.model.N, c.noise.model.N, 1e-6 * c.noise.model.N);
+}
+
 // The reported grid (--taus) changes the Allan table, not the model: the
 // fit always uses the octave grid. Before, a dense grid counted the same data
 // many times over in the fit (and `all` ran for minutes), and a list of three

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -399,6 +400,65 @@ TEST(Report, PsdPlotShadesTheSpectralLine) {
   const model::AnalysisResult none = model::analyze(plain.rate_deg_h, {}, plain.sample_rate_hz);
   ASSERT_TRUE(none.noise.lines.empty());
   EXPECT_EQ(titled(report_plots(none, in)[1], "spectral line"), nullptr);
+}
+
+TEST(Report, ADriftingWhiteLevelGetsItsOwnPlotOverTheRun) {
+  // White noise whose variance rises by 30 % over the hour: the short taus
+  // are called drifting, and a fifth plot shows each tau's blocks against
+  // time as a change from their mean, the called taus in colour; a
+  // stationary record has no such plot.
+  sim::Recording rec = effects_hour(sim::ErrorModel{}, 5);
+  const double n = static_cast<double>(rec.rate_deg_h.size());
+  for (std::size_t i = 0; i < rec.rate_deg_h.size(); ++i) {
+    rec.rate_deg_h[i] *= std::sqrt(1.0 + 0.3 * static_cast<double>(i) / n);
+  }
+  ReportInput in;
+  in.preview = preview_record(rec.rate_deg_h, {}, rec.sample_rate_hz);
+  const model::AnalysisResult r = model::analyze(rec.rate_deg_h, {}, rec.sample_rate_hz);
+  const stats::AllanDrift& d = r.allan_drift;
+  ASSERT_TRUE(d.any());
+  ASSERT_TRUE(d.drifting[0]);
+  const std::vector<Plot> plots = report_plots(r, in);
+  ASSERT_EQ(plots.size(), 4u);  // time, PSD, Allan deviation, drift
+  const Plot& drift = plots[3];
+  EXPECT_EQ(drift.x_label, "time [h]");
+  EXPECT_NE(drift.y_label.find("[%]"), std::string::npos);
+  ASSERT_EQ(drift.series.size(), d.tau_s.size());
+  const Series& first = drift.series[0];
+  EXPECT_EQ(first.title.rfind("tau 0.01 s: z +", 0), 0u) << first.title;
+  EXPECT_EQ(first.style, SeriesStyle::linespoints);
+  ASSERT_EQ(first.x.size(), 32u);
+  EXPECT_NEAR(first.x.front(), 0.5 / 32.0, 1e-3);  // hours: the first block's middle
+  EXPECT_NEAR(first.x.back(), 31.5 / 32.0, 1e-3);
+  // Against the truth: the variance at a block's middle over the mean
+  // variance (1.15), as an Allan deviation's change in %; at one sample a
+  // block's Allan deviation (11,250 samples) scatters by about 0.8 %
+  // (4 sd allowed).
+  for (std::size_t b = 0; b < 32; ++b) {
+    const double truth = 100.0 * (std::sqrt((1.0 + 0.3 * (b + 0.5) / 32.0) / 1.15) - 1.0);
+    EXPECT_NEAR(first.y[b], truth, 3.5) << "block " << b;
+  }
+  // The taus not called, if any, are plain lines with one legend entry.
+  int steady = 0, steady_titles = 0;
+  for (std::size_t i = 0; i < d.tau_s.size(); ++i) {
+    if (d.drifting[i]) continue;
+    EXPECT_EQ(drift.series[i].style, SeriesStyle::lines);
+    ++steady;
+    steady_titles += !drift.series[i].title.empty();
+  }
+  EXPECT_EQ(steady_titles, steady > 0 ? 1 : 0);
+  ReportOptions o;
+  o.plots = false;
+  const Report rep = make_report(r, in, o);
+  ASSERT_EQ(rep.figures.size(), 4u);
+  EXPECT_EQ(rep.figures[3].name, "allan_drift");
+  EXPECT_NE(rep.figures[3].caption.find("32 blocks"), std::string::npos);
+
+  sim::Recording plain = effects_hour(sim::ErrorModel{}, 5);
+  const model::AnalysisResult stationary =
+      model::analyze(plain.rate_deg_h, {}, plain.sample_rate_hz);
+  EXPECT_FALSE(stationary.allan_drift.any());
+  EXPECT_EQ(report_plots(stationary, in).size(), 3u);
 }
 
 // An hour (seed 3) with ten minutes lost after the first quarter hour, its

@@ -4,7 +4,6 @@
 // white level that rises over the record; blocks and gaps.
 #include "foglab/stats/allan_drift.h"
 
-#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,6 +74,17 @@ TEST(AllanDrift, AWhiteLevelThatRisesOverTheRecordIsCalledWithItsSize) {
     // sqrt(3 m / 32768) (1 % at m = 1): four blocks' mean by half that.
     EXPECT_NEAR(d.last_to_first[k], 1.0870, 0.03) << d.tau_s[k];
   }
+  // Block by block (the report's drift plot): at one sample a block's
+  // Allan variance is the white variance at its middle, 1 + 0.1 (b + 1/2)
+  // / 32, within its scatter of about 1 % (4 sd allowed).
+  ASSERT_EQ(d.block_time_s.size(), 32u);
+  ASSERT_EQ(d.block_adev.size(), d.tau_s.size());
+  for (std::size_t b = 0; b < 32; ++b) {
+    EXPECT_DOUBLE_EQ(d.block_time_s[b], static_cast<double>(32768 * b + 16384) * kTau0S);
+    ASSERT_EQ(d.block_adev[0].size(), 32u);
+    const double truth = 1.0 + 0.1 * (static_cast<double>(b) + 0.5) / 32.0;
+    EXPECT_NEAR(d.block_adev[0][b] * d.block_adev[0][b] / truth, 1.0, 0.04) << "block " << b;
+  }
 }
 
 TEST(AllanDrift, AStepOrABurstInOneBlockMovesOneRankOnly) {
@@ -106,6 +116,15 @@ TEST(AllanDriftGaps, BlocksTheGapsEmptyAreLeftOutAndTheCheckStillSeesADrift) {
   EXPECT_EQ(d.blocks_used[7], 30);
   EXPECT_TRUE(d.drifting[0]);
   EXPECT_NEAR(d.last_to_first[0], 1.0870, 0.03);
+  // The blocks left out have no value there; the blocks' times count the
+  // samples the gaps dropped before their middles (655 single samples in
+  // the first two blocks, 50,000 at sample 600,000).
+  EXPECT_TRUE(std::isnan(d.block_adev[6][0]));
+  EXPECT_TRUE(std::isnan(d.block_adev[6][1]));
+  EXPECT_TRUE(std::isfinite(d.block_adev[6][2]));
+  EXPECT_DOUBLE_EQ(d.block_time_s[0], (16384.0 + 163.0) * kTau0S);
+  EXPECT_DOUBLE_EQ(d.block_time_s[2], (2 * 32768 + 16384.0 + 655.0) * kTau0S);
+  EXPECT_DOUBLE_EQ(d.block_time_s[31], (31 * 32768 + 16384.0 + 655.0 + 50000.0) * kTau0S);
   // The same white noise, stationary, with those gaps: no call.
   const std::vector<double> y = test::white(kSamples, 13, 1.0);
   EXPECT_FALSE(allan_drift(y, kTau0S, gaps).any());

@@ -547,10 +547,15 @@ enum class Text {
   an_legend_fit,                  ///< {terms}
   an_legend_minimum,              ///< {BI} {tau}
   an_legend_drift,                ///< {blocks}: the taus allan_drift calls
+  an_plot_drift,                  ///< plot title: {record}
+  an_axis_drift_change,           ///< "change from the blocks' mean [%]"
+  an_legend_drift_tau,            ///< {tau} {z} {last/first}: a tau allan_drift calls
+  an_legend_drift_steady,         ///< {taus}: the taus checked and not called
   an_caption_time,                ///< figure captions
   an_caption_bias,                ///< "Bias (block means of the rate) against temperature, wit..."
   an_caption_psd,                 ///< "Square root of the two-sided PSD of the residual, log-l..."
   an_caption_adev,                ///< "Overlapping Allan deviation of the residual with its 95..."
+  an_caption_drift,               ///< {blocks}
   // ---- the analyses' notes ----
   note_gaps,       ///< the record's gaps and how they were treated
   note_step_item,  ///< one bias step: {size} at {time}
@@ -572,6 +577,7 @@ enum class Text {
   note_quantised_known,
   note_quantised_distorting,
   note_temperature_quantised,  ///< {lsb} {distinct} {changes} {mean hold s}
+  note_temperature_kelvin,     ///< {lowest} {highest}: a temperature channel in kelvin?
   note_minimum_at_edge,        ///< {start or end} {tau}
   /// {lower deviation} {its tau} {the memory's end} {the reading} {its tau}
   note_minimum_inside_filter,

@@ -123,7 +123,7 @@ struct ReportOptions {
 
 /// One figure: its SVG, or why it is missing.
 struct Figure {
-  std::string name;  ///< "time", "bias_temperature", "psd", "adev"
+  std::string name;  ///< "time", "bias_temperature", "psd", "adev", "allan_drift"
   std::string caption;
   std::optional<std::string> svg;  ///< inline <svg> element
   std::string error;               ///< empty when drawn
@@ -131,7 +131,9 @@ struct Figure {
 
 struct Report {
   std::string title;
-  std::vector<Figure> figures;  ///< in the order above (no bias plot without temperature)
+  /// In the order above: no bias plot without a temperature, the drift
+  /// plot only when allan_drift calls a tau.
+  std::vector<Figure> figures;
   bool plots_skipped = false;   ///< gnuplot missing or plots off
   std::string plots_note;       ///< the sentence saying why, when skipped
   std::string html_section;     ///< <section>…</section> for html_document()

@@ -55,6 +55,12 @@ struct AllanDrift {
   /// than a quarter of its terms is left out (at least 16 remain, or the
   /// tau is not checked).
   std::vector<int> blocks_used;
+  /// [s] each block's middle, from the record's first sample (the gaps'
+  /// missing samples counted), for a plot of the values over the run.
+  std::vector<double> block_time_s;
+  /// block_adev[i][b]: the Allan deviation at tau_s[i] inside block b (the
+  /// rate's unit; NaN where the block is left out of that tau's test).
+  std::vector<std::vector<double>> block_adev;
   double z_threshold = 0.0;
   bool any() const;
 };
