@@ -534,6 +534,13 @@ constexpr CatalogueEntry kEntries[] = {
      " (the variance the fit used: {} times the PSD bins', as the Allan deviation's first taus "
      "show it)"},
     {Text::an_lines_tail, " (its Allan variance is part of the fit, not of any noise term)"},
+    {Text::an_drift_unchecked, "not checked (the record holds under 32 blocks of 256 samples)"},
+    {Text::an_drift_steady,
+     "no trend over the run at tau {} to {} s ({} blocks in time order, largest Mann-Kendall "
+     "|z| {}; a call needs {})"},
+    {Text::an_drift_trend,
+     "the Allan variance trends over the run at tau {} s (Mann-Kendall |z| {}, the last eighth "
+     "of the blocks {} times the first): see the notes and the report's figure over the run"},
     {Text::an_class_both, "both criteria agree"},
     {Text::an_class_by_arw, "decided by the angle random walk (the worse of the two)"},
     {Text::an_class_by_bias_instability, "decided by the bias instability (the worse of the two)"},
@@ -611,6 +618,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_vrw, "velocity random walk (60 N)"},
     {Text::an_bandwidth, "sensor bandwidth"},
     {Text::an_lines, "spectral lines"},
+    {Text::an_drift, "short-tau stationarity"},
     {Text::an_steps, "bias steps"},
     {Text::an_steps_levelled, ", levelled before the analysis (the notes list them)"},
     {Text::an_left_in, ", left in"},

@@ -530,21 +530,12 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   // Before the statistics, which consume the record; the temperature law
   // is still in, and adds nothing measurable at these taus.
   r.allan_drift = stats::allan_drift(rate_deg_h, 1.0 / sample_rate_hz, gaps, options.drift);
-  if (const stats::AllanDrift& d = r.allan_drift; d.any()) {
+  if (const stats::AllanDriftCalls c = r.allan_drift.calls(); !c.tau_s.empty()) {
     std::vector<Message> taus;
-    constexpr double kHuge = std::numeric_limits<double>::infinity();
-    double z_low = kHuge, z_high = 0.0, ratio_low = kHuge, ratio_high = 0.0;
-    for (std::size_t i = 0; i < d.tau_s.size(); ++i) {
-      if (!d.drifting[i]) continue;
-      taus.emplace_back(Text::one_of, d.tau_s[i]);
-      z_low = std::min(z_low, std::abs(d.trend_z[i]));
-      z_high = std::max(z_high, std::abs(d.trend_z[i]));
-      ratio_low = std::min(ratio_low, d.last_to_first[i]);
-      ratio_high = std::max(ratio_high, d.last_to_first[i]);
-    }
-    r.notes.emplace_back(Text::note_allan_drift, std::move(taus), d.blocks,
-                         range_message(z_low, z_high), d.z_threshold,
-                         range_message(ratio_low, ratio_high));
+    for (const double tau : c.tau_s) taus.emplace_back(Text::one_of, tau);
+    r.notes.emplace_back(Text::note_allan_drift, std::move(taus), r.allan_drift.blocks,
+                         range_message(c.z_low, c.z_high), r.allan_drift.z_threshold,
+                         range_message(c.ratio_low, c.ratio_high));
   }
   r.sample_rate_hz = sample_rate_hz;
   r.samples = static_cast<std::int64_t>(rate_deg_h.size());

@@ -140,6 +140,24 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
   return text + say(language, Text::an_lines_tail);
 }
 
+// The short taus' stationarity check (stats/allan_drift.h) in one sentence:
+// said when it passes too, so that a reader knows it was made.
+std::string stationarity_sentence(const stats::AllanDrift& d, Language language) {
+  if (d.blocks == 0 || d.tau_s.empty()) return say(language, Text::an_drift_unchecked);
+  const stats::AllanDriftCalls c = d.calls();
+  if (c.tau_s.empty()) {
+    return say(language, Text::an_drift_steady, g(d.tau_s.front()), g(d.tau_s.back()), d.blocks,
+               fmt::format("{:.2f}", c.largest_z), fmt::format("{:.3g}", d.z_threshold));
+  }
+  std::string taus;
+  for (const double tau : c.tau_s) taus += (taus.empty() ? "" : ", ") + g(tau);
+  const auto range = [](double low, double high) {
+    return low == high ? fmt::format("{:.3g}", low) : fmt::format("{:.3g}-{:.3g}", low, high);
+  };
+  return say(language, Text::an_drift_trend, taus, range(c.z_low, c.z_high),
+             range(c.ratio_low, c.ratio_high));
+}
+
 std::string class_name(AccuracyClass c, Language language) {
   switch (c) {
     case AccuracyClass::strategic:
@@ -415,6 +433,7 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
   }
   row(say(l, Text::an_bandwidth), bandwidth_sentence(r.noise, l));
   row(say(l, Text::an_lines), lines_sentence(r.noise, l));
+  row(say(l, Text::an_drift), stationarity_sentence(r.allan_drift, l));
   row(say(l, Text::an_steps),
       r.steps.indices.empty()
           ? say(l, Text::an_none)
@@ -603,6 +622,7 @@ std::string markdown_summary(const model::AnalysisResult& r, const ReportInput& 
   md += "- " + say(l, Text::an_eq17) + ": " + eq17_sentence(r.psd_allan, l) + "\n";
   md += "- " + say(l, Text::an_bandwidth) + ": " + bandwidth_sentence(r.noise, l) + "\n";
   md += "- " + say(l, Text::an_lines) + ": " + lines_sentence(r.noise, l) + "\n";
+  md += "- " + say(l, Text::an_drift) + ": " + stationarity_sentence(r.allan_drift, l) + "\n";
   md += "- " + say(l, Text::an_md_random_bias) + ": " + random_bias_answer(r, l) + "\n";
   if (!r.evidence.summary.empty()) md += "  (" + r.evidence.summary.text(l) + ")\n";
   md += in.sensor == Sensor::gyroscope

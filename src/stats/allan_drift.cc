@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "foglab/core/error.h"
@@ -40,6 +41,22 @@ std::vector<Gap> gaps_within(std::span<const Gap> gaps, std::int64_t begin, std:
 }  // namespace
 
 bool AllanDrift::any() const { return std::ranges::find(drifting, true) != drifting.end(); }
+
+AllanDriftCalls AllanDrift::calls() const {
+  AllanDriftCalls c;
+  c.z_low = c.ratio_low = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < tau_s.size(); ++i) {
+    const double z = std::abs(trend_z[i]);
+    c.largest_z = std::max(c.largest_z, z);
+    if (!drifting[i]) continue;
+    c.tau_s.push_back(tau_s[i]);
+    c.z_low = std::min(c.z_low, z), c.z_high = std::max(c.z_high, z);
+    c.ratio_low = std::min(c.ratio_low, last_to_first[i]);
+    c.ratio_high = std::max(c.ratio_high, last_to_first[i]);
+  }
+  if (c.tau_s.empty()) c.z_low = c.ratio_low = 0.0;
+  return c;
+}
 
 AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<const Gap> gaps,
                        const AllanDriftOptions& options) {

@@ -453,12 +453,29 @@ TEST(Report, ADriftingWhiteLevelGetsItsOwnPlotOverTheRun) {
   ASSERT_EQ(rep.figures.size(), 4u);
   EXPECT_EQ(rep.figures[3].name, "allan_drift");
   EXPECT_NE(rep.figures[3].caption.find("32 blocks"), std::string::npos);
+  // The summary says which taus trend, and says the check passed where it did.
+  EXPECT_NE(rep.markdown.find("short-tau stationarity: the Allan variance trends over the run at "
+                              "tau 0.01"),
+            std::string::npos)
+      << rep.markdown;
 
   sim::Recording plain = effects_hour(sim::ErrorModel{}, 5);
   const model::AnalysisResult stationary =
       model::analyze(plain.rate_deg_h, {}, plain.sample_rate_hz);
   EXPECT_FALSE(stationary.allan_drift.any());
   EXPECT_EQ(report_plots(stationary, in).size(), 3u);
+  EXPECT_NE(
+      make_report(stationary, in, o)
+          .markdown.find("short-tau stationarity: no trend over the run at tau 0.01 to 0.32 s "
+                         "(32 blocks"),
+      std::string::npos);
+  // Under 32 blocks of 256 samples: not checked, and said so.
+  plain.rate_deg_h.resize(8000);
+  const model::AnalysisResult short_record =
+      model::analyze(plain.rate_deg_h, {}, plain.sample_rate_hz);
+  EXPECT_EQ(short_record.allan_drift.blocks, 0);
+  EXPECT_NE(make_report(short_record, in, o).markdown.find("short-tau stationarity: not checked"),
+            std::string::npos);
 }
 
 // An hour (seed 3) with ten minutes lost after the first quarter hour, its

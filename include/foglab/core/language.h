@@ -384,6 +384,9 @@ enum class Text {
   an_line,                       ///< one line: {frequency} {width} {rms} {peak ratio}
   an_lines_scale,                ///< {factor}: follows the lines
   an_lines_tail,                 ///< ends the lines' sentence
+  an_drift_unchecked,            ///< stationarity_sentence(): a record too short for the check
+  an_drift_steady,               ///< {tau from} {tau to} {blocks} {largest |z|} {threshold}
+  an_drift_trend,                ///< {taus} {|z|} {last/first}
   an_class_both,                 ///< class_sentence(): which criterion decided
   an_class_by_arw,               ///< "decided by the angle random walk (the worse of the two)"
   an_class_by_bias_instability,  ///< "decided by the bias instability (the worse of the two)"
@@ -452,6 +455,7 @@ enum class Text {
   an_vrw,                        ///< "velocity random walk (60 N)"
   an_bandwidth,                  ///< "sensor bandwidth"
   an_lines,                      ///< "spectral lines"
+  an_drift,                      ///< "short-tau stationarity"
   an_steps,                      ///< "bias steps"
   an_steps_levelled,             ///< follows their count
   an_left_in,                    ///< follows a count of steps or spikes

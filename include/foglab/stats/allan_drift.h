@@ -43,6 +43,14 @@ struct AllanDriftOptions {
   double z_threshold = 3.8906;
 };
 
+/// The taus a check calls, and the ranges of their |z| and last/first ratio.
+struct AllanDriftCalls {
+  std::vector<double> tau_s;                 ///< [s] the taus called (empty: none)
+  double z_low = 0.0, z_high = 0.0;          ///< |trend_z| over them
+  double ratio_low = 0.0, ratio_high = 0.0;  ///< last_to_first over them
+  double largest_z = 0.0;                    ///< |trend_z| over every tau checked
+};
+
 struct AllanDrift {
   int blocks = 0;               ///< 0: the record is too short for the check
   std::vector<double> tau_s;    ///< [s] the taus checked (octaves from tau0)
@@ -63,6 +71,7 @@ struct AllanDrift {
   std::vector<std::vector<double>> block_adev;
   double z_threshold = 0.0;
   bool any() const;
+  AllanDriftCalls calls() const;
 };
 
 /// The check on `rate` (any unit; sampled every `tau0_s`) with its `gaps`
