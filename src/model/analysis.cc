@@ -8,7 +8,6 @@
 #include <cmath>
 #include <exception>
 #include <future>
-#include <limits>
 #include <thread>
 #include <utility>
 
