@@ -47,6 +47,11 @@ std::string_view text(Language language, Text key) {
 
 Message Message::verbatim(std::string sentence) { return Message(Text::verbatim, std::move(sentence)); }
 
+Message range_message(double low, double high) {
+  if (fmt::format("{:.3g}", low) == fmt::format("{:.3g}", high)) return Message(Text::one_of, low);
+  return Message(Text::range_of, low, high);
+}
+
 std::string Message::text(Language language) const {
   if (empty()) return {};
   fmt::dynamic_format_arg_store<fmt::format_context> args;

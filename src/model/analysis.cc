@@ -389,12 +389,6 @@ Message gap_note(std::size_t samples, std::span<const Gap> gaps, std::span<const
                  stretches.size(), static_cast<double>(longest) / fs);
 }
 
-// "low to high", or the one value when the two print the same.
-Message range_message(double low, double high) {
-  if (fmt::format("{:.3g}", low) == fmt::format("{:.3g}", high)) return Message(Text::one_of, low);
-  return Message(Text::range_of, low, high);
-}
-
 // N rests on the white noise's sample variance, whose relative variance is
 // (2 + g) / n for n samples of excess kurtosis g; the fit's interval counts
 // the Gaussian 2 / n. Under heavy-tailed noise (spikes.h) the rest, g / n,

@@ -143,7 +143,7 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
 // The short taus' stationarity check (stats/allan_drift.h) in one sentence:
 // said when it passes too, so that a reader knows it was made.
 std::string stationarity_sentence(const stats::AllanDrift& d, Language language) {
-  if (d.blocks == 0 || d.tau_s.empty()) return say(language, Text::an_drift_unchecked);
+  if (d.tau_s.empty()) return say(language, Text::an_drift_unchecked);
   const stats::AllanDriftCalls c = d.calls();
   if (c.tau_s.empty()) {
     return say(language, Text::an_drift_steady, g(d.tau_s.front()), g(d.tau_s.back()), d.blocks,
@@ -151,11 +151,8 @@ std::string stationarity_sentence(const stats::AllanDrift& d, Language language)
   }
   std::string taus;
   for (const double tau : c.tau_s) taus += (taus.empty() ? "" : ", ") + g(tau);
-  const auto range = [](double low, double high) {
-    return low == high ? fmt::format("{:.3g}", low) : fmt::format("{:.3g}-{:.3g}", low, high);
-  };
-  return say(language, Text::an_drift_trend, taus, range(c.z_low, c.z_high),
-             range(c.ratio_low, c.ratio_high));
+  return say(language, Text::an_drift_trend, taus, range_message(c.z_low, c.z_high).text(language),
+             range_message(c.ratio_low, c.ratio_high).text(language));
 }
 
 std::string class_name(AccuracyClass c, Language language) {

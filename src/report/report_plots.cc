@@ -512,7 +512,6 @@ Plot drift_plot(const stats::AllanDrift& d, const std::string& title, Language l
     for (const double v : adev) {
       if (std::isfinite(v)) sum += v * v, ++used;
     }
-    if (used == 0) continue;
     const double mean_adev = std::sqrt(sum / used);
     Series s;
     s.x = hours;

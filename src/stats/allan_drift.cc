@@ -72,22 +72,24 @@ AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<co
   if (ms.empty()) return r;
   r.blocks = options.blocks;
 
+  // Block b holds samples [b * block, its end); the last takes the rest.
+  const auto block_end = [&](int b) { return b + 1 == options.blocks ? samples : (b + 1) * block; };
   // Each block's OADEV at the factors ms (allan_deviation(): its gaps'
   // stretches pooled, each factor where its longest stretch allows it);
-  // allan_variance[b][k] and terms[b][k] (0: not there).
+  // deviation[b][k] and terms[b][k] (0: not there).
   AllanOptions allan;
   allan.grid.kind = TauGridKind::octave;
   allan.grid.min_clusters = options.min_clusters;
   allan.confidence = false;
   const double fs = 1.0 / tau0_s;
-  std::vector<std::vector<double>> allan_variance(static_cast<std::size_t>(options.blocks),
-                                                  std::vector<double>(ms.size(), 0.0));
+  std::vector<std::vector<double>> deviation(static_cast<std::size_t>(options.blocks),
+                                             std::vector<double>(ms.size(), 0.0));
   std::vector<std::vector<std::int64_t>> terms(static_cast<std::size_t>(options.blocks),
                                                std::vector<std::int64_t>(ms.size(), 0));
 #pragma omp parallel for schedule(dynamic, 1)
   for (int b = 0; b < options.blocks; ++b) {
     const std::int64_t begin = b * block;
-    const std::int64_t end = b + 1 == options.blocks ? samples : begin + block;
+    const std::int64_t end = block_end(b);
     const std::vector<Gap> inside = gaps_within(gaps, begin, end);
     const std::vector<Stretch> stretches = contiguous_stretches(end - begin, inside);
     if (max_factor(AllanKind::oadev, longest_stretch(stretches) + 1) < 1) continue;
@@ -97,7 +99,7 @@ AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<co
     for (std::size_t i = 0; i < a.m.size(); ++i) {
       const auto k = static_cast<std::size_t>(std::ranges::find(ms, a.m[i]) - ms.begin());
       if (k == ms.size()) continue;
-      allan_variance[b][k] = a.dev[i] * a.dev[i];
+      deviation[b][k] = a.dev[i];
       terms[b][k] = a.n[i];
     }
   }
@@ -109,8 +111,8 @@ AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<co
     std::vector<double> adev(terms.size(), kNaN);
     for (std::size_t b = 0; b < terms.size(); ++b) {
       if (4 * terms[b][k] >= block) {
-        v.push_back(allan_variance[b][k]);
-        adev[b] = std::sqrt(allan_variance[b][k]);
+        v.push_back(deviation[b][k] * deviation[b][k]);
+        adev[b] = deviation[b][k];
       }
     }
     if (v.size() < 16) continue;
@@ -131,7 +133,7 @@ AllanDrift allan_drift(std::span<const double> rate, double tau0_s, std::span<co
   }
   for (int b = 0; b < options.blocks; ++b) {
     const std::int64_t begin = b * block;
-    const std::int64_t end = b + 1 == options.blocks ? samples : begin + block;
+    const std::int64_t end = block_end(b);
     r.block_time_s.push_back(elapsed_s(begin + (end - begin) / 2, gaps, fs));
   }
   return r;

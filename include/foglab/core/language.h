@@ -688,6 +688,10 @@ struct Message {
   }
 };
 
+/// "low to high" (Text::range_of), or the one value (Text::one_of) when the
+/// two print alike at three significant digits.
+Message range_message(double low, double high);
+
 /// The terms' symbols joined by '+': to_string(NoiseTermSet) in English ("N+B+K"), the
 /// manual's symbols in Russian ("ρ+B+q"); "none" (нет) when empty.
 std::string terms_text(NoiseTermSet terms, Language language);
