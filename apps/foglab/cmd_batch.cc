@@ -41,6 +41,7 @@
 #include "foglab/model/analysis.h"
 #include "foglab/model/fleet.h"
 #include "foglab/report/fleet.h"
+#include "foglab/stats/allan_drift.h"
 
 namespace foglab::cli {
 namespace {
@@ -240,6 +241,18 @@ report::FleetRow row_of(const std::string& name, const std::string& file,
   r.random_bias = doc.at("random_bias_process").get<std::string>();
   const nlohmann::json& cls = doc.at("accuracy_class");
   r.accuracy_class = cls.is_string() ? cls.get<std::string>() : "";
+  // The short taus' stationarity check (absent from a unit of an earlier version: not checked).
+  if (const auto d = doc.find("allan_drift"); d != doc.end()) {
+    stats::AllanDrift drift;
+    for (std::size_t k = 0; k < d->at("tau_s").size(); ++k) {
+      drift.tau_s.push_back(number_or_nan(d->at("tau_s")[k]));
+      drift.trend_z.push_back(number_or_nan(d->at("trend_z")[k]));
+      drift.last_to_first.push_back(number_or_nan(d->at("last_to_first_ratio")[k]));
+      drift.drifting.push_back(d->at("drifting")[k].get<bool>());
+    }
+    r.short_tau_trend = drift.calls();
+    r.short_tau_checked = !drift.tau_s.empty();
+  }
   return r;
 }
 
@@ -272,7 +285,9 @@ nlohmann::json fleet_json(const BatchCommand& c, const report::FleetReport& flee
          {"random_bias_process", r.random_bias},
          {"accuracy_class",
           r.accuracy_class.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.accuracy_class)},
-         {"stands_out_on", stands_out[r.unit]}});
+         {"stands_out_on", stands_out[r.unit]},
+         {"short_tau_trend_tau_s", r.short_tau_checked ? nlohmann::json(r.short_tau_trend.tau_s)
+                                                       : nlohmann::json(nullptr)}});
   }
   nlohmann::json parameters = nlohmann::json::array();
   for (const model::ParameterSpread& p : fleet.summary.parameters) {
@@ -305,6 +320,7 @@ nlohmann::json fleet_json(const BatchCommand& c, const report::FleetReport& flee
                              {"bias_instability_deg_h", "deg/h"},
                              {"bias_instability_tau_s", "s"},
                              {"arw_deg_per_sqrt_h", "deg/sqrt(h)"},
+                             {"short_tau_trend_tau_s", "s"},
                              {"spread_log10", "decades (1.4826 MAD of log10 of the values)"},
                              {"spread_factor", "1 (10^spread_log10)"},
                              {"modified_z", "1 (robust sigmas of log10 from the median)"}};

@@ -70,12 +70,21 @@ std::vector<std::pair<std::string, std::size_t>> class_counts(const FleetReport&
 }
 
 std::string summary_sentence(const FleetReport& fleet) {
+  const auto trending = std::count_if(fleet.rows.begin(), fleet.rows.end(), [](const FleetRow& r) {
+    return !r.short_tau_trend.tau_s.empty();
+  });
   return fmt::format(
       "{} unit(s) analysed{}, {} failed; {} stand(s) out of the fleet (modified z-score beyond "
-      "{:g} on log10 of a parameter).",
+      "{:g} on log10 of a parameter); the short-tau noise trends over the run on {} (a "
+      "warm-up, or a sensor whose noise changes: the units' table says at which taus).",
       fleet.rows.size(),
       fleet.reused > 0 ? fmt::format(" ({} kept from an earlier run)", fleet.reused) : "",
-      fleet.failures.size(), outliers_by_unit(fleet).size(), fleet.outlier_z);
+      fleet.failures.size(), outliers_by_unit(fleet).size(), fleet.outlier_z, trending);
+}
+
+/// The check in the units' table (drift_cell) of a row.
+std::string trend_cell(const FleetRow& r) {
+  return drift_cell(r.short_tau_trend, r.short_tau_checked);
 }
 
 }  // namespace
@@ -107,7 +116,7 @@ std::string fleet_csv(const FleetReport& fleet) {
       "B_deg_h,B_ci95_low_deg_h,B_ci95_high_deg_h,B_status,"
       "K_deg_h_sqrt_s,K_ci95_low_deg_h_sqrt_s,K_ci95_high_deg_h_sqrt_s,K_status,"
       "bias_instability_deg_h,bias_instability_tau_s,arw_deg_sqrt_h,random_bias,accuracy_class,"
-      "stands_out_on\n";
+      "stands_out_on,short_tau_trend_tau_s\n";
   const std::map<std::string, std::string> outliers = outliers_by_unit(fleet);
   for (const FleetRow& r : fleet.rows) {
     const auto found = outliers.find(r.unit);
@@ -116,10 +125,14 @@ std::string fleet_csv(const FleetReport& fleet) {
       csv += fmt::format(",{},{},{},{}", csv_number(t->value), csv_number(t->ci95_low),
                          csv_number(t->ci95_high), csv_field(t->status));
     }
-    csv += fmt::format(",{},{},{},{},{},{}\n", csv_number(r.bias_instability_deg_h),
+    // the taus that trend, space-separated; "none", or "not_checked"
+    std::string trend = r.short_tau_checked ? "" : "not_checked";
+    for (const double tau : r.short_tau_trend.tau_s) trend += (trend.empty() ? "" : " ") + g(tau);
+    if (trend.empty()) trend = "none";
+    csv += fmt::format(",{},{},{},{},{},{},{}\n", csv_number(r.bias_instability_deg_h),
                        csv_number(r.bias_instability_tau_s), csv_number(r.arw_deg_sqrt_h),
                        csv_field(r.random_bias), csv_field(r.accuracy_class),
-                       found == outliers.end() ? "" : csv_field(found->second));
+                       found == outliers.end() ? "" : csv_field(found->second), trend);
   }
   return csv;
 }
@@ -164,16 +177,17 @@ std::string fleet_markdown(const FleetReport& fleet) {
   md +=
       "\n## Units\n\n95 % intervals in brackets; '< x': not resolved, its 95 % upper bound.\n\n"
       "| unit | N [deg/h/sqrt(Hz)] | B [deg/h] | K [deg/h/sqrt(s)] | bias instability [deg/h] "
-      "| ARW [deg/sqrt(h)] | random bias | class | stands out on |\n"
-      "|---|---|---|---|---:|---:|---|---|---|\n";
+      "| ARW [deg/sqrt(h)] | random bias | class | stands out on | short-tau trend over the run "
+      "|\n"
+      "|---|---|---|---|---:|---:|---|---|---|---|\n";
   const std::map<std::string, std::string> outliers = outliers_by_unit(fleet);
   for (const FleetRow& r : fleet.rows) {
     const auto found = outliers.find(r.unit);
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.unit, term_text(r.N),
-                      term_text(r.B), term_text(r.K), g(r.bias_instability_deg_h),
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.unit,
+                      term_text(r.N), term_text(r.B), term_text(r.K), g(r.bias_instability_deg_h),
                       g(r.arw_deg_sqrt_h), r.random_bias,
                       r.accuracy_class.empty() ? "-" : r.accuracy_class,
-                      found == outliers.end() ? "" : found->second);
+                      found == outliers.end() ? "" : found->second, trend_cell(r));
   }
   return md;
 }
@@ -309,13 +323,13 @@ std::string fleet_html(const FleetReport& fleet, const ReportOptions& options) {
        "bound.</p>\n<table>\n<tr>" +
        th("unit") + th("N [deg/h/sqrt(Hz)]") + th("B [deg/h]") + th("K [deg/h/sqrt(s)]") +
        th("bias instability [deg/h]") + th("ARW [deg/sqrt(h)]") + th("random bias") + th("class") +
-       th("stands out on") + "</tr>\n";
+       th("stands out on") + th("short-tau trend over the run") + "</tr>\n";
   for (const FleetRow& r : fleet.rows) {
     const auto found = outliers.find(r.unit);
     h += "<tr>" + td(r.unit) + td(term_text(r.N)) + td(term_text(r.B)) + td(term_text(r.K)) +
          td(g(r.bias_instability_deg_h)) + td(g(r.arw_deg_sqrt_h)) + td(r.random_bias) +
          td(r.accuracy_class.empty() ? "-" : r.accuracy_class) +
-         td(found == outliers.end() ? "" : found->second) + "</tr>\n";
+         td(found == outliers.end() ? "" : found->second) + td(trend_cell(r)) + "</tr>\n";
   }
   h += "</table>\n";
   return html_document(std::span<const Report>(), fleet.title, h);

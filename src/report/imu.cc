@@ -226,12 +226,13 @@ std::string imu_markdown(std::span<const ImuAxis> axes, std::string_view title) 
       "{} axes analysed. Gyroscopes in deg/h (N deg/h/sqrt(Hz), ARW deg/sqrt(h), K "
       "deg/h/sqrt(s)), accelerometers in m/s^2 (N m/s^2/sqrt(Hz), VRW m/s/sqrt(h), K "
       "m/s^2/sqrt(s) = m/s^3/sqrt(Hz)); 95 % intervals. The accuracy class (lab manual, Table "
-      "1) applies to gyroscopes only.\n\n",
+      "1) applies to gyroscopes only. The short-tau trend: the taus whose Allan deviation "
+      "trends over the run, block by block (each axis's notes and report say more).\n\n",
       axes.size());
   md +=
       "| axis | sensor | N [95 %] | ARW / VRW | bias instability (ADEV min) | K [95 %] | "
-      "random bias | class |\n";
-  md += "|---|---|---|---|---|---|---|---|\n";
+      "random bias | class | short-tau trend over the run |\n";
+  md += "|---|---|---|---|---|---|---|---|---|\n";
   for (const ImuAxis& a : axes) {
     const model::AnalysisResult& r = *a.result;
     const std::string u = unit_of(a.sensor);
@@ -247,10 +248,12 @@ std::string imu_markdown(std::span<const ImuAxis> axes, std::string_view title) 
              : fmt::format("{} m/s^2 ({} mg) at {} s", g(r.bias_instability_deg_h),
                            g(r.bias_instability_deg_h / kStandardGravity * 1000.0),
                            g(r.bias_instability_tau_s));
-    md += fmt::format("| {} | {} | {} {} {}/sqrt(Hz) | {} | {} | {} {} {}/sqrt(s) | {} | {} |\n",
-                      a.channel, to_string(a.sensor), n.value, n.interval, u, walk, bias, k.value,
-                      k.interval, u, to_string(r.noise.random_bias_process),
-                      gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-");
+    md +=
+        fmt::format("| {} | {} | {} {} {}/sqrt(Hz) | {} | {} | {} {} {}/sqrt(s) | {} | {} | {} |\n",
+                    a.channel, to_string(a.sensor), n.value, n.interval, u, walk, bias, k.value,
+                    k.interval, u, to_string(r.noise.random_bias_process),
+                    gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-",
+                    drift_cell(r.allan_drift.calls(), !r.allan_drift.tau_s.empty()));
   }
 
   md += "\n## For a navigation filter\n\n";
@@ -329,9 +332,11 @@ std::string imu_html(std::span<const ImuAxis> axes, std::span<const Report> axis
   std::string h =
       "<h2>Summary</h2>\n<p>Gyroscopes in deg/h, accelerometers in m/s^2; 95 % "
       "intervals. The accuracy class (lab manual, Table 1) applies to gyroscopes "
-      "only.</p>\n<table>\n<tr>" +
+      "only. The short-tau trend: the taus whose Allan deviation trends over the run, "
+      "block by block (each axis's report says more).</p>\n<table>\n<tr>" +
       th("axis") + th("sensor") + th("N") + th("95 % interval") + th("unit") + th("ARW / VRW") +
-      th("bias instability (ADEV minimum)") + th("K") + th("random bias") + th("class") + "</tr>\n";
+      th("bias instability (ADEV minimum)") + th("K") + th("random bias") + th("class") +
+      th("short-tau trend over the run") + "</tr>\n";
   for (const ImuAxis& a : axes) {
     const model::AnalysisResult& r = *a.result;
     const bool gyro = a.sensor == Sensor::gyroscope;
@@ -347,7 +352,8 @@ std::string imu_html(std::span<const ImuAxis> axes, std::span<const Report> axis
                         g(r.bias_instability_tau_s))) +
          td(fmt::format("{} {} {}/sqrt(s)", k.value, k.interval, u)) +
          td(to_string(r.noise.random_bias_process)) +
-         td(gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-") + "</tr>\n";
+         td(gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-") +
+         td(drift_cell(r.allan_drift.calls(), !r.allan_drift.tau_s.empty())) + "</tr>\n";
   }
   h += "</table>\n";
 

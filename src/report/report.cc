@@ -140,6 +140,13 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
   return text + say(language, Text::an_lines_tail);
 }
 
+// "0.02, 0.04, 0.08": the taus the check called.
+std::string called_taus(const stats::AllanDriftCalls& c) {
+  std::string taus;
+  for (const double tau : c.tau_s) taus += (taus.empty() ? "" : ", ") + g(tau);
+  return taus;
+}
+
 // The short taus' stationarity check (stats/allan_drift.h) in one sentence:
 // said when it passes too, so that a reader knows it was made.
 std::string stationarity_sentence(const stats::AllanDrift& d, Language language) {
@@ -149,10 +156,16 @@ std::string stationarity_sentence(const stats::AllanDrift& d, Language language)
     return say(language, Text::an_drift_steady, g(d.tau_s.front()), g(d.tau_s.back()), d.blocks,
                fmt::format("{:.2f}", c.largest_z), fmt::format("{:.3g}", d.z_threshold));
   }
-  std::string taus;
-  for (const double tau : c.tau_s) taus += (taus.empty() ? "" : ", ") + g(tau);
-  return say(language, Text::an_drift_trend, taus, range_message(c.z_low, c.z_high).text(language),
+  return say(language, Text::an_drift_trend, called_taus(c),
+             range_message(c.z_low, c.z_high).text(language),
              range_message(c.ratio_low, c.ratio_high).text(language));
+}
+
+std::string drift_cell(const stats::AllanDriftCalls& calls, bool checked) {
+  if (!checked) return "not checked";
+  if (calls.tau_s.empty()) return fmt::format("none (z within ±{:.2f})", calls.largest_z);
+  return fmt::format("{} s (last/first {})", called_taus(calls),
+                     range_message(calls.ratio_low, calls.ratio_high).text(Language::en));
 }
 
 std::string class_name(AccuracyClass c, Language language) {

@@ -12,6 +12,7 @@
 
 #include "foglab/model/analysis.h"
 #include "foglab/report/report.h"
+#include "foglab/stats/allan_drift.h"
 
 namespace foglab::report::detail {
 
@@ -62,6 +63,12 @@ Text parameter_unit(std::size_t parameter);
 /// accelerometer's Russian text every °/ч becomes м/с², and the rate's random walk the
 /// acceleration's.
 std::string sensor_text(std::string_view text, Sensor sensor, Language language);
+
+/// The short taus' stationarity check (stats/allan_drift.h) in a table cell
+/// (English: the IMU and fleet tables): "0.02, 0.04 s (last/first 1.06 to
+/// 1.18)", "none (z within ±2.31)" (no pipe: a Markdown cell), or "not
+/// checked" (`checked` false).
+std::string drift_cell(const stats::AllanDriftCalls& calls, bool checked);
 
 /// The report's title, else "file (channel)", else the file name.
 std::string record_title(const ReportInput& input, Language language);

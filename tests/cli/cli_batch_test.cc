@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -241,6 +242,59 @@ TEST(CliBatch, AnImuRecordingGivesAUnitPerGyroscope) {
     // Each axis's white noise, against that axis's truth (the axes differ by up to 15 %).
     const double n_true = truth["axes"][channel]["N"];
     EXPECT_NEAR(u["N"]["value"].get<double>() / n_true, 1.0, 0.05) << channel;
+  }
+}
+
+// A gyro whose white noise is not yet steady (its variance rising 30 % over
+// the record, as in a warm-up) beside two steady ones, 2^16 samples at
+// 10 Hz: the short taus' stationarity check (stats/allan_drift.h) marks it
+// in the fleet (JSON, CSV, the units' table, the summary's count) and in the
+// IMU form's summary table, and leaves the steady ones as "none".
+TEST(CliBatch, AUnitWhoseShortTauNoiseTrendsIsMarkedInTheFleetAndTheImuTable) {
+  const test::TempDir dir;
+  const fs::path file = dir / "imu.csv";
+  {
+    std::mt19937_64 rng(2026);
+    std::normal_distribution<double> white(0.0, 0.1);
+    std::ofstream out(file);
+    out << "gyro_x,gyro_y,gyro_z\n";
+    constexpr int n = 1 << 16;
+    for (int i = 0; i < n; ++i) {
+      const double rising = std::sqrt(1.0 + 0.3 * i / n);
+      out << fmt::format("{:.6g},{:.6g},{:.6g}\n", white(rng), white(rng), white(rng) * rising);
+    }
+  }
+  const fs::path out = dir / "out";
+  const test::CliRun r = test::run_foglab("batch " + quote(file) +
+                                          " --fs 10 --units deg/h --no-plots --out " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json fleet = read_json(out / "fleet.json");
+  ASSERT_EQ(fleet["units"].size(), 3u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_TRUE(fleet["units"][k]["short_tau_trend_tau_s"].empty()) << k;
+  }
+  const auto trend = fleet["units"][2]["short_tau_trend_tau_s"].get<std::vector<double>>();
+  ASSERT_FALSE(trend.empty());
+  EXPECT_DOUBLE_EQ(trend.front(), 0.1);  // the white level's rise shows from the first tau
+  EXPECT_EQ(fleet["units_of"]["short_tau_trend_tau_s"], "s");
+  const std::string csv = test::read_file(out / "fleet.csv");
+  EXPECT_THAT(csv, HasSubstr(",short_tau_trend_tau_s\n"));
+  EXPECT_THAT(csv, HasSubstr(",none\n"));
+  EXPECT_THAT(csv, HasSubstr(",0.1 0.2"));
+  const std::string md = test::read_file(out / "fleet.md");
+  EXPECT_THAT(md, HasSubstr("the short-tau noise trends over the run on 1 "));
+  EXPECT_THAT(md, HasSubstr("| 0.1, 0.2"));
+  EXPECT_THAT(md, HasSubstr("| none (z within ±"));
+
+  const test::CliRun imu = test::run_foglab("analyze " + quote(file) + " --fs 10 --units deg/h");
+  ASSERT_EQ(imu.exit_code, 0) << imu.err;
+  EXPECT_THAT(imu.out, HasSubstr("| short-tau trend over the run |"));
+  for (const char* axis : {"gyro_x", "gyro_y", "gyro_z"}) {
+    const std::size_t row = imu.out.find(std::string("| ") + axis + " |");
+    ASSERT_NE(row, std::string::npos) << axis;
+    const std::string line = imu.out.substr(row, imu.out.find('\n', row) - row);
+    EXPECT_THAT(line, HasSubstr(axis == std::string("gyro_z") ? "| 0.1, 0.2" : "| none (z within"))
+        << line;
   }
 }
 

@@ -16,6 +16,7 @@
 #include "foglab/model/fleet.h"
 #include "foglab/report/plot.h"
 #include "foglab/report/report.h"
+#include "foglab/stats/allan_drift.h"
 
 namespace foglab::report {
 
@@ -42,6 +43,10 @@ struct FleetRow {
   double arw_deg_sqrt_h = 0.0;
   std::string random_bias;     ///< "none", "wiener", "gauss_markov"
   std::string accuracy_class;  ///< Table 1's, empty when none
+  /// The short taus' stationarity check (stats/allan_drift.h): the taus
+  /// whose Allan deviation trends over the run, and whether it was made.
+  stats::AllanDriftCalls short_tau_trend;
+  bool short_tau_checked = false;
 };
 
 /// A record that could not be analysed.
