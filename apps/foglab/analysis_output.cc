@@ -106,6 +106,7 @@ nlohmann::json allan_json(const model::AnalysisResult& r) {
           {"m", a.m},
           {"alpha", a.alpha},
           {"edf", numbers(a.edf)},
+          {"gap_spanning_terms", a.gap_spanning_terms},
           {"model_adev_deg_h", numbers(model_adev(r))},
           {"psd_adev_deg_h", numbers(r.psd_allan.adev_deg_h)},
           {"of", "the residual after the systematic part"}};
@@ -425,6 +426,14 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
   input["temperature_channel"] = in.temperature_channel.empty()
                                      ? nlohmann::json(nullptr)
                                      : nlohmann::json(in.temperature_channel);
+  if (!r.allan.gap_spanning_terms.empty() && input.contains("gaps")) {
+    input["gaps"]["treatment"] = fmt::format(
+        "contiguous stretches: Welch segments spanning a gap are left out, and Allan terms "
+        "too unless each of their two clusters misses at most {:g} % of its samples (each "
+        "cluster's mean over the samples it has; allan.gap_spanning_terms counts them); "
+        "nothing is interpolated",
+        100.0 * options.max_missing_share);
+  }
 
   nlohmann::json noise;
   for (const NoiseParameter& p : kNoiseParameters) {

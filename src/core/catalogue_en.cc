@@ -753,9 +753,15 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::note_gaps,
      "{} gap(s) in the time axis, {} samples ({:.6g} s, {:.3g} % of the span) missing; "
      "the record was analysed as its {} contiguous stretches (longest {:.6g} s): the "
-     "Allan deviation pools the terms inside each stretch and the PSD the Welch "
-     "segments inside each stretch (terms and segments spanning a gap are left out); "
-     "nothing was interpolated"},
+     "Allan deviation pools the terms inside each stretch (and, where a note says so, "
+     "those whose clusters miss a few samples) and the PSD the Welch segments inside "
+     "each stretch (segments spanning a gap are left out); nothing was interpolated"},
+    {Text::note_gap_clusters,
+     "{} of the Allan deviation's taus ({:.6g} to {:.6g} s) also take the terms that span a "
+     "gap where each of their two clusters misses at most {:.3g} % of its samples, each "
+     "cluster's mean over the samples it has (nothing interpolated; their edf is the gap-free "
+     "record's for the share of its terms used): short gaps no longer end the taus at the "
+     "longest stretch"},
     {Text::note_step_item, "{:+.4g} deg/h at {:.6g} s"},
     {Text::note_steps,
      "{} bias step(s): {} (each beyond {:g} robust spreads of the difference of the "

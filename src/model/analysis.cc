@@ -62,6 +62,8 @@ stats::AllanResult reported_part(const stats::AllanResult& all, const stats::Tau
   cut(r.ci68_high);
   cut(r.ci95_low);
   cut(r.ci95_high);
+  cut(r.term_share);
+  cut(r.gap_spanning_terms);
   return r;
 }
 
@@ -79,6 +81,8 @@ stats::AllanOptions fit_allan_options(const AnalysisOptions& options, bool confi
   allan.grid.kind = stats::TauGridKind::octave;
   allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
   allan.confidence = confidence;
+  allan.max_missing_share = options.max_missing_share;
+  allan.unbridged_gaps = options.unbridged_gaps;
   return allan;
 }
 
@@ -96,6 +100,8 @@ stats::AllanResult other_grid_allan(std::span<const double> residual, double fs,
   allan.kind = stats::AllanKind::oadev;
   allan.grid = options.grid;
   allan.confidence = true;
+  allan.max_missing_share = options.max_missing_share;
+  allan.unbridged_gaps = options.unbridged_gaps;
   return stats::allan_deviation(residual, fs, InputKind::rate, allan, gaps);
 }
 
@@ -520,6 +526,10 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   if (const OutputQuantisation& q = r.output_quantisation; q.detected && q.noise_like) {
     with_known.noise_fit.known_white_deg_h_sqrt_hz = q.white_level_deg_h_sqrt_hz;
   }
+  // and for the gaps across which the bias jumps: no Allan term spans them
+  for (const GapJump& j : r.steps.across_gaps) {
+    if (j.significant) with_known.unbridged_gaps.push_back(j.before_sample);
+  }
   // Before the statistics, which consume the record; the temperature law
   // is still in, and adds nothing measurable at these taus.
   r.allan_drift = stats::allan_drift(rate_deg_h, 1.0 / sample_rate_hz, gaps, options.drift);
@@ -589,6 +599,16 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.psd_smoothed = std::move(s.smoothed);
   r.allan = std::move(s.allan);
   r.noise = std::move(s.noise);
+  // The taus where clusters missing a few samples entered (stats/allan.h).
+  if (const auto& spanning = r.allan.gap_spanning_terms;
+      std::ranges::any_of(spanning, [](std::int64_t t) { return t > 0; })) {
+    const auto first = static_cast<std::size_t>(
+        std::ranges::find_if(spanning, [](std::int64_t t) { return t > 0; }) - spanning.begin());
+    r.notes.emplace_back(Text::note_gap_clusters,
+                         std::ranges::count_if(spanning, [](std::int64_t t) { return t > 0; }),
+                         r.allan.tau_s[first], r.allan.tau_s.back(),
+                         100.0 * options.max_missing_share);
+  }
 
   r.adev_readings = read_adev(r.allan.tau_s, r.allan.dev, r.noise.filter_memory_end_tau_s);
   r.psd_readings = read_psd(r.psd_smoothed.frequency_hz, r.psd_smoothed.psd);

@@ -303,6 +303,7 @@ void drop_first_point(detail::Points& p) {
     if (!v.empty()) v.erase(v.begin());
   };
   drop(p.tau), drop(p.y), drop(p.v), drop(p.index), drop(p.edf_by_alpha), drop(p.factors);
+  drop(p.term_share);
   drop(p.fixed_avar), drop(p.line_avar), drop(p.white_shape), drop(p.flicker_shape);
 }
 
@@ -450,13 +451,13 @@ int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSear
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
-                        const NoiseFitOptions& options, const DetrendFactors* detrend,
-                        std::span<const SpectralLine> lines) {
+                        std::span<const double> term_share, const NoiseFitOptions& options,
+                        const DetrendFactors* detrend, std::span<const SpectralLine> lines) {
   // 1. The points, the known Allan variance (output rounding, spectral
   // lines, their variance as the short taus show it) and the sensor
   // bandwidth they show.
-  detail::Points p =
-      detail::gather_points(tau_s, adev_deg_h, edf, factors, segment_points, options, detrend);
+  detail::Points p = detail::gather_points(tau_s, adev_deg_h, edf, factors, segment_points,
+                                           term_share, options, detrend);
   const double known_white = options.known_white_deg_h_sqrt_hz;
   add_known_allan_variance(p, known_white, lines);
   detail::BandwidthSearch bandwidth = find_bandwidth_and_line_scale(p, options);
@@ -629,7 +630,7 @@ double DetrendFactors::factor(NoiseTerm term, std::size_t index, double tc_s) co
 NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                                std::span<const double> edf, const NoiseFitOptions& options,
                                const DetrendFactors* detrend) {
-  return fit_impl(tau_s, adev_deg_h, edf, {}, {}, options, detrend, {});
+  return fit_impl(tau_s, adev_deg_h, edf, {}, {}, {}, options, detrend, {});
 }
 
 NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOptions& options,
@@ -647,10 +648,12 @@ NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOp
   edf.resize(allan.dev.size(), kNaN);
   for (std::size_t i = 0; i < edf.size(); ++i) {
     if (!std::isfinite(edf[i])) {
-      edf[i] = stats::pooled_edf(0, allan.m[i], segments);
+      edf[i] = stats::pooled_edf(0, allan.m[i], segments) *
+               (allan.term_share.empty() ? 1.0 : allan.term_share[i]);
     }
   }
-  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, segments, options, detrend, lines);
+  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, segments, allan.term_share, options,
+                  detrend, lines);
 }
 
 }  // namespace foglab::model

@@ -59,6 +59,10 @@ struct Points {
   /// when unknown: no correlation across tau can be modelled).
   std::vector<std::int64_t> factors;
   std::vector<std::int64_t> segment_points;
+  /// Each point's terms over those of a gap-free record of segment_points
+  /// (stats::AllanResult::term_share: clusters that miss a few samples);
+  /// empty: every term (the edf and covariance of segment_points hold).
+  std::vector<double> term_share;
   /// How every fit on these points iterates.
   IterationControl control;
   /// The known Allan variance at each point (the spectral lines'), added
@@ -125,11 +129,13 @@ enum class NonPositive {
 
 /// The usable points (edf >= options.min_edf) of the caller's Allan
 /// deviations; `factors` and `segment_points`, when known, give each point's
-/// edf for the candidate models' noise types. Throws UsageError for
-/// mismatched sizes, non-positive values or fewer than 3 usable points.
+/// edf for the candidate models' noise types, scaled by `term_share` (one
+/// per caller's point, or empty). Throws UsageError for mismatched sizes,
+/// non-positive values or fewer than 3 usable points.
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
-                     std::span<const std::int64_t> segment_points, const NoiseFitOptions& options,
+                     std::span<const std::int64_t> segment_points,
+                     std::span<const double> term_share, const NoiseFitOptions& options,
                      const DetrendFactors* detrend);
 
 // --- 1b. the sensor bandwidth (noise_fit_bandwidth.cc) ----------------------

@@ -212,6 +212,13 @@ Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
   Eigen::MatrixXd c = pooled_allan_variance_covariance(model, tau0, p.factors, p.segment_points);
   const auto n = c.rows();
   Eigen::VectorXd scale(n);
+  // A point with a share s of the gap-free record's terms: its variance
+  // 1/s times theirs, its covariances 1/sqrt(s s').
+  if (!p.term_share.empty()) {
+    for (Eigen::Index i = 0; i < n; ++i)
+      scale(i) = 1.0 / std::sqrt(p.term_share[static_cast<std::size_t>(i)]);
+    c = scale.asDiagonal() * c * scale.asDiagonal();
+  }
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double undetrended = allan_variance(model, p.tau[k]);

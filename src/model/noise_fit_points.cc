@@ -11,7 +11,8 @@ namespace foglab::model::detail {
 
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
-                     std::span<const std::int64_t> segment_points, const NoiseFitOptions& options,
+                     std::span<const std::int64_t> segment_points,
+                     std::span<const double> term_share, const NoiseFitOptions& options,
                      const DetrendFactors* detrend) {
   if (options.max_iterations < 1) {
     throw UsageError(fmt::format("NoiseFitOptions::max_iterations must be >= 1, got {}",
@@ -24,6 +25,10 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
   if (detrend && detrend->tau_s.size() != tau_s.size()) {
     throw UsageError(fmt::format("noise-model fit: {} detrending factors for {} tau points",
                                  detrend->tau_s.size(), tau_s.size()));
+  }
+  if (!term_share.empty() && term_share.size() != tau_s.size()) {
+    throw UsageError(fmt::format("noise-model fit: {} term shares for {} tau points",
+                                 term_share.size(), tau_s.size()));
   }
   if (tau_s.size() != adev_deg_h.size() || tau_s.size() != edf.size()) {
     throw UsageError(
@@ -44,13 +49,16 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
     p.v.push_back(edf[i]);
     p.index.push_back(i);
     if (!factors.empty()) {
+      const double share = term_share.empty() ? 1.0 : term_share[i];
       std::array<double, 4> e{};
       const int alphas[] = {-2, -1, 0, 2};
       for (int a = 0; a < 4; ++a) {
-        e[static_cast<std::size_t>(a)] = stats::pooled_edf(alphas[a], factors[i], segment_points);
+        e[static_cast<std::size_t>(a)] =
+            share * stats::pooled_edf(alphas[a], factors[i], segment_points);
       }
       p.edf_by_alpha.push_back(e);
       p.factors.push_back(factors[i]);
+      if (!term_share.empty()) p.term_share.push_back(share);
     }
   }
   p.detrend = detrend;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include "../core/simd_clones.h"
 #include "foglab/core/error.h"
@@ -511,13 +512,13 @@ std::vector<std::int64_t> theo1_factors(const TauGrid& grid, std::int64_t phase_
   return factors;
 }
 
-// The stretches' pooled deviations: sum / count over the terms of every
-// stretch long enough for a factor (allan.h, "Gaps"); `factors` ascend.
-std::vector<double> pooled_deviations(std::span<const double> phase,
-                                      std::span<const Stretch> stretches, AllanKind kind,
-                                      std::span<const std::int64_t> factors,
-                                      std::vector<std::int64_t>& terms) {
-  std::vector<double> weighted(factors.size(), 0.0);
+// The stretches' pooled sums: each factor's variance times its terms,
+// summed over every stretch long enough for it, and the terms (allan.h,
+// "Gaps"); `factors` ascend.
+void pooled_sums(std::span<const double> phase, std::span<const Stretch> stretches, AllanKind kind,
+                 std::span<const std::int64_t> factors, std::vector<double>& weighted,
+                 std::vector<std::int64_t>& terms) {
+  weighted.assign(factors.size(), 0.0);
   terms.assign(factors.size(), 0);
   for (const Stretch& s : stretches) {
     const std::int64_t limit = max_factor(kind, s.size());
@@ -533,6 +534,16 @@ std::vector<double> pooled_deviations(std::span<const double> phase,
       terms[k] += counts[k];
     }
   }
+}
+
+// The stretches' pooled deviations: sum / count over the terms of every
+// stretch long enough for a factor.
+std::vector<double> pooled_deviations(std::span<const double> phase,
+                                      std::span<const Stretch> stretches, AllanKind kind,
+                                      std::span<const std::int64_t> factors,
+                                      std::vector<std::int64_t>& terms) {
+  std::vector<double> weighted;
+  pooled_sums(phase, stretches, kind, factors, weighted, terms);
   std::vector<double> dev(factors.size());
   for (std::size_t k = 0; k < factors.size(); ++k) {
     dev[k] = std::sqrt(weighted[k] / static_cast<double>(terms[k]));
@@ -540,12 +551,143 @@ std::vector<double> pooled_deviations(std::span<const double> phase,
   return dev;
 }
 
+// Where a rate record's samples sit on its whole time axis, the missing
+// ones counted: per stretch of the samples present, its first sample's place
+// on the axis and among those present, and its length; each gap's places.
+struct TimeAxis {
+  std::vector<std::int64_t> full_begin, present_begin, length;
+  std::vector<std::pair<std::int64_t, std::int64_t>> gaps;       // [start, end) on the axis
+  std::vector<std::pair<std::int64_t, std::int64_t>> unbridged;  // those no term may span
+  std::vector<bool> bridged;                                     // per gap: a term may span it
+  std::int64_t samples = 0;                                      // present and missing
+};
+
+// The time axis of a rate record of `samples` samples with `gaps`, of
+// which those whose before_sample is in `unbridged` no term may span.
+TimeAxis time_axis(std::int64_t samples, std::span<const Gap> gaps,
+                   std::span<const std::int64_t> unbridged) {
+  TimeAxis a;
+  std::int64_t missing = 0, begin = 0;
+  auto stretch_to = [&](std::int64_t end) {
+    a.full_begin.push_back(begin + missing);
+    a.present_begin.push_back(begin);
+    a.length.push_back(end - begin);
+  };
+  for (const Gap& g : gaps) {
+    stretch_to(g.before_sample);
+    a.gaps.emplace_back(g.before_sample + missing, g.before_sample + missing + g.missing_samples);
+    a.bridged.push_back(std::ranges::find(unbridged, g.before_sample) == unbridged.end());
+    if (!a.bridged.back()) a.unbridged.push_back(a.gaps.back());
+    missing += g.missing_samples;
+    begin = g.before_sample;
+  }
+  stretch_to(samples);
+  a.samples = samples + missing;
+  return a;
+}
+
+// The number of samples present before place x of the time axis; x may
+// only grow from one call to the next.
+class PresentBefore {
+ public:
+  explicit PresentBefore(const TimeAxis& axis) : axis_(axis) {}
+  std::int64_t operator()(std::int64_t x) {
+    while (s_ + 1 < axis_.full_begin.size() && axis_.full_begin[s_ + 1] <= x) ++s_;
+    return axis_.present_begin[s_] +
+           std::clamp<std::int64_t>(x - axis_.full_begin[s_], 0, axis_.length[s_]);
+  }
+
+ private:
+  const TimeAxis& axis_;
+  std::size_t s_ = 0;
+};
+
+// The overlapping Allan terms at factor m that span a gap and whose two
+// clusters each miss at most `allowed` samples, each cluster's mean taken
+// over the samples it has: the sum of their halved squares, and their
+// count. `phase` is the rate's angle record (tau0 = 1 units).
+std::pair<double, std::int64_t> gap_spanning_sums(std::span<const double> phase,
+                                                  const TimeAxis& axis, std::int64_t m,
+                                                  std::int64_t allowed) {
+  const double* x = phase.data();
+  double sum = 0.0;
+  std::int64_t terms = 0;
+  PresentBefore at_a(axis), at_b(axis), at_c(axis);
+  const std::int64_t last = axis.samples - 2 * m;  // the last term's first place
+  std::int64_t next = 0;                           // the first place not yet visited
+  std::size_t hard = 0;  // the first gap no term may span that ends after place i
+  for (const auto& [start, end] : axis.gaps) {
+    // the terms whose span [i, i + 2m) holds a place of [start, end)
+    const std::int64_t from = std::max({next, start - 2 * m + 1, std::int64_t{0}});
+    const std::int64_t to = std::min(end - 1, last);
+    for (std::int64_t i = from; i <= to; ++i) {
+      while (hard < axis.unbridged.size() && axis.unbridged[hard].second <= i) ++hard;
+      if (hard < axis.unbridged.size() && axis.unbridged[hard].first < i + 2 * m) continue;
+      const std::int64_t a = at_a(i), b = at_b(i + m), c = at_c(i + 2 * m);
+      const std::int64_t first = b - a, second = c - b;
+      if (m - first > allowed || m - second > allowed) continue;
+      const double d =
+          (x[c] - x[b]) / static_cast<double>(second) - (x[b] - x[a]) / static_cast<double>(first);
+      sum += 0.5 * d * d;
+      ++terms;
+    }
+    next = std::max(next, to + 1);
+  }
+  return {sum, terms};
+}
+
+// The angle points of the record's parts that the bridged gaps join: the
+// stretches, merged across each gap a term may span (its places counted).
+// [first place, end) of each on the time axis in `places`.
+std::vector<std::int64_t> bridged_parts(
+    const TimeAxis& a, std::vector<std::pair<std::int64_t, std::int64_t>>* places) {
+  std::vector<std::int64_t> points;
+  std::int64_t begin = a.full_begin.front();
+  auto close = [&](std::size_t s) {
+    const std::int64_t end = a.full_begin[s] + a.length[s];
+    points.push_back(end - begin + 1);
+    if (places) places->emplace_back(begin, end);
+  };
+  for (std::size_t s = 0; s + 1 < a.full_begin.size(); ++s) {
+    if (a.bridged[s]) continue;
+    close(s);
+    begin = a.full_begin[s + 1];
+  }
+  close(a.full_begin.size() - 1);
+  return points;
+}
+
+// The rate's angle record on the whole time axis with each missing sample
+// at the record's mean (a zero step): for identifying the noise where no
+// stretch is long enough, never for the statistic itself.
+std::vector<double> phase_with_mean_filled(std::span<const double> phase, const TimeAxis& axis) {
+  std::vector<double> filled(static_cast<std::size_t>(axis.samples) + 1);
+  std::size_t k = 0;
+  filled[0] = phase[0];
+  for (std::size_t s = 0; s < axis.full_begin.size(); ++s) {
+    if (s > 0) {  // the gap before stretch s
+      const std::int64_t missing = axis.gaps[s - 1].second - axis.gaps[s - 1].first;
+      for (std::int64_t j = 0; j < missing; ++j, ++k) filled[k + 1] = filled[k];
+    }
+    for (std::int64_t j = 0; j < axis.length[s]; ++j, ++k) {
+      const auto p = static_cast<std::size_t>(axis.present_begin[s] + j);
+      filled[k + 1] = filled[k] + (phase[p + 1] - phase[p]);
+    }
+  }
+  return filled;
+}
+
 // The statistic on an angle record made by to_phase(), whose contiguous
 // stretches are `stretches` (angle points); `record_samples` is the length
-// of the original record, for messages.
+// of the original record, for messages; `gaps` its gaps (for
+// AllanOptions::max_missing_share).
 AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stretch> stretches,
                              std::size_t record_samples, double sample_rate_hz, InputKind input,
-                             const AllanOptions& options) {
+                             const AllanOptions& options, std::span<const Gap> gaps) {
+  if (!(options.max_missing_share >= 0.0 && options.max_missing_share <= 0.1)) {
+    throw UsageError(fmt::format("AllanOptions::max_missing_share must lie in [0, 0.1], got {}",
+                                 options.max_missing_share));
+  }
   const auto n = static_cast<std::int64_t>(phase.size());
   const Stretch longest =
       *std::max_element(stretches.begin(), stretches.end(),
@@ -567,9 +709,35 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   result.sample_rate_hz = sample_rate_hz;
   result.phase_points = n;
   for (const Stretch& s : stretches) result.segment_points.push_back(s.size());
+  const std::vector<std::int64_t> stretch_points = result.segment_points;
+  // Clusters that may miss a few samples: the gaps a term at the whole time
+  // axis's longest tau could span (each cluster missing at most its share)
+  // are bridged, the rest, and those asked for, split the record as before.
+  // With none bridged, nothing changes; else the grid runs over the axis.
+  TimeAxis axis;
+  std::vector<std::int64_t> axis_factors;
+  if (options.max_missing_share > 0.0 && !gaps.empty() && input == InputKind::rate &&
+      options.kind == AllanKind::oadev) {
+    const std::int64_t axis_points =
+        static_cast<std::int64_t>(record_samples) + missing_samples(gaps) + 1;
+    axis_factors = averaging_factors(options.grid, axis_points, sample_rate_hz,
+                                     max_factor(options.kind, axis_points));
+    const std::int64_t widest =
+        axis_factors.empty()
+            ? 0
+            : 2 * static_cast<std::int64_t>(std::floor(options.max_missing_share *
+                                                       static_cast<double>(axis_factors.back())));
+    std::vector<std::int64_t> unbridged = options.unbridged_gaps;
+    for (const Gap& g : gaps) {
+      if (g.missing_samples > widest) unbridged.push_back(g.before_sample);
+    }
+    axis = time_axis(static_cast<std::int64_t>(record_samples), gaps, unbridged);
+  }
+  const bool bridging = std::ranges::find(axis.bridged, true) != axis.bridged.end();
   result.m = options.kind == AllanKind::theo1
                  ? theo1_factors(options.grid, n, sample_rate_hz, limit)
-                 : averaging_factors(options.grid, n, sample_rate_hz, limit);
+             : bridging ? axis_factors
+                        : averaging_factors(options.grid, n, sample_rate_hz, limit);
   if (result.m.empty() && options.kind == AllanKind::theo1) {
     throw DataError(fmt::format(
         "{} {} samples are too few for theo1 with at least {} clusters per tau: its averaging "
@@ -584,9 +752,61 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
         record_samples, to_string(input), to_string(options.kind), options.grid.min_clusters,
         options.grid.min_clusters + (input == InputKind::rate ? 0 : 1)));
   }
-  result.dev = stretches.size() == 1
-                   ? detail::deviations_from_phase(phase, options.kind, result.m, &result.n)
-                   : pooled_deviations(phase, stretches, options.kind, result.m, result.n);
+  if (bridging) {
+    std::vector<double> weighted;
+    pooled_sums(phase, stretches, options.kind, result.m, weighted, result.n);
+    result.gap_spanning_terms.assign(result.m.size(), 0);
+    for (std::size_t k = 0; k < result.m.size(); ++k) {
+      const std::int64_t m = result.m[k];
+      const auto allowed =
+          static_cast<std::int64_t>(std::floor(options.max_missing_share * static_cast<double>(m)));
+      if (allowed < 1) continue;
+      const auto [sum, terms] = gap_spanning_sums(phase, axis, m, allowed);
+      weighted[k] += sum;
+      result.n[k] += terms;
+      result.gap_spanning_terms[k] = terms;
+    }
+    // A tau stays while its terms fill (min_clusters - 2) m, as a gap-free
+    // record's do at the grid's end; a listed tau needs one term.
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < result.m.size(); ++k) {
+      const std::int64_t m = result.m[k];
+      const bool enough =
+          options.grid.kind == TauGridKind::list
+              ? result.n[k] > 0
+              : result.n[k] >= std::max<std::int64_t>(1, options.grid.min_clusters - 2) * m;
+      if (!enough && options.grid.kind == TauGridKind::list) {
+        throw DataError(fmt::format(
+            "tau {} s: no Allan term of two clusters each missing at most {} % of their samples "
+            "in this record with gaps",
+            static_cast<double>(m) / sample_rate_hz, 100.0 * options.max_missing_share));
+      }
+      if (!enough) continue;
+      result.m[kept] = m, result.n[kept] = result.n[k], weighted[kept] = weighted[k];
+      result.gap_spanning_terms[kept] = result.gap_spanning_terms[k];
+      ++kept;
+    }
+    result.m.resize(kept), result.n.resize(kept), weighted.resize(kept);
+    result.gap_spanning_terms.resize(kept);
+    result.dev.resize(kept);
+    result.term_share.resize(kept);
+    // The record's parts as the bridged gaps join them; each tau's terms
+    // over theirs.
+    result.segment_points = bridged_parts(axis, nullptr);
+    for (std::size_t k = 0; k < kept; ++k) {
+      result.dev[k] = std::sqrt(weighted[k] / static_cast<double>(result.n[k]));
+      std::int64_t model_terms = 0;
+      for (const std::int64_t points : result.segment_points) {
+        model_terms += std::max<std::int64_t>(0, points - 2 * result.m[k]);
+      }
+      result.term_share[k] = static_cast<double>(result.n[k]) /
+                             static_cast<double>(std::max<std::int64_t>(1, model_terms));
+    }
+  } else {
+    result.dev = stretches.size() == 1
+                     ? detail::deviations_from_phase(phase, options.kind, result.m, &result.n)
+                     : pooled_deviations(phase, stretches, options.kind, result.m, result.n);
+  }
   const std::size_t count = result.m.size();
   const double tau0_s = 1.0 / sample_rate_hz;
   result.tau_s.resize(count);
@@ -615,10 +835,30 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   if (options.kind == AllanKind::theo1) {
     for (std::int64_t& m : id_factors) m = std::max<std::int64_t>(1, (3 * m + 2) / 4);
   }
-  const std::vector<NoiseId> ids =
-      identify_noise(phase.subspan(static_cast<std::size_t>(longest.begin),
-                                   static_cast<std::size_t>(longest.size())),
-                     id_factors, hadamard ? 3 : 2);
+  std::vector<NoiseId> ids = identify_noise(phase.subspan(static_cast<std::size_t>(longest.begin),
+                                                          static_cast<std::size_t>(longest.size())),
+                                            id_factors, hadamard ? 3 : 2);
+  if (bridging) {  // beyond the longest stretch: the longest part the bridged gaps join,
+                   // its missing samples at the record's mean
+    std::vector<std::int64_t> beyond;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (ids[k].method == NoiseIdMethod::none) beyond.push_back(id_factors[k]);
+    }
+    if (!beyond.empty()) {
+      const std::vector<double> filled = phase_with_mean_filled(phase, axis);
+      std::vector<std::pair<std::int64_t, std::int64_t>> places;
+      bridged_parts(axis, &places);
+      const auto [first, end] =
+          *std::ranges::max_element(places, {}, [](const auto& p) { return p.second - p.first; });
+      const std::vector<NoiseId> more = identify_noise(
+          std::span<const double>(filled).subspan(static_cast<std::size_t>(first),
+                                                  static_cast<std::size_t>(end - first + 1)),
+          beyond, hadamard ? 3 : 2);
+      for (std::size_t k = 0, j = 0; k < count; ++k) {
+        if (ids[k].method == NoiseIdMethod::none) ids[k] = more[j++];
+      }
+    }
+  }
   // Phase-noise types (alpha > 0, ADEV ~ 1/tau) fall faster than every other
   // term, so once a frequency-noise type dominates at some tau, phase noise
   // cannot dominate at a longer one. With few decimated points the lag-1
@@ -646,7 +886,11 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
     result.alpha_method[k] = how;
     if (htot_bias) result.dev[k] /= std::sqrt(htotdev_bias(id.alpha, m));
     if (!options.confidence) continue;
-    const double edf = statistic_edf(options.kind, id.alpha, m, result.segment_points);
+    // where terms spanning gaps entered, the gap-free record's edf for the share of its terms
+    const double edf =
+        bridging && result.gap_spanning_terms[k] > 0
+            ? statistic_edf(options.kind, id.alpha, m, result.segment_points) * result.term_share[k]
+            : statistic_edf(options.kind, id.alpha, m, stretch_points);
     result.edf[k] = edf;
     const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);
     const Interval ci95 = chi2_interval(result.dev[k], edf, kConfidence95);
@@ -683,7 +927,7 @@ AllanResult allan_deviation(std::span<const double> samples, double sample_rate_
   detail::to_phase_into(samples, sample_rate_hz, input, phase.get());
   return allan_from_phase(std::span<const double>(phase.get(), points),
                           angle_stretches(samples.size(), input, gaps), samples.size(),
-                          sample_rate_hz, input, options);
+                          sample_rate_hz, input, options, gaps);
 }
 
 AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample_rate_hz,
@@ -693,7 +937,7 @@ AllanResult allan_deviation_in_place(std::vector<double>& samples, double sample
   check_gaps(gaps, static_cast<std::int64_t>(record_samples), "allan_deviation");
   detail::to_phase_in_place(samples, sample_rate_hz, input);
   return allan_from_phase(samples, angle_stretches(record_samples, input, gaps), record_samples,
-                          sample_rate_hz, input, options);
+                          sample_rate_hz, input, options, gaps);
 }
 
 }  // namespace foglab::stats

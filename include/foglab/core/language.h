@@ -561,7 +561,9 @@ enum class Text {
   an_caption_adev,                ///< "Overlapping Allan deviation of the residual with its 95..."
   an_caption_drift,               ///< {blocks}
   // ---- the analyses' notes ----
-  note_gaps,       ///< the record's gaps and how they were treated
+  note_gaps,  ///< the record's gaps and how they were treated
+  /// {taus} {from s} {to s} {share %}: Allan clusters that miss a few samples
+  note_gap_clusters,
   note_step_item,  ///< one bias step: {size} at {time}
   note_steps,      ///< {count} {list} {threshold} {levelled or kept}
   note_steps_levelled,

@@ -45,6 +45,14 @@ struct AnalysisOptions {
   /// The noise fit also uses the longer taus down to this many clusters
   /// (the reported Allan deviation keeps grid.min_clusters).
   std::int64_t fit_min_clusters = 3;
+  /// A record with gaps: the share of an Allan cluster's samples that may be
+  /// missing, the cluster's mean taken over those present (stats/allan.h,
+  /// "Clusters that miss a few samples"); 0: Stable32's pooled stretches.
+  double max_missing_share = 0.01;
+  /// Gaps (by Gap::before_sample) that no Allan term may span all the same;
+  /// analyze() adds those across which the bias jumps (steps.across_gaps:
+  /// levelled nowhere, a spanning term would count the jump as noise).
+  std::vector<std::int64_t> unbridged_gaps;
   /// Block means used for the detrending factors (systematic.h).
   int detrend_blocks = 512;
   SpikeOptions spikes;  ///< isolated outliers, found and replaced first (spikes.h)

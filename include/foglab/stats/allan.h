@@ -67,6 +67,25 @@
 // type comes from the longest stretch, and the edf is the sum of the
 // stretches' edf (their terms are independent for white and random-walk
 // noise, nearly so for the others).
+//
+// Clusters that miss a few samples (AllanOptions::max_missing_share, OADEV
+// of a rate record): a record that loses a sample here and there (a ROS
+// bag, a serial link) has no long stretch, and pooling alone ends its taus
+// where its longest stretch does. With a share s > 0 a term spanning gaps
+// is kept when each of its two clusters misses at most s m of its m
+// samples, each cluster's mean taken over the samples it has (nothing is
+// interpolated). Only gaps that a term at the whole time axis's longest
+// tau could span (2 s m samples) are bridged; longer ones, and those in
+// AllanOptions::unbridged_gaps, still split the record, and with none
+// bridged nothing changes. Otherwise the grid runs over the whole time
+// axis, a tau is kept while its terms fill (min_clusters - 2) m,
+// `segment_points` holds the parts the bridged gaps join (their places
+// counted), `term_share` each tau's terms over theirs, and where terms
+// spanning a gap enter, the edf is the parts' times that share and the
+// noise type the longest stretch's, or where that is too short, that of
+// the longest part with its missing samples at the mean (for the
+// identification only). At m < 1/s no sample may be missing: the terms
+// are the pooled ones.
 #pragma once
 
 #include <cstdint>
@@ -134,6 +153,14 @@ struct AllanOptions {
   /// noise is identified for this even without `confidence`.
   bool bias_correction = true;
   NoiseRules noise_rules = NoiseRules::foglab;
+  /// OADEV of a rate record with gaps: the share of a cluster's samples that
+  /// may be missing (see "Clusters that miss a few samples" above; 0, the
+  /// default: terms wholly inside one stretch only). In [0, 0.1].
+  double max_missing_share = 0.0;
+  /// With max_missing_share: the gaps (by Gap::before_sample) that no term
+  /// may span all the same, as if the share were 0 there (a bias jump
+  /// across them, which a spanning term would count as noise).
+  std::vector<std::int64_t> unbridged_gaps;
 };
 
 /// One statistic over a tau grid. All vectors have one entry per tau.
@@ -152,6 +179,13 @@ struct AllanResult {
   /// [deg/h] (TDEV, TTOTDEV: [deg/h * s], the analogue of a time deviation)
   std::vector<double> dev;
   std::vector<std::int64_t> n;       ///< number of terms in each estimate
+  /// With gaps bridged (AllanOptions::max_missing_share): n over the terms
+  /// the parts of segment_points hold (the stretches, merged across the
+  /// bridged gaps); empty otherwise.
+  std::vector<double> term_share;
+  /// With gaps bridged: the terms of n that span a gap (clusters missing a
+  /// few samples); empty otherwise.
+  std::vector<std::int64_t> gap_spanning_terms;
   std::vector<int> alpha;            ///< identified noise exponent, S_y ~ f^alpha
   std::vector<AlphaMethod> alpha_method;  ///< how each alpha was identified (noise_id.h)
   std::vector<double> edf;           ///< equivalent degrees of freedom
