@@ -28,16 +28,14 @@ the times within a tolerance), and N, B and the class against the clean
 record's. The derived files go to a temporary folder and are removed (the
 data's licence: never into the repository).
 """
-import argparse
 import concurrent.futures as cf
 import json
 import math
 import os
 import subprocess
-import sys
 import tempfile
 
-from real_variants import AXES, read_channels
+from real_variants import AXES, read_channels, real_data_arguments
 
 FS_HZ = 100.0
 LSB_DPS = 0.05
@@ -174,14 +172,7 @@ def compare(j, clean):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("foglab")
-    ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared",
-                                                   "data", "real"))
-    ap.add_argument("--jobs", type=int, default=2)
-    args = ap.parse_args()
-    if not os.path.exists(os.path.join(args.data, "adis_16405_imu1_gyro.csv")):
-        sys.exit(f"the real recordings are not in {args.data}")
+    args = real_data_arguments()
     effects = ["clean", "spikes", "steps", "gaps", "line", "lsb", "all"]
     tmp = tempfile.mkdtemp(prefix="foglab_real_injected_")
     jobs, sds = [], {}

@@ -113,7 +113,10 @@ def verdict(j):
     }
 
 
-def main():
+def real_data_arguments():
+    """The command line of the scripts on the real recordings: the foglab
+    binary, --data (their folder; exits, saying so, when they are not
+    there) and --jobs."""
     ap = argparse.ArgumentParser()
     ap.add_argument("foglab")
     ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared",
@@ -122,6 +125,11 @@ def main():
     args = ap.parse_args()
     if not os.path.exists(os.path.join(args.data, "adis_16405_imu1_gyro.csv")):
         sys.exit(f"the real recordings are not in {args.data}")
+    return args
+
+
+def main():
+    args = real_data_arguments()
     tmp = tempfile.mkdtemp(prefix="foglab_real_variants_")
     jobs = []
     for imu in (1, 2, 3):
