@@ -636,36 +636,35 @@ std::pair<double, std::int64_t> gap_spanning_sums(std::span<const double> phase,
   return {sum, terms};
 }
 
-// The angle points of the record's parts that the bridged gaps join: the
-// stretches, merged across each gap a term may span (its places counted).
-// [first place, end) of each on the time axis in `places`.
-std::vector<std::int64_t> bridged_parts(
-    const TimeAxis& a, std::vector<std::pair<std::int64_t, std::int64_t>>* places) {
-  std::vector<std::int64_t> points;
-  std::int64_t begin = a.full_begin.front();
-  auto close = [&](std::size_t s) {
-    const std::int64_t end = a.full_begin[s] + a.length[s];
-    points.push_back(end - begin + 1);
-    if (places) places->emplace_back(begin, end);
-  };
+// The record's parts that the bridged gaps join: the stretches, merged
+// across each gap a term may span. Each part's first and last stretch.
+std::vector<std::pair<std::size_t, std::size_t>> bridged_parts(const TimeAxis& a) {
+  std::vector<std::pair<std::size_t, std::size_t>> parts;
+  std::size_t first = 0;
   for (std::size_t s = 0; s + 1 < a.full_begin.size(); ++s) {
     if (a.bridged[s]) continue;
-    close(s);
-    begin = a.full_begin[s + 1];
+    parts.emplace_back(first, s);
+    first = s + 1;
   }
-  close(a.full_begin.size() - 1);
-  return points;
+  parts.emplace_back(first, a.full_begin.size() - 1);
+  return parts;
 }
 
-// The rate's angle record on the whole time axis with each missing sample
-// at the record's mean (a zero step): for identifying the noise where no
-// stretch is long enough, never for the statistic itself.
-std::vector<double> phase_with_mean_filled(std::span<const double> phase, const TimeAxis& axis) {
-  std::vector<double> filled(static_cast<std::size_t>(axis.samples) + 1);
+// A part's angle points, the missing samples' places counted.
+std::int64_t part_points(const TimeAxis& a, std::pair<std::size_t, std::size_t> part) {
+  return a.full_begin[part.second] + a.length[part.second] - a.full_begin[part.first] + 1;
+}
+
+// A part's angle record with each missing sample at the record's mean (a
+// zero step): for identifying the noise where no stretch is long enough,
+// never for the statistic itself.
+std::vector<double> part_with_mean_filled(std::span<const double> phase, const TimeAxis& axis,
+                                          std::pair<std::size_t, std::size_t> part) {
+  std::vector<double> filled(static_cast<std::size_t>(part_points(axis, part)));
   std::size_t k = 0;
-  filled[0] = phase[0];
-  for (std::size_t s = 0; s < axis.full_begin.size(); ++s) {
-    if (s > 0) {  // the gap before stretch s
+  filled[0] = phase[static_cast<std::size_t>(axis.present_begin[part.first])];
+  for (std::size_t s = part.first; s <= part.second; ++s) {
+    if (s > part.first) {  // the gap before stretch s
       const std::int64_t missing = axis.gaps[s - 1].second - axis.gaps[s - 1].first;
       for (std::int64_t j = 0; j < missing; ++j, ++k) filled[k + 1] = filled[k];
     }
@@ -734,6 +733,20 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
     axis = time_axis(static_cast<std::int64_t>(record_samples), gaps, unbridged);
   }
   const bool bridging = std::ranges::find(axis.bridged, true) != axis.bridged.end();
+  // The parts the bridged gaps join, in time order, and the longest: no
+  // term is longer.
+  std::vector<std::pair<std::size_t, std::size_t>> parts;
+  std::pair<std::size_t, std::size_t> longest_part;
+  if (bridging) {
+    parts = bridged_parts(axis);
+    longest_part =
+        *std::ranges::max_element(parts, {}, [&](const auto& p) { return part_points(axis, p); });
+    if (options.grid.kind != TauGridKind::list) {  // a listed tau beyond it is an error below
+      std::erase_if(axis_factors, [&](std::int64_t m) {
+        return m > max_factor(options.kind, part_points(axis, longest_part));
+      });
+    }
+  }
   result.m = options.kind == AllanKind::theo1
                  ? theo1_factors(options.grid, n, sample_rate_hz, limit)
              : bridging ? axis_factors
@@ -792,7 +805,8 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
     result.term_share.resize(kept);
     // The record's parts as the bridged gaps join them; each tau's terms
     // over theirs.
-    result.segment_points = bridged_parts(axis, nullptr);
+    result.segment_points.clear();
+    for (const auto& part : parts) result.segment_points.push_back(part_points(axis, part));
     for (std::size_t k = 0; k < kept; ++k) {
       result.dev[k] = std::sqrt(weighted[k] / static_cast<double>(result.n[k]));
       std::int64_t model_terms = 0;
@@ -845,15 +859,8 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
       if (ids[k].method == NoiseIdMethod::none) beyond.push_back(id_factors[k]);
     }
     if (!beyond.empty()) {
-      const std::vector<double> filled = phase_with_mean_filled(phase, axis);
-      std::vector<std::pair<std::int64_t, std::int64_t>> places;
-      bridged_parts(axis, &places);
-      const auto [first, end] =
-          *std::ranges::max_element(places, {}, [](const auto& p) { return p.second - p.first; });
       const std::vector<NoiseId> more = identify_noise(
-          std::span<const double>(filled).subspan(static_cast<std::size_t>(first),
-                                                  static_cast<std::size_t>(end - first + 1)),
-          beyond, hadamard ? 3 : 2);
+          part_with_mean_filled(phase, axis, longest_part), beyond, hadamard ? 3 : 2);
       for (std::size_t k = 0, j = 0; k < count; ++k) {
         if (ids[k].method == NoiseIdMethod::none) ids[k] = more[j++];
       }
