@@ -600,12 +600,11 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   r.allan = std::move(s.allan);
   r.noise = std::move(s.noise);
   // The taus where clusters missing a few samples entered (stats/allan.h).
-  if (const auto& spanning = r.allan.gap_spanning_terms;
-      std::ranges::any_of(spanning, [](std::int64_t t) { return t > 0; })) {
-    const auto first = static_cast<std::size_t>(
-        std::ranges::find_if(spanning, [](std::int64_t t) { return t > 0; }) - spanning.begin());
-    r.notes.emplace_back(Text::note_gap_clusters,
-                         std::ranges::count_if(spanning, [](std::int64_t t) { return t > 0; }),
+  const auto spans = [](std::int64_t terms) { return terms > 0; };
+  if (const auto& spanning = r.allan.gap_spanning_terms; std::ranges::any_of(spanning, spans)) {
+    const auto first =
+        static_cast<std::size_t>(std::ranges::find_if(spanning, spans) - spanning.begin());
+    r.notes.emplace_back(Text::note_gap_clusters, std::ranges::count_if(spanning, spans),
                          r.allan.tau_s[first], r.allan.tau_s.back(),
                          100.0 * options.max_missing_share);
   }

@@ -126,9 +126,10 @@ std::string fleet_csv(const FleetReport& fleet) {
                          csv_number(t->ci95_high), csv_field(t->status));
     }
     // the taus that trend, space-separated; "none", or "not_checked"
-    std::string trend = r.short_tau_checked ? "" : "not_checked";
-    for (const double tau : r.short_tau_trend.tau_s) trend += (trend.empty() ? "" : " ") + g(tau);
-    if (trend.empty()) trend = "none";
+    const std::string trend = !r.short_tau_checked ? "not_checked"
+                              : r.short_tau_trend.tau_s.empty()
+                                  ? "none"
+                                  : called_taus(r.short_tau_trend, " ");
     csv += fmt::format(",{},{},{},{},{},{},{}\n", csv_number(r.bias_instability_deg_h),
                        csv_number(r.bias_instability_tau_s), csv_number(r.arw_deg_sqrt_h),
                        csv_field(r.random_bias), csv_field(r.accuracy_class),

@@ -248,12 +248,11 @@ std::string imu_markdown(std::span<const ImuAxis> axes, std::string_view title) 
              : fmt::format("{} m/s^2 ({} mg) at {} s", g(r.bias_instability_deg_h),
                            g(r.bias_instability_deg_h / kStandardGravity * 1000.0),
                            g(r.bias_instability_tau_s));
-    md +=
-        fmt::format("| {} | {} | {} {} {}/sqrt(Hz) | {} | {} | {} {} {}/sqrt(s) | {} | {} | {} |\n",
-                    a.channel, to_string(a.sensor), n.value, n.interval, u, walk, bias, k.value,
-                    k.interval, u, to_string(r.noise.random_bias_process),
-                    gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-",
-                    drift_cell(r.allan_drift.calls(), !r.allan_drift.tau_s.empty()));
+    md += fmt::format(
+        "| {} | {} | {} {} {}/sqrt(Hz) | {} | {} | {} {} {}/sqrt(s) | {} | {} | {} |\n", a.channel,
+        to_string(a.sensor), n.value, n.interval, u, walk, bias, k.value, k.interval, u,
+        to_string(r.noise.random_bias_process),
+        gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-", drift_cell(r.allan_drift));
   }
 
   md += "\n## For a navigation filter\n\n";
@@ -353,7 +352,7 @@ std::string imu_html(std::span<const ImuAxis> axes, std::span<const Report> axis
          td(fmt::format("{} {} {}/sqrt(s)", k.value, k.interval, u)) +
          td(to_string(r.noise.random_bias_process)) +
          td(gyro ? std::string(to_string(r.verdict.accuracy_class)) : "-") +
-         td(drift_cell(r.allan_drift.calls(), !r.allan_drift.tau_s.empty())) + "</tr>\n";
+         td(drift_cell(r.allan_drift)) + "</tr>\n";
   }
   h += "</table>\n";
 

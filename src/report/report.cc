@@ -140,10 +140,9 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
   return text + say(language, Text::an_lines_tail);
 }
 
-// "0.02, 0.04, 0.08": the taus the check called.
-std::string called_taus(const stats::AllanDriftCalls& c) {
+std::string called_taus(const stats::AllanDriftCalls& c, std::string_view separator) {
   std::string taus;
-  for (const double tau : c.tau_s) taus += (taus.empty() ? "" : ", ") + g(tau);
+  for (const double tau : c.tau_s) taus += (taus.empty() ? "" : std::string(separator)) + g(tau);
   return taus;
 }
 
@@ -166,6 +165,10 @@ std::string drift_cell(const stats::AllanDriftCalls& calls, bool checked) {
   if (calls.tau_s.empty()) return fmt::format("none (z within ±{:.2f})", calls.largest_z);
   return fmt::format("{} s (last/first {})", called_taus(calls),
                      range_message(calls.ratio_low, calls.ratio_high).text(Language::en));
+}
+
+std::string drift_cell(const stats::AllanDrift& d) {
+  return drift_cell(d.calls(), !d.tau_s.empty());
 }
 
 std::string class_name(AccuracyClass c, Language language) {

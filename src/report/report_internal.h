@@ -69,6 +69,10 @@ std::string sensor_text(std::string_view text, Sensor sensor, Language language)
 /// 1.18)", "none (z within ±2.31)" (no pipe: a Markdown cell), or "not
 /// checked" (`checked` false).
 std::string drift_cell(const stats::AllanDriftCalls& calls, bool checked);
+/// The same for a record's own check.
+std::string drift_cell(const stats::AllanDrift& d);
+/// The taus the check called, joined by `separator` ("0.02, 0.04, 0.08").
+std::string called_taus(const stats::AllanDriftCalls& c, std::string_view separator = ", ");
 
 /// The report's title, else "file (channel)", else the file name.
 std::string record_title(const ReportInput& input, Language language);

@@ -556,10 +556,9 @@ std::vector<double> pooled_deviations(std::span<const double> phase,
 // on the axis and among those present, and its length; each gap's places.
 struct TimeAxis {
   std::vector<std::int64_t> full_begin, present_begin, length;
-  std::vector<std::pair<std::int64_t, std::int64_t>> gaps;       // [start, end) on the axis
-  std::vector<std::pair<std::int64_t, std::int64_t>> unbridged;  // those no term may span
-  std::vector<bool> bridged;                                     // per gap: a term may span it
-  std::int64_t samples = 0;                                      // present and missing
+  std::vector<std::pair<std::int64_t, std::int64_t>> gaps;  // [start, end) on the axis
+  std::vector<bool> bridged;                                // per gap: a term may span it
+  std::int64_t samples = 0;                                 // present and missing
 };
 
 // The time axis of a rate record of `samples` samples with `gaps`, of
@@ -577,7 +576,6 @@ TimeAxis time_axis(std::int64_t samples, std::span<const Gap> gaps,
     stretch_to(g.before_sample);
     a.gaps.emplace_back(g.before_sample + missing, g.before_sample + missing + g.missing_samples);
     a.bridged.push_back(std::ranges::find(unbridged, g.before_sample) == unbridged.end());
-    if (!a.bridged.back()) a.unbridged.push_back(a.gaps.back());
     missing += g.missing_samples;
     begin = g.before_sample;
   }
@@ -621,8 +619,10 @@ std::pair<double, std::int64_t> gap_spanning_sums(std::span<const double> phase,
     const std::int64_t from = std::max({next, start - 2 * m + 1, std::int64_t{0}});
     const std::int64_t to = std::min(end - 1, last);
     for (std::int64_t i = from; i <= to; ++i) {
-      while (hard < axis.unbridged.size() && axis.unbridged[hard].second <= i) ++hard;
-      if (hard < axis.unbridged.size() && axis.unbridged[hard].first < i + 2 * m) continue;
+      while (hard < axis.gaps.size() && (axis.bridged[hard] || axis.gaps[hard].second <= i)) {
+        ++hard;
+      }
+      if (hard < axis.gaps.size() && axis.gaps[hard].first < i + 2 * m) continue;
       const std::int64_t a = at_a(i), b = at_b(i + m), c = at_c(i + 2 * m);
       const std::int64_t first = b - a, second = c - b;
       if (m - first > allowed || m - second > allowed) continue;
