@@ -479,7 +479,10 @@ nlohmann::json analysis_json(const model::AnalysisResult& r, const AnalysisJsonI
           {"class_by_arw", std::string(to_string(r.verdict.by_arw))},
           {"fit", fit_json(r.noise, options.noise_fit)},
           {"notes", notes},
-          {"options", {{"taus", in.taus}, {"temp_degree", in.temp_degree}}},
+          {"options",
+           {{"taus", in.taus},
+            {"temp_degree", in.temp_degree},
+            {"max_missing_percent", 100.0 * options.max_missing_share}}},
           {"units", units_json()},
           {"foglab_version", std::string(version())}};
 }

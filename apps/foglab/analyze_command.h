@@ -22,6 +22,9 @@ struct AnalyzeCommand {
   std::string temp_channel;
   std::string temp_degree = "auto";
   std::string taus = "octave";
+  /// --max-missing-percent: the share of an Allan cluster's samples that may
+  /// be missing across a gap (model::AnalysisOptions::max_missing_share, in %)
+  double max_missing_percent = 1.0;
   std::string json_path;
   std::string csv_path;
   std::string report_path;

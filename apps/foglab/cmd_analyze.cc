@@ -155,6 +155,13 @@ model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
   model::AnalysisOptions options;
   options.systematic.degree = parse_temp_degree(c.temp_degree);
   options.grid = parse_taus_option(c.taus, c.input.path);
+  if (!(c.max_missing_percent >= 0.0 && c.max_missing_percent <= 10.0)) {
+    throw UsageError(fmt::format(
+        "--max-missing-percent must lie in [0, 10] (the share of an Allan cluster's samples that "
+        "may be missing across a gap; 0: only the stretches between gaps), got {}",
+        c.max_missing_percent));
+  }
+  options.max_missing_share = c.max_missing_percent / 100.0;
   check_temperature_option(c);
   return options;
 }
@@ -281,6 +288,11 @@ std::function<void()> register_analyze(CLI::App& app) {
   cmd->add_option("--taus", c->taus,
                   "reported Allan tau grid: octave, decade, all, N-per-decade, or averaging "
                   "times in s (1,10,100); the noise fit always uses the octave grid")
+      ->capture_default_str();
+  cmd->add_option("--max-missing-percent", c->max_missing_percent,
+                  "Allan terms across a gap: the most of a cluster's samples that may be missing "
+                  "[%] (each cluster's mean over the samples it has), 0 to 10; 0: only the "
+                  "contiguous stretches (Stable32's rule)")
       ->capture_default_str();
   cmd->add_option("--json", c->json_path, "write the results as JSON ('-' for stdout)");
   cmd->add_option("--csv", c->csv_path,

@@ -440,6 +440,27 @@ TEST(SensorEffects, ASampleLostHereAndThereLeavesTheLongTausAndTheirModel) {
   }
   EXPECT_TRUE(q["noise_model"]["B"]["status"] == "resolved" ||
               q["noise_model"]["K"]["status"] == "resolved");
+  EXPECT_EQ(q["options"]["max_missing_percent"], 1.0);
+
+  // --max-missing-percent 0: Stable32's rule, the stretches alone; their
+  // taus end where the longest stretch does (a few minutes here).
+  const test::CliRun s =
+      test::run_foglab("analyze " + test::quote(lossy) + " --max-missing-percent 0 --json -");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const json p = json::parse(s.out);
+  EXPECT_EQ(p["options"]["max_missing_percent"], 0.0);
+  EXPECT_TRUE(p["allan"]["gap_spanning_terms"].empty());
+  EXPECT_LT(p["allan"]["tau_s"].size(), q["allan"]["tau_s"].size());
+  for (std::size_t k = 0; k < p["allan"]["tau_s"].size(); ++k) {
+    if (q["allan"]["gap_spanning_terms"][k].get<std::int64_t>() > 0) continue;
+    EXPECT_EQ(p["allan"]["adev_deg_h"][k], q["allan"]["adev_deg_h"][k]) << k;
+  }
+  // a share beyond 10 % is refused, naming the option, before reading
+  const test::CliRun bad =
+      test::run_foglab("analyze " + test::quote(lossy) + " --max-missing-percent 25 --json -");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--max-missing-percent"), std::string::npos) << bad.err;
+  EXPECT_TRUE(bad.out.empty());
 }
 
 TEST(SensorEffects, NanSamplesAreTheSameGapsAsTheTimeColumns) {
