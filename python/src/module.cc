@@ -229,7 +229,14 @@ py::object analyze(const InputArray& rate, double rate_hz,
                    const std::optional<InputArray>& temperature, const std::string& units,
                    const std::string& channel,
                    const std::vector<std::pair<std::int64_t, std::int64_t>>& gaps,
-                   bool nan_is_missing) {
+                   bool nan_is_missing, double max_missing_percent) {
+  if (!(max_missing_percent >= 0.0 && max_missing_percent <= 10.0)) {
+    throw UsageError(
+        "max_missing_percent must lie in [0, 10] (the share of an Allan cluster's "
+        "samples that may be missing across a gap; 0: only the stretches between "
+        "gaps), got " +
+        std::to_string(max_missing_percent));
+  }
   const std::span<const double> samples = samples_of(rate, "rate", nan_is_missing);
   const SampleUnit unit = rate_unit_from_string(units);
   // The analysis consumes its record: a copy, in the internal unit, with room for the angle
@@ -256,7 +263,8 @@ py::object analyze(const InputArray& rate, double rate_hz,
   check_gaps(series.gaps, static_cast<std::int64_t>(samples.size()), "gaps");
   series.values = std::move(values);
   if (nan_is_missing) io::drop_missing_samples(series, temperature ? &temperature_c : nullptr);
-  const model::AnalysisOptions options;
+  model::AnalysisOptions options;
+  options.max_missing_share = max_missing_percent / 100.0;
   cli::AnalysisJsonInput json_input;
   json_input.units = units;
   json_input.temperature_channel = temperature ? "temperature" : "";
@@ -595,10 +603,12 @@ PYBIND11_MODULE(_foglab, m) {
         py::arg("temperature") = py::none(), py::arg("units") = "deg/h",
         py::arg("channel") = "rate",
         py::arg("gaps") = std::vector<std::pair<std::int64_t, std::int64_t>>{},
-        py::arg("nan_is_missing") = true,
+        py::arg("nan_is_missing") = true, py::arg("max_missing_percent") = 1.0,
         "The whole analysis of a static record: the document `foglab analyze --json` writes "
         "(docs/json.md), as dicts and lists. `gaps` are the record's as read() gives them "
         "((before_sample, missing) pairs); a NaN sample or temperature is a missing one, its "
         "row left out and runs of them gaps, as the CLI reads a file (nothing is "
-        "interpolated); nan_is_missing=False makes it a DataError.");
+        "interpolated); nan_is_missing=False makes it a DataError. max_missing_percent: "
+        "the most of an Allan cluster's samples that may be missing across a gap (the CLI's "
+        "--max-missing-percent; 0 keeps the contiguous stretches alone).");
 }

@@ -89,6 +89,18 @@ def test_analyze_takes_gaps_and_nan_samples_as_the_cli_reads_them(cli, tactical,
             assert by_nan[key] == cli_result[key] == by_gaps[key], key
     # The caller's array keeps its NaN.
     assert np.isnan(with_nan[start:start + lost]).all()
+    # The share of a cluster that may be missing, as the CLI's option: at 0 no term spans the
+    # gap, and where none did the deviations are the default's.
+    pooled = foglab.analyze(kept, 100.0, gaps=[(start, lost)], max_missing_percent=0)
+    assert pooled["options"]["max_missing_percent"] == 0
+    assert by_gaps["options"]["max_missing_percent"] == 1
+    assert pooled["allan"]["gap_spanning_terms"] == []
+    assert any(n > 0 for n in by_gaps["allan"]["gap_spanning_terms"])
+    for k, spanning in enumerate(by_gaps["allan"]["gap_spanning_terms"]):
+        if spanning == 0 and k < len(pooled["allan"]["tau_s"]):
+            assert pooled["allan"]["adev_deg_h"][k] == by_gaps["allan"]["adev_deg_h"][k]
+    with pytest.raises(ValueError, match="max_missing_percent"):
+        foglab.analyze(kept, 100.0, max_missing_percent=11)
 
 
 def test_analyze_errors():
