@@ -122,7 +122,8 @@ struct FixedTerm {
 /// What a fit does with a coefficient that comes out non-positive.
 enum class NonPositive {
   infeasible,  ///< the subset is infeasible (its optimum is one of its subsets)
-  drop_term,   ///< the term is left out and the rest refitted
+  drop_term,   ///< the term is left out and the rest refitted; it comes back while that
+               ///< lowers the deviance (a non-negative fit; fit_subset())
 };
 
 // --- 1. points (noise_fit_points.cc) ----------------------------------------
