@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis_output.h"
@@ -48,6 +49,11 @@ void check_temperature_option(const AnalyzeCommand& c);
 /// The outputs checked against the input (never overwritten), the options
 /// parsed, --temp checked: what both forms do before reading.
 model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c);
+
+/// model::AnalysisOptions::max_missing_share of a percentage given as
+/// `option` (the CLI's --max-missing-percent, Python's max_missing_percent);
+/// UsageError naming it outside [0, 10].
+double max_missing_share_of(double percent, std::string_view option);
 
 /// One channel analysed, and what its outputs need besides the analysis.
 struct ChannelAnalysis {

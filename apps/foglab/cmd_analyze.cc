@@ -145,6 +145,16 @@ Temperature load_temperature(const AnalyzeCommand& c, const io::Series& series,
   return {t.channel, std::move(t.values)};
 }
 
+double max_missing_share_of(double percent, std::string_view option) {
+  if (!(percent >= 0.0 && percent <= 10.0)) {
+    throw UsageError(fmt::format(
+        "{} must lie in [0, 10] (the share of an Allan cluster's samples that may be missing "
+        "across a gap, %; 0: only the stretches between gaps), got {}",
+        option, percent));
+  }
+  return percent / 100.0;
+}
+
 model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
   const RunPath inputs[] = {{"FILE", c.input.path}};
   const RunPath outputs[] = {{"--json", c.json_path},
@@ -155,13 +165,7 @@ model::AnalysisOptions checked_analysis_options(const AnalyzeCommand& c) {
   model::AnalysisOptions options;
   options.systematic.degree = parse_temp_degree(c.temp_degree);
   options.grid = parse_taus_option(c.taus, c.input.path);
-  if (!(c.max_missing_percent >= 0.0 && c.max_missing_percent <= 10.0)) {
-    throw UsageError(fmt::format(
-        "--max-missing-percent must lie in [0, 10] (the share of an Allan cluster's samples that "
-        "may be missing across a gap; 0: only the stretches between gaps), got {}",
-        c.max_missing_percent));
-  }
-  options.max_missing_share = c.max_missing_percent / 100.0;
+  options.max_missing_share = max_missing_share_of(c.max_missing_percent, "--max-missing-percent");
   check_temperature_option(c);
   return options;
 }

@@ -230,13 +230,8 @@ py::object analyze(const InputArray& rate, double rate_hz,
                    const std::string& channel,
                    const std::vector<std::pair<std::int64_t, std::int64_t>>& gaps,
                    bool nan_is_missing, double max_missing_percent) {
-  if (!(max_missing_percent >= 0.0 && max_missing_percent <= 10.0)) {
-    throw UsageError(
-        "max_missing_percent must lie in [0, 10] (the share of an Allan cluster's "
-        "samples that may be missing across a gap; 0: only the stretches between "
-        "gaps), got " +
-        std::to_string(max_missing_percent));
-  }
+  model::AnalysisOptions options;
+  options.max_missing_share = cli::max_missing_share_of(max_missing_percent, "max_missing_percent");
   const std::span<const double> samples = samples_of(rate, "rate", nan_is_missing);
   const SampleUnit unit = rate_unit_from_string(units);
   // The analysis consumes its record: a copy, in the internal unit, with room for the angle
@@ -263,8 +258,6 @@ py::object analyze(const InputArray& rate, double rate_hz,
   check_gaps(series.gaps, static_cast<std::int64_t>(samples.size()), "gaps");
   series.values = std::move(values);
   if (nan_is_missing) io::drop_missing_samples(series, temperature ? &temperature_c : nullptr);
-  model::AnalysisOptions options;
-  options.max_missing_share = max_missing_percent / 100.0;
   cli::AnalysisJsonInput json_input;
   json_input.units = units;
   json_input.temperature_channel = temperature ? "temperature" : "";
