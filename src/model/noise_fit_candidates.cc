@@ -3,6 +3,7 @@
 // (noise_fit_internal.h).
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -109,8 +110,8 @@ double deviance(const Points& p, const std::vector<double>& mu) {
 // draw can be a tenth of its mean) weighs a hundred times its due there, and
 // had pushed the random walk and the ramp negative together. Both left out
 // for good, the reference of the bandwidth search missed the long taus by a
-// deviance of 64, which a 111-sample moving average on 5 % of N^2 then
-// partly made up (white noise with flicker and a random walk, 2 h with three
+// deviance of 77, 64 of which a 111-sample moving average on 5 % of N^2 then
+// made up (white noise with flicker and a random walk, 2 h with three
 // gaps: docs/validation.md). The fit returned is the converged one with the
 // least deviance, so a term's return never makes it worse.
 SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::optional<FixedTerm> fixed,
@@ -128,14 +129,17 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       offset[i] += fixed->squared_coefficient * p.basis_at(fixed->term, i, tc);
     }
   }
-  // The basis of each fitted term at every point: fixed over the
+  // The basis of each term at every point, by term: fixed over the
   // iterations (only the weights change), so computed once.
-  std::vector<std::vector<double>> basis(fitted.size(), std::vector<double>(n));
-  for (std::size_t j = 0; j < fitted.size(); ++j) {
-    for (std::size_t i = 0; i < n; ++i) basis[j][i] = p.basis_at(fitted[j], i, tc);
+  std::array<std::vector<double>, kNoiseTerms.size()> bases;
+  for (NoiseTerm t : fitted) {
+    std::vector<double>& b = bases[static_cast<std::size_t>(t)];
+    for (std::size_t i = 0; i < n; ++i) b.push_back(p.basis_at(t, i, tc));
   }
-  std::vector<NoiseTerm> left_out;  // drop_term: the terms left out, and their bases
-  std::vector<std::vector<double>> left_out_basis;
+  const auto basis = [&bases](NoiseTerm t) -> const std::vector<double>& {
+    return bases[static_cast<std::size_t>(t)];
+  };
+  std::vector<NoiseTerm> left_out;  // drop_term: the terms left out
   int returns_left = static_cast<int>(fitted.size());
   std::vector<double> mu = p.y;  // first weights from the data themselves
   std::vector<double> c(fitted.size(), 0.0);
@@ -171,7 +175,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
     for (std::size_t j = 0; j < left_out.size(); ++j) {
       double slope = 0.0, curvature = 0.0;
       for (std::size_t i = 0; i < n; ++i) {
-        const double b = left_out_basis[j][i];
+        const double b = basis(left_out[j])[i];
         slope += p.v[i] * b * (mu[i] - p.y[i]) / (mu[i] * mu[i]);
         curvature += p.v[i] * b * b / (mu[i] * mu[i]);
       }
@@ -197,7 +201,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
     for (std::size_t i = 0; i < n; ++i) {
       const double w = std::sqrt(p.v[i]) / std::max(mu[i], 1e-12 * p.y[i]);
       for (Eigen::Index j = 0; j < k; ++j) {
-        a(static_cast<Eigen::Index>(i), j) = w * basis[static_cast<std::size_t>(j)][i];
+        a(static_cast<Eigen::Index>(i), j) = w * basis(fitted[static_cast<std::size_t>(j)])[i];
       }
       b(static_cast<Eigen::Index>(i)) = w * (p.y[i] - offset[i]);
     }
@@ -213,9 +217,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       for (std::size_t j = 0; j < fitted.size();) {
         if (!(c[j] > 0)) {
           left_out.push_back(fitted[j]);
-          left_out_basis.push_back(std::move(basis[j]));
           fitted.erase(fitted.begin() + static_cast<std::ptrdiff_t>(j));
-          basis.erase(basis.begin() + static_cast<std::ptrdiff_t>(j));
           c.erase(c.begin() + static_cast<std::ptrdiff_t>(j));
           dropped = true;
         } else {
@@ -231,7 +233,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
     double change = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       double m = offset[i];
-      for (std::size_t j = 0; j < fitted.size(); ++j) m += c[j] * basis[j][i];
+      for (std::size_t j = 0; j < fitted.size(); ++j) m += c[j] * basis(fitted[j])[i];
       change = std::max(change, std::fabs(m - mu[i]) / std::max(std::fabs(mu[i]), 1e-300));
       mu[i] = m;
     }
@@ -250,10 +252,8 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       // Back in, the next step weighted by this fit's means.
       --returns_left;
       fitted.push_back(left_out[*back]);
-      basis.push_back(std::move(left_out_basis[*back]));
       c.push_back(0.0);
       left_out.erase(left_out.begin() + static_cast<std::ptrdiff_t>(*back));
-      left_out_basis.erase(left_out_basis.begin() + static_cast<std::ptrdiff_t>(*back));
       previous = kInf;
       continue;
     }
