@@ -99,7 +99,8 @@ double deviance(const Points& p, const std::vector<double>& mu) {
 // scaling and a pivoted QR keep tau^2 and 1/tau^2 columns apart. It stops
 // when no mean changes by more than the tolerance (relative) or the
 // deviance by less than 1e-12 of itself, or after max_iterations (the
-// status says which).
+// status says which). Once a step has started from positive means, no step
+// leaves them or raises the deviance: such a step is halved (below).
 //
 // With NonPositive::drop_term the fit is a non-negative one: a term whose
 // coefficient comes out non-positive is left out, and at convergence a term
@@ -117,6 +118,7 @@ double deviance(const Points& p, const std::vector<double>& mu) {
 SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::optional<FixedTerm> fixed,
                      NonPositive non_positive) {
   constexpr double kWorthReturning = 1e-3;  // deviance
+  constexpr int kMaxHalvings = 30;
   const std::size_t n = p.y.size();
   std::vector<NoiseTerm> fitted;
   for (NoiseTerm t : kNoiseTerms) {
@@ -143,7 +145,23 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
   int returns_left = static_cast<int>(fitted.size());
   std::vector<double> mu = p.y;  // first weights from the data themselves
   std::vector<double> c(fitted.size(), 0.0);
-  double previous = kInf;
+  std::vector<double> start = c;  // the coefficients at the step's start
+  double previous = kInf;         // their deviance (kInf: no start to go back to)
+  // The means of coefficients `coef` of the fitted terms.
+  const auto means = [&](const std::vector<double>& coef) {
+    std::vector<double> m = offset;
+    for (std::size_t j = 0; j < fitted.size(); ++j) {
+      const std::vector<double>& b = basis(fitted[j]);
+      for (std::size_t i = 0; i < n; ++i) m[i] += coef[j] * b[i];
+    }
+    return m;
+  };
+  const auto deviance_or_inf = [&](const std::vector<double>& m) {
+    for (double value : m) {
+      if (!(value > 0)) return kInf;
+    }
+    return deviance(p, m);
+  };
   int iterations = 0;
 
   // The fit as it stands.
@@ -227,22 +245,39 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       if (dropped) {
         mu = p.y;
         previous = kInf;
+        start = c;
         continue;
+      }
+    }
+    std::vector<double> next = means(c);
+    double d = deviance_or_inf(next);
+    // Step halving (as glm2 does: I. C. Marschner, "glm2: fitting
+    // generalized linear models with convergence problems", The R Journal
+    // 3(2), 2011): from a start whose means are all positive, a step that
+    // leaves that domain or raises the deviance is halved back towards the
+    // start until it does neither. Without it, fits far from the data (a
+    // subset without the white term, a profile's term held far off its
+    // optimum) swung between two states, or in and out of the domain, for
+    // all max_iterations: 1,147 of the 10,030 fits of one analyze of an
+    // ADIS16405 channel, more than half of its reweighting steps.
+    if (previous < kInf) {
+      for (int halving = 0; !(d <= previous); ++halving) {
+        if (halving == kMaxHalvings) {
+          c = start;  // no descent along the step: stay at the start
+          next = means(c);
+          d = previous;
+          break;
+        }
+        for (std::size_t j = 0; j < c.size(); ++j) c[j] = 0.5 * (c[j] + start[j]);
+        next = means(c);
+        d = deviance_or_inf(next);
       }
     }
     double change = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      double m = offset[i];
-      for (std::size_t j = 0; j < fitted.size(); ++j) m += c[j] * basis(fitted[j])[i];
-      change = std::max(change, std::fabs(m - mu[i]) / std::max(std::fabs(mu[i]), 1e-300));
-      mu[i] = m;
+      change = std::max(change, std::fabs(next[i] - mu[i]) / std::max(std::fabs(mu[i]), 1e-300));
     }
-    const double d = [&] {
-      for (double m : mu) {
-        if (!(m > 0)) return kInf;
-      }
-      return deviance(p, mu);
-    }();
+    mu = std::move(next);
     if (change < p.control.tolerance || std::fabs(previous - d) < 1e-12 * std::max(1.0, d)) {
       SubsetFit now = settle(FitStatus::converged);
       if (!best_converged || now.deviance < best_converged->deviance) best_converged = now;
@@ -254,9 +289,11 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       fitted.push_back(left_out[*back]);
       c.push_back(0.0);
       left_out.erase(left_out.begin() + static_cast<std::ptrdiff_t>(*back));
-      previous = kInf;
+      start = c;
+      previous = now.deviance;
       continue;
     }
+    start = c;
     previous = d;
   }
   if (best_converged) return *std::move(best_converged);
