@@ -264,7 +264,7 @@ SubsetFit fit_subset(const Points& p, NoiseTermSet terms, double tc, std::option
       for (int halving = 0; !(d <= previous); ++halving) {
         if (halving == kMaxHalvings) {
           c = start;  // no descent along the step: stay at the start
-          next = means(c);
+          next = mu;  // the start's means
           d = previous;
           break;
         }
