@@ -36,6 +36,11 @@ FS_HZ = 100.0
 HOURS = 2.0
 
 
+def slow_sine_hz(hours):
+    """The slow sinusoid's frequency [Hz]: 72 periods in the record."""
+    return 72.0 / (hours * 3600.0)
+
+
 def effects(grade, fs_hz=FS_HZ, hours=HOURS):
     """The effects, sized by the grade's sample spread sd = N sqrt(fs); the
     filters scale with the sample rate (the same correlation in samples),
@@ -52,6 +57,10 @@ def effects(grade, fs_hz=FS_HZ, hours=HOURS):
         "cascade": ["--moving-average", "3", "--filter-tc", f"{1 / fs_hz:.6g}"],
         "lsb": ["--lsb", f"{0.5 * sd:.6g}"],
         "sine": ["--sine", f"{fs_hz / 5:.6g}:{3 * sd:.6g}"],
+        # a slow one (a thermal control cycle): 72 periods in the record
+        # (0.01 Hz at 2 h), three times the flicker and Gauss-Markov levels
+        "slow-sine": ["--sine", f"{slow_sine_hz(hours):.6g}:"
+                                f"{3 * (grade.get('B', 0) + grade.get('gm-sigma', 0)):.6g}"],
         "spikes": ["--spikes", f"3:{20 * sd:.6g}"],
         "steps": ["--step", f"{at(2000)}:{0.5 * sd:.6g}", "--step", f"{at(5000)}:{-0.4 * sd:.6g}"],
         # 30 s (scaled), 50 samples, and 1/8 of the record
@@ -77,7 +86,7 @@ def run(foglab, workdir, grade_name, effect_name, args, seed, fs_hz=FS_HZ, hours
     return truth, json.loads(a.stdout)
 
 
-def summarise(results, effect_name, misses=None):
+def summarise(results, effect_name, misses=None, hours=HOURS):
     """The row of the table; `misses` (a list), when given, gets a line for
     every truth parameter outside its 95 % interval."""
     n_err, b_err, k_err, gs_err, gt_err = [], [], [], [], []
@@ -120,6 +129,10 @@ def summarise(results, effect_name, misses=None):
                       abs(r["output_quantisation"]["lsb_deg_h"] / out["lsb_deg_h"] - 1) < 1e-6)
         elif effect_name == "sine":
             found += len(r["spectral_lines"]) == 1
+        elif effect_name == "slow-sine":  # one line, within 1 % of the frequency
+            lines = r["spectral_lines"]
+            found += (len(lines) == 1
+                      and abs(lines[0]["frequency_hz"] / slow_sine_hz(hours) - 1) < 0.01)
         elif effect_name == "spikes":
             found += r["spikes"]["count"] == len(out["spike_times_s"])
         elif effect_name == "steps":
@@ -164,7 +177,7 @@ def main():
                         for seed in range(1, args.seeds + 1)]
                 results = [j.result() for j in jobs]
             misses = [] if args.misses else None
-            s = summarise(results, effect_name, misses)
+            s = summarise(results, effect_name, misses, args.hours)
             print(f"| {effect_name} | {grade_name} | " + " | ".join(s.values()) + " |", flush=True)
             for line in misses or []:
                 print(f"  miss ({effect_name}, {grade_name}) {line}")

@@ -18,12 +18,19 @@ the channel's own sample spread sd and scaled to its 2.78 h:
   across the gap), 1250 s (1/8 of the record) at 8333 s;
 - line: a sine of 3 sd amplitude at 7.3 Hz (away from the z axes'
   resonance and from the PSD's bins);
+- slow-line: a sine of 80 deg/h amplitude (about three times the channels'
+  bias instability) at 0.01 Hz, a thermal control cycle's kind: its
+  Allan hump (at 37 s) lies where B and the random bias are read. It is
+  smaller than half an output step, and the samples are already rounded
+  (rounding the sum gives the clean record back), so this one is added
+  off the grid: the output word's rounding then stays in N, as foglab
+  takes it (its LSB is no longer found);
 - lsb: the output word made 5 times coarser (0.25 deg/s; an odd factor, so
   that no sample lies half-way between two codes of the coarse grid);
 - all: spikes, steps, gaps and the line together.
 
-Every sum is rounded to the sensor's own 0.05 deg/s grid, as its output word
-would be. Per record it prints whether the effect was found (the count, and
+Every sum but the slow line's is rounded to the sensor's own 0.05 deg/s
+grid, as its output word would be. Per record it prints whether the effect was found (the count, and
 the times within a tolerance), and N, B and the class against the clean
 record's. The derived files go to a temporary folder and are removed (the
 data's licence: never into the repository).
@@ -40,6 +47,7 @@ from real_variants import AXES, read_channels, real_data_arguments
 FS_HZ = 100.0
 LSB_DPS = 0.05
 LINE_HZ = 7.3
+SLOW_LINE_HZ, SLOW_LINE_DPS = 0.01, 80.0 / 3600.0
 COARSE = 5  # the coarser output word, in the sensor's steps
 SPIKES = ((123457, 20.0), (456791, -20.0), (789013, 20.0))  # sample, size in sd
 STEPS_S = ((2778.0, 0.5), (4167.0, -0.4))                   # time, size in sd
@@ -55,8 +63,11 @@ def spread(x):
     return math.sqrt(sum((v - mean) ** 2 for v in x) / (len(x) - 1))
 
 
-def with_effects(x, sd, spikes=False, steps=False, line=False):
+def with_effects(x, sd, spikes=False, steps=False, line=False, slow_line=False):
     y = list(x)
+    if slow_line:
+        y = [v + SLOW_LINE_DPS * math.sin(2 * math.pi * SLOW_LINE_HZ * i / FS_HZ + 0.3)
+             for i, v in enumerate(y)]
     if steps:
         for t, size in STEPS_S:
             jump = on_grid(size * sd)
@@ -140,12 +151,18 @@ def found(effect, j, clean, sd):
         jumps = [g["significance"] for g in j["steps"]["across_gaps"]]
         notes.append("jumps across them " + ", ".join(f"{z:.1f}" for z in jumps) + " spreads")
         ok &= not any(g["significant"] for g in j["steps"]["across_gaps"])
-    if effect in ("line", "all"):
+    if effect in ("line", "all", "slow-line"):
         # the lines of the clean record (the z axes' resonance) are found again, within 0.5 Hz
         before = [l["frequency_hz"] for l in clean["spectral_lines"]]
         new = [l for l in j["spectral_lines"] if all(abs(l["frequency_hz"] - f) > 0.5 for f in before)]
-        hit = len(new) == 1 and abs(new[0]["frequency_hz"] - LINE_HZ) < 0.05
-        notes.append("line " + (", ".join(f"{l['frequency_hz']:.2f} Hz" for l in new) or "none"))
+        if effect == "slow-line":
+            hit = len(new) == 1 and abs(new[0]["frequency_hz"] / SLOW_LINE_HZ - 1) < 0.01
+            notes.append("line " + (", ".join(f"{l['frequency_hz']:.4g} Hz, {l['rms_deg_h']:.1f} "
+                                              f"deg/h rms" for l in new) or "none")
+                         + f" (put in {SLOW_LINE_DPS * 3600 / math.sqrt(2):.1f})")
+        else:
+            hit = len(new) == 1 and abs(new[0]["frequency_hz"] - LINE_HZ) < 0.05
+            notes.append("line " + (", ".join(f"{l['frequency_hz']:.2f} Hz" for l in new) or "none"))
         ok &= hit
     if effect == "lsb":
         q = j["output_quantisation"]
@@ -173,7 +190,7 @@ def compare(j, clean):
 
 def main():
     args = real_data_arguments()
-    effects = ["clean", "spikes", "steps", "gaps", "line", "lsb", "all"]
+    effects = ["clean", "spikes", "steps", "gaps", "line", "slow-line", "lsb", "all"]
     tmp = tempfile.mkdtemp(prefix="foglab_real_injected_")
     jobs, sds = [], {}
     for imu in (1, 2, 3):
@@ -188,7 +205,8 @@ def main():
                     y = [on_grid(v, COARSE * LSB_DPS) for v in x]
                 else:
                     y = with_effects(x, sd, spikes=effect in ("spikes", "all"),
-                                     steps=effect in ("steps", "all"), line=effect in ("line", "all"))
+                                     steps=effect in ("steps", "all"), line=effect in ("line", "all"),
+                                     slow_line=effect == "slow-line")
                 path = os.path.join(tmp, f"imu{imu}_{axis}_{effect}.csv")
                 write(path, y, gaps=effect in ("gaps", "all"))
                 # a time column gives the rate where there are gaps

@@ -277,14 +277,15 @@ nlohmann::json quantisation_json(const model::AnalysisResult& r) {
 nlohmann::json lines_json(const model::NoiseFitResult& f) {
   nlohmann::json lines = nlohmann::json::array();
   for (const SpectralLine& line : f.lines) {
-    lines.push_back({{"frequency_hz", number(line.frequency_hz)},
-                     {"width_hz", number(line.width_hz)},
-                     {"rms_deg_h", number(std::sqrt(line.variance))},
-                     {"peak_ratio", number(line.peak_ratio)},
-                     {"variance_scale", number(f.line_variance_scale)},
-                     {"adev_at_quarter_period_deg_h",
-                      number(std::sqrt(line_allan_variance(line, 0.371 / line.frequency_hz,
-                                                           f.bandwidth.sample_interval_s)))}});
+    lines.push_back(
+        {{"frequency_hz", number(line.frequency_hz)},
+         {"width_hz", number(line.width_hz)},
+         {"rms_deg_h", number(std::sqrt(line.variance))},
+         {"peak_ratio", number(line.peak_ratio)},
+         {"variance_scale", number(line.takes_variance_scale ? f.line_variance_scale : 1.0)},
+         {"adev_at_quarter_period_deg_h",
+          number(std::sqrt(line_allan_variance(line, 0.371 / line.frequency_hz,
+                                               f.bandwidth.sample_interval_s)))}});
   }
   return lines;
 }

@@ -530,6 +530,8 @@ constexpr CatalogueEntry kEntries[] = {
      "and N's interval spans both)"},
     {Text::an_lines_none, "none found in the PSD"},
     {Text::an_line, "{} Hz ({} Hz wide), {} deg/h rms, {} times the PSD's floor"},
+    {Text::an_line_slow,
+     "{} Hz (a period of {} s, {} Hz wide), {} deg/h rms, {} times the PSD's floor"},
     {Text::an_lines_scale,
      " (the variance the fit used: {} times the PSD bins', as the Allan deviation's first taus "
      "show it)"},
@@ -809,6 +811,10 @@ constexpr CatalogueEntry kEntries[] = {
      "the output is quantised in steps of {:.6g} deg/h ({} distinct values in the "
      "first {} samples); rounding adds white noise of level {:.4g} deg/h/sqrt(Hz), "
      "{:.3g} % of N^2, {}"},
+    {Text::note_quantised_without_white,
+     "the output is quantised in steps of {:.6g} deg/h ({} distinct values in the "
+     "first {} samples); rounding adds white noise of level {:.4g} deg/h/sqrt(Hz) (the "
+     "fit resolved no white noise to compare it with), {}"},
     {Text::note_temperature_quantised,
      "the temperature is read in steps of {:.4g} degC ({} readings, changing on {} "
      "samples, every {:.3g} s on average): the temperature law is fitted against the "
@@ -888,8 +894,8 @@ constexpr CatalogueEntry kEntries[] = {
      "coefficient is measured and reported with its standard error, significant or "
      "not)"},
     {Text::ev_criteria,
-     "criterion (-2 ln L + penalty x parameters): no random bias {:.1f}, Wiener "
-     "{:.1f}, Gauss-Markov {:.1f}"},
+     "criterion (-2 ln L + penalty x parameters): no random bias {}, Wiener "
+     "{}, Gauss-Markov {}"},
     {Text::ev_wiener,
      "Wiener random bias: the Allan deviation rises at the long taus (end slope "
      "{:.2f}, +0.5 expected) and {}; {}"},

@@ -206,7 +206,7 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
   const AnalysisOptions options = with_record_trend(given, residual, fs, gaps, record ? degree : 0);
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
-  const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
+  const std::vector<SpectralLine> lines = find_spectral_lines(residual, fs, s.psd, gaps);
   stats::AllanResult other = other_grid_allan(residual, fs, options, gaps);
   const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
   add_reported_allan(s, all, std::move(other), fs, options);
@@ -242,7 +242,7 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   // lines the noise fits need, and the final PSD when the cubic stays.
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
-  const std::vector<SpectralLine> lines = find_spectral_lines(s.psd);
+  const std::vector<SpectralLine> lines = find_spectral_lines(residual, fs, s.psd, gaps);
   const stats::AllanResult cubic_allan = residual_allan(residual, fs, options, gaps);
   if (cubic_allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -362,8 +362,11 @@ RandomBiasEvidence evidence_of(const Statistics& s) {
   while (end < f.size() && f[end] <= 10.0 * f.front()) ++end;
   e.psd_low_frequency_slope = log_slope(std::span(f).first(end), std::span(s.psd.psd).first(end));
 
-  const Message fits(Text::ev_criteria, e.criterion_none, e.criterion_wiener,
-                     e.criterion_gauss_markov);
+  // "-" where no candidate of that kind was fitted (a record of a few
+  // hundred samples can leave only one)
+  auto criterion = [](double c) { return std::isfinite(c) ? fmt::format("{:.1f}", c) : "-"; };
+  const Message fits(Text::ev_criteria, criterion(e.criterion_none), criterion(e.criterion_wiener),
+                     criterion(e.criterion_gauss_markov));
   switch (n.random_bias_process) {
     case RandomBiasProcess::wiener:
       e.summary = Message(Text::ev_wiener, e.adev_end_slope,
@@ -588,11 +591,15 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   }
   if (const OutputQuantisation& q = r.output_quantisation; q.detected) {
     const double n = s.noise.model.N;
-    r.notes.emplace_back(
-        Text::note_quantised, q.lsb_deg_h, q.distinct_values, q.samples_examined,
-        q.white_level_deg_h_sqrt_hz,
-        n > 0 ? 100.0 * std::pow(q.white_level_deg_h_sqrt_hz / n, 2) : kNaN,
-        q.noise_like ? Text::note_quantised_known : Text::note_quantised_distorting);
+    const Text how = q.noise_like ? Text::note_quantised_known : Text::note_quantised_distorting;
+    if (n > 0.0) {
+      r.notes.emplace_back(Text::note_quantised, q.lsb_deg_h, q.distinct_values, q.samples_examined,
+                           q.white_level_deg_h_sqrt_hz,
+                           100.0 * std::pow(q.white_level_deg_h_sqrt_hz / n, 2), how);
+    } else {
+      r.notes.emplace_back(Text::note_quantised_without_white, q.lsb_deg_h, q.distinct_values,
+                           q.samples_examined, q.white_level_deg_h_sqrt_hz, how);
+    }
   }
   r.evidence = evidence_of(s);
   r.psd = std::move(s.psd);

@@ -62,14 +62,18 @@ void add_known_allan_variance(detail::Points& p, double known_white,
   const bool with_lines = !lines.empty() && tau0 > 0.0;
   if (!with_lines && known_white == 0.0) return;
   p.fixed_avar.assign(p.tau.size(), 0.0);
-  if (with_lines) p.line_avar.assign(p.tau.size(), 0.0);
+  const bool scaled = with_lines && std::any_of(lines.begin(), lines.end(), [](const auto& line) {
+                        return line.takes_variance_scale;
+                      });
+  if (scaled) p.line_avar.assign(p.tau.size(), 0.0);
   for (std::size_t i = 0; i < p.tau.size(); ++i) {
     p.fixed_avar[i] += known_white * known_white / p.tau[i];
     if (!with_lines) continue;
     for (const SpectralLine& line : lines) {
-      p.line_avar[i] += line_allan_variance(line, p.tau[i], tau0);
+      const double avar = line_allan_variance(line, p.tau[i], tau0);
+      if (line.takes_variance_scale) p.line_avar[i] += avar;
+      p.fixed_avar[i] += avar;
     }
-    p.fixed_avar[i] += p.line_avar[i];
   }
 }
 
@@ -210,6 +214,7 @@ NoiseFitResult conclude(const detail::Points& p, const std::vector<detail::Subse
     r.lines.assign(lines.begin(), lines.end());
     r.line_variance_scale = p.line_scale;
     for (SpectralLine& line : r.lines) {
+      if (!line.takes_variance_scale) continue;
       line.variance *= p.line_scale;
       for (double& v : line.bin_variance) v *= p.line_scale;
     }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "foglab/core/numeric.h"
@@ -15,9 +16,14 @@ constexpr double kSmoothing = 0.005;        // moving-average width, relative to
 constexpr double kSkirtSignificance = 4.0;  // a found line extends while they stand this many
                                             // standard errors above the floor
 constexpr double kSkirtShare = 1e-3;        // of the line's peak excess, the least a skirt holds
-constexpr double kSignificance = 10.0;   // its excess this many standard errors
-constexpr std::size_t kLowestBin = 64;   // in resolutions
+constexpr double kSignificance = 10.0;      // its excess this many standard errors
 constexpr std::size_t kClosedGap = 2;    // bins
+// The long-segment PSD of the slow lines: segments the largest power of two
+// up to half the longest stretch (3 segments or more at 50 % overlap), at
+// most this long, of the record's means over blocks that leave this many
+// samples a segment.
+constexpr std::size_t kLongestSlowLineSegment = std::size_t{1} << 21;
+constexpr std::size_t kSlowLineSegmentBlocks = 4096;
 
 // What makes a run of bins a line, for one noise floor.
 struct LinePass {
@@ -27,11 +33,15 @@ struct LinePass {
   double least_width;       // the run of high bins at least this wide, relative to f
   double least_beside;      // beside the line (as far out as it is wide), the PSD stays this
                             // far above the floor
+  std::size_t lowest_bin;   // runs of high bins start from this bin up (bin k lies at k + 1
+                            // resolutions; a line's skirts may reach down to half of it)
 };
 
 // Narrow lines (a sinusoid, a resonance up to about a quarter of its
-// frequency wide) over the median of +-0.2 decade.
-constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0, 0.0};
+// frequency wide) over the median of +-0.2 decade, from the 17th bin up
+// (the window holds 15 bins or more there, and a sinusoid's main lobe of 4
+// does not lift its median).
+constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0, 0.0, 16};
 // Broad humps, which lift that median themselves: an aliased resonance
 // (the ADIS16405 z axes' 20 Hz resonance at 5 Hz when every fourth sample
 // is kept, 3.5-7 Hz wide, its PSD 2.6-5 times the floor) over the median of
@@ -40,8 +50,10 @@ constexpr LinePass kNarrow{0.2, 3.0, 4.0, 0.0, 0.0};
 // half the floor or more: a hump on the noise floor returns to it, while a
 // moving average's side lobe (between its nulls at multiples of fs / k)
 // falls into them (the side lobes of 6- to 24-sample averages had been
-// taken for lines 3-9 Hz wide).
-constexpr LinePass kBroad{0.5, 2.0, 2.5, 0.15, 0.5};
+// taken for lines 3-9 Hz wide). From 64 resolutions up: over +-0.5 decade
+// the median of a steep low-frequency spectrum (a random walk's 1/f^2) lies
+// well under the PSD.
+constexpr LinePass kBroad{0.5, 2.0, 2.5, 0.15, 0.5, 64};
 
 // The noise floor at every bin: at the centre of each band of 1/20 decade,
 // the median of the PSD within `half_width` decade either side (0.2 is wide
@@ -110,8 +122,8 @@ bool above_floor(double smooth, double floor, std::size_t k, double segments) {
 // decade and at least 16 bins, a shorter remainder joined to the last
 // (the mean PSD over the mean floor: a single bin's Welch scatter is too
 // wide to take its least).
-double lowest_beside(const stats::PsdResult& psd, const std::vector<double>& floor, std::size_t low,
-                     std::size_t high) {
+double lowest_beside(const stats::PsdResult& psd, const std::vector<double>& floor,
+                     std::size_t lowest_bin, std::size_t low, std::size_t high) {
   const std::vector<double>& f = psd.frequency_hz;
   const std::size_t n = f.size(), reach = high - low + 1;
   constexpr std::size_t kLeastBins = 16;
@@ -129,28 +141,30 @@ double lowest_beside(const stats::PsdResult& psd, const std::vector<double>& flo
       a = b;
     }
   };
-  scan(low > kLowestBin + reach ? low - reach : kLowestBin, low);
+  scan(low > lowest_bin + reach ? low - reach : lowest_bin, low);
   scan(high + 1, std::min(n, high + 1 + reach));
   return lowest;
 }
 
-// The bins [low, high] of a line found.
-struct BinRange {
-  std::size_t low, high;
+// The frequencies [low, high] of a line found [Hz].
+struct FrequencyRange {
+  double low, high;
 };
 
-// The lines of one pass, added to `lines`; `taken` holds the bins of the
-// lines found before, which a run of this pass may not overlap.
+// The lines of one pass whose run of high bins starts below `start_below_hz`,
+// added to `lines`; `taken` holds the frequencies of the lines found before,
+// which a line of this pass may not overlap.
 void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
-                const LinePass& pass, std::vector<BinRange>& taken,
+                const LinePass& pass, double start_below_hz, std::vector<FrequencyRange>& taken,
                 std::vector<SpectralLine>& lines) {
   const std::size_t n = psd.psd.size();
+  const std::size_t lowest = pass.lowest_bin;
   const std::vector<double> floor = noise_floor(psd, pass.floor_half_width);
   const double df = psd.resolution_hz;
   const double segments = static_cast<double>(psd.segments);
 
-  std::size_t k = kLowestBin;
-  while (k < n) {
+  std::size_t k = lowest;
+  while (k < n && psd.frequency_hz[k] < start_below_hz) {
     if (!(smooth[k] > pass.bin_ratio * floor[k])) {
       ++k;
       continue;
@@ -189,7 +203,9 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
              smooth[b] - floor[b] >= kSkirtShare * peak_excess;
     };
     std::size_t low = k, high = last;
-    while (low > kLowestBin && skirt(low - 1)) --low;
+    while (low > lowest / 2 && skirt(low - 1))
+      --low;  // a line at the search's start has skirts
+              // below it
     while (high + 1 < n && skirt(high + 1)) ++high;
     // A line falls on both sides: its highest averaged bin stands the bin ratio
     // above the PSD where its skirts end. A steep roll-off of the output
@@ -197,24 +213,26 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
     // median on one side only, where the passband's level goes on.
     double peak = 0.0;
     for (std::size_t b = k; b <= last; ++b) peak = std::max(peak, smooth[b]);
-    const double below = smooth[low > kLowestBin ? low - 1 : low];
+    const double below = smooth[low > 0 ? low - 1 : low];
     const double above = smooth[high + 1 < n ? high + 1 : high];
     if (!(peak > pass.bin_ratio * below && peak > pass.bin_ratio * above)) {
       k = last + 1;  // a real line on the shoulder is still looked for
       continue;
     }
-    if (pass.least_beside > 0.0 && !(lowest_beside(psd, floor, low, high) >= pass.least_beside)) {
+    if (pass.least_beside > 0.0 &&
+        !(lowest_beside(psd, floor, lowest, low, high) >= pass.least_beside)) {
       k = high + 1;
       continue;
     }
-    const bool overlaps = std::any_of(taken.begin(), taken.end(), [&](const BinRange& r) {
-      return low <= r.high && r.low <= high;
+    const double f_low = psd.frequency_hz[low], f_high = psd.frequency_hz[high];
+    const bool overlaps = std::any_of(taken.begin(), taken.end(), [&](const FrequencyRange& r) {
+      return f_low <= r.high && r.low <= f_high;
     });
     if (overlaps) {
       k = high + 1;
       continue;
     }
-    taken.push_back({low, high});
+    taken.push_back({f_low, f_high});
     SpectralLine line;
     line.peak_ratio = peak_ratio;
     double line_excess = 0.0, weighted_f = 0.0;
@@ -233,19 +251,88 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
   }
 }
 
-}  // namespace
+// The means of `rate` over blocks of `block` samples inside each contiguous
+// stretch (a stretch's last partial block dropped), with a gap of one block
+// wherever a stretch ends: the slow lines' band lies far below the blocks'
+// Nyquist frequency, and what folds into it is tiny (content near k fs / block
+// meets the block mean's nulls there: a line at k fs / block + 0.01 Hz is
+// cut to below 1e-4 of its power for 2 h at 100 Hz).
+struct BlockMeans {
+  std::vector<double> rate;
+  std::vector<Gap> gaps;
+};
 
-std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::size_t max_lines) {
-  std::vector<SpectralLine> lines;
-  if (psd.psd.size() < 2 * kLowestBin || psd.segments == 0 || !(psd.resolution_hz > 0.0))
-    return lines;
-  const std::vector<double> smooth = smoothed(psd);
-  std::vector<BinRange> taken;
-  find_lines(psd, smooth, kNarrow, taken, lines);
-  find_lines(psd, smooth, kBroad, taken, lines);
+BlockMeans block_means(std::span<const double> rate, std::span<const Gap> gaps, std::size_t block) {
+  BlockMeans out;
+  for (const Stretch& s : contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps)) {
+    const auto begin = static_cast<std::size_t>(s.begin);
+    const std::size_t blocks = static_cast<std::size_t>(s.size()) / block;
+    if (blocks == 0) continue;
+    if (!out.rate.empty()) out.gaps.push_back({static_cast<std::int64_t>(out.rate.size()), 1});
+    for (std::size_t b = 0; b < blocks; ++b) {
+      double sum = 0.0;
+      for (std::size_t i = begin + b * block; i < begin + (b + 1) * block; ++i) sum += rate[i];
+      out.rate.push_back(sum / static_cast<double>(block));
+    }
+  }
+  return out;
+}
+
+bool searchable(const stats::PsdResult& psd) {
+  return psd.psd.size() >= 2 * kNarrow.lowest_bin && psd.segments > 0 && psd.resolution_hz > 0.0;
+}
+
+void strongest_first(std::vector<SpectralLine>& lines, std::size_t max_lines) {
   std::sort(lines.begin(), lines.end(),
             [](const SpectralLine& a, const SpectralLine& b) { return a.variance > b.variance; });
   if (lines.size() > max_lines) lines.resize(max_lines);
+}
+
+// The lines of `psd` (both passes), their frequencies added to `taken`.
+std::vector<SpectralLine> lines_of(const stats::PsdResult& psd,
+                                   std::vector<FrequencyRange>& taken) {
+  std::vector<SpectralLine> lines;
+  if (!searchable(psd)) return lines;
+  const std::vector<double> smooth = smoothed(psd);
+  constexpr double kEverywhere = std::numeric_limits<double>::infinity();
+  find_lines(psd, smooth, kNarrow, kEverywhere, taken, lines);
+  find_lines(psd, smooth, kBroad, kEverywhere, taken, lines);
+  return lines;
+}
+
+}  // namespace
+
+std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd, std::size_t max_lines) {
+  std::vector<FrequencyRange> taken;
+  std::vector<SpectralLine> lines = lines_of(psd, taken);
+  strongest_first(lines, max_lines);
+  return lines;
+}
+
+std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, double sample_rate_hz,
+                                              const stats::PsdResult& psd,
+                                              std::span<const Gap> gaps, std::size_t max_lines) {
+  std::vector<FrequencyRange> taken;
+  std::vector<SpectralLine> lines = lines_of(psd, taken);
+  const auto longest = static_cast<std::size_t>(
+      longest_stretch(contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps)));
+  std::size_t segment = 1;
+  while (segment * 2 <= longest / 2 && segment * 2 <= kLongestSlowLineSegment) segment *= 2;
+  if (searchable(psd) && segment > psd.segment_length) {
+    const std::size_t block = std::max<std::size_t>(1, segment / kSlowLineSegmentBlocks);
+    const BlockMeans means = block_means(rate, gaps, block);
+    stats::WelchOptions welch;
+    welch.segment_length = segment / block;
+    const stats::PsdResult slow = stats::welch_psd(
+        means.rate, sample_rate_hz / static_cast<double>(block), welch, means.gaps);
+    if (searchable(slow)) {
+      const double start_below_hz = psd.frequency_hz[kNarrow.lowest_bin];
+      const std::size_t first_slow = lines.size();
+      find_lines(slow, smoothed(slow), kNarrow, start_below_hz, taken, lines);
+      for (std::size_t i = first_slow; i < lines.size(); ++i) lines[i].takes_variance_scale = false;
+    }
+  }
+  strongest_first(lines, max_lines);
   return lines;
 }
 

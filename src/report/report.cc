@@ -131,8 +131,13 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
   std::string text;
   for (const SpectralLine& line : fit.lines) {
     if (!text.empty()) text += "; ";
-    text += say(language, Text::an_line, g(line.frequency_hz), g(line.width_hz),
-                g(std::sqrt(line.variance)), g(line.peak_ratio));
+    if (line.frequency_hz < 1.0) {  // a slow line's period reads better
+      text += say(language, Text::an_line_slow, g(line.frequency_hz), g(1.0 / line.frequency_hz),
+                  g(line.width_hz), g(std::sqrt(line.variance)), g(line.peak_ratio));
+    } else {
+      text += say(language, Text::an_line, g(line.frequency_hz), g(line.width_hz),
+                  g(std::sqrt(line.variance)), g(line.peak_ratio));
+    }
   }
   if (fit.line_variance_scale != 1.0) {
     text += say(language, Text::an_lines_scale, g(fit.line_variance_scale));

@@ -364,31 +364,32 @@ enum class Text {
   an_eq17_value,  ///< {inside} {compared} {worst %} {tau} {half-widths}
   an_eq17_none,
   an_legend_eq17,
-  an_manual_k,                   ///< {K/sqrt3} {K/2pi}: K read the manual's way
-  an_manual_q,                   ///< {C = sqrt3 Q} {Q}
-  an_not_visible,                ///< g(): no reading
-  an_no_bound,                   ///< parameter_text(): no upper bound
-  an_random_bias_wiener,         ///< random_bias_answer(): {K}
-  an_random_bias_gauss_markov,   ///< random_bias_answer(): {sigma} {Tc}
-  an_random_bias_none,           ///< random_bias_answer(): neither
-  an_bandwidth_none,             ///< bandwidth_sentence(): none
-  an_bandwidth_moving_average,   ///< {samples} {cut-off} {percent} {lag-1} {reduction}
-  an_bandwidth_butterworth,      ///< {cut-off} {percent} {lag-1} {reduction}
-  an_bandwidth_first_order,      ///< {time constant} {cut-off} {percent} {lag-1} {reduction}
-  an_bandwidth_beyond_memory,    ///< {c samples} {stand-in cut-off} {reduction}
-  an_bandwidth_shape_free,       ///< {taus left out}: follows a modelled kind's sentence
-  an_bandwidth_shape_free_all,   ///< the same when no tau lies inside the filter's memory
-  an_bandwidth_shape_free_n,     ///< {N of that fit}: follows either
-  an_bandwidth_shape_decides,    ///< {percent}: follows it where the two N differ
-  an_lines_none,                 ///< lines_sentence(): none
-  an_line,                       ///< one line: {frequency} {width} {rms} {peak ratio}
-  an_lines_scale,                ///< {factor}: follows the lines
-  an_lines_tail,                 ///< ends the lines' sentence
-  an_drift_unchecked,            ///< stationarity_sentence(): a record too short for the check
-  an_drift_steady,               ///< {tau from} {tau to} {blocks} {largest |z|} {threshold}
-  an_drift_trend,                ///< {taus} {|z|} {last/first}
-  an_class_both,                 ///< class_sentence(): which criterion decided
-  an_class_by_arw,               ///< "decided by the angle random walk (the worse of the two)"
+  an_manual_k,                  ///< {K/sqrt3} {K/2pi}: K read the manual's way
+  an_manual_q,                  ///< {C = sqrt3 Q} {Q}
+  an_not_visible,               ///< g(): no reading
+  an_no_bound,                  ///< parameter_text(): no upper bound
+  an_random_bias_wiener,        ///< random_bias_answer(): {K}
+  an_random_bias_gauss_markov,  ///< random_bias_answer(): {sigma} {Tc}
+  an_random_bias_none,          ///< random_bias_answer(): neither
+  an_bandwidth_none,            ///< bandwidth_sentence(): none
+  an_bandwidth_moving_average,  ///< {samples} {cut-off} {percent} {lag-1} {reduction}
+  an_bandwidth_butterworth,     ///< {cut-off} {percent} {lag-1} {reduction}
+  an_bandwidth_first_order,     ///< {time constant} {cut-off} {percent} {lag-1} {reduction}
+  an_bandwidth_beyond_memory,   ///< {c samples} {stand-in cut-off} {reduction}
+  an_bandwidth_shape_free,      ///< {taus left out}: follows a modelled kind's sentence
+  an_bandwidth_shape_free_all,  ///< the same when no tau lies inside the filter's memory
+  an_bandwidth_shape_free_n,    ///< {N of that fit}: follows either
+  an_bandwidth_shape_decides,   ///< {percent}: follows it where the two N differ
+  an_lines_none,                ///< lines_sentence(): none
+  an_line,                      ///< one line: {frequency} {width} {rms} {peak ratio}
+  an_line_slow,        ///< one line below 1 Hz: {frequency} {period} {width} {rms} {peak ratio}
+  an_lines_scale,      ///< {factor}: follows the lines
+  an_lines_tail,       ///< ends the lines' sentence
+  an_drift_unchecked,  ///< stationarity_sentence(): a record too short for the check
+  an_drift_steady,     ///< {tau from} {tau to} {blocks} {largest |z|} {threshold}
+  an_drift_trend,      ///< {taus} {|z|} {last/first}
+  an_class_both,       ///< class_sentence(): which criterion decided
+  an_class_by_arw,     ///< "decided by the angle random walk (the worse of the two)"
   an_class_by_bias_instability,  ///< "decided by the bias instability (the worse of the two)"
   an_class_sentence,             ///< {class} {decided} {BI} {its class} {ARW} {its class}
   an_class_strategic,            ///< the manual's Table 1 classes
@@ -580,6 +581,7 @@ enum class Text {
   one_of,    ///< {value}: the range of one value
   note_no_temperature,
   note_quantised,  ///< {lsb} {distinct} {examined} {level} {percent} {known or distorting}
+  note_quantised_without_white,  ///< as note_quantised, no percent: no white noise resolved
   note_quantised_known,
   note_quantised_distorting,
   note_temperature_quantised,  ///< {lsb} {distinct} {changes} {mean hold s}

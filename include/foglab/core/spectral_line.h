@@ -28,6 +28,12 @@ struct SpectralLine {
   double peak_ratio = 0.0;               ///< the highest bin's PSD over the noise floor there
   std::vector<double> bin_frequency_hz;  ///< [Hz]
   std::vector<double> bin_variance;      ///< [(deg/h)^2]
+  /// Whether the noise fit's factor on the lines' variance, which the first
+  /// taus decide (NoiseFitResult::line_variance_scale: a broad resonance's
+  /// bins hold only part of it), applies: not to a slow line found in the
+  /// long-segment PSD, a sinusoid whose bins hold all of its variance and
+  /// whose Allan variance the first taus do not see.
+  bool takes_variance_scale = true;
 };
 
 /// The line's Allan variance [(deg/h)^2] at tau [s] for samples every

@@ -295,7 +295,8 @@ struct NoiseFitResult {
   BandwidthEstimate bandwidth;  ///< the sensor's output bandwidth, on the white and flicker terms
   /// Narrow-band disturbances whose Allan variance the fit took as known
   /// (model/spectral_lines.h), with their variance as the fit used it
-  /// (line_variance_scale times the PSD's); empty when none were given.
+  /// (line_variance_scale times the PSD's for the lines that take it,
+  /// SpectralLine::takes_variance_scale); empty when none were given.
   std::vector<SpectralLine> lines;
   /// The factor the fit found on the lines' variance as the PSD gave it:
   /// their Allan signature at the short taus fixes its amplitude better than

@@ -8,8 +8,10 @@
 // of f, stands more than 3 times above the floor, 4 times at its highest,
 // and whose excess over the floor is more than 10 times its own standard
 // error (the floor times sqrt(bins / segments): a Welch average of K
-// segments scatters by about 1/sqrt(K)). Only bins from 64 times the
-// resolution up are searched. A line found extends over its skirts: the
+// segments scatters by about 1/sqrt(K)). Runs of high bins start from the
+// 17th bin (17 resolutions) up: there the +-0.2 decade window holds 15 bins
+// or more, and a sinusoid's 4 (the Hann window's main lobe) do not lift
+// its median. A line found extends over its skirts: the
 // neighbouring bins whose averaged PSD stays more than four of its standard
 // errors (sqrt(2 / (K bins averaged))) above the floor and holds at least
 // 1/1000 of the line's highest excess (below that it is the floor's error:
@@ -37,11 +39,32 @@
 // a line of the first pass (which keeps every narrow line as it was), and
 // with the PSD beside them (as far out as they are wide, in bands of 1/100
 // decade) at half the floor or more: a hump on the noise floor returns to
-// it, a moving average's side lobe falls into the average's nulls.
+// it, a moving average's side lobe falls into the average's nulls. It
+// searches from 64 resolutions up: over +-0.5 decade the median of a steep
+// low-frequency spectrum (a random walk's 1/f^2) lies well under the PSD.
+//
+// Slow lines. A sinusoid of a few hundredths of a hertz (a thermal
+// chamber's or a room's control cycle, a rate table's hunting) bends the
+// Allan deviation where the bias instability and the random bias are read,
+// with a hump at 0.37 / f that a Gauss-Markov term follows (a 0.01 Hz line
+// of 0.35 deg/h rms on a tactical FOG: a "Gauss-Markov random bias" of
+// Tc 42 s, B and K lost). The record's Welch PSD starts its search at 17
+// resolutions (0.013 Hz for 2 h at 100 Hz with the automatic segments of
+// N/4 to N/8); below that the narrow pass is made once more on a PSD with
+// segments twice as long or longer (the largest power of two up to half the
+// longest stretch, at most 2^21 samples: 3 to 7 segments; from 0.0065 Hz,
+// 47 periods in a 2 h record), for lines that start below the first PSD's
+// search. That PSD is taken of the record's means over blocks that leave
+// 4096 to a segment (its band lies far below their Nyquist frequency): a
+// pass over the samples and short FFTs, where the full segments had cost
+// 0.3 s on 10^7 samples. Its lines keep their variance
+// (SpectralLine::takes_variance_scale).
 #pragma once
 
+#include <span>
 #include <vector>
 
+#include "foglab/core/gaps.h"
 #include "foglab/core/spectral_line.h"
 #include "foglab/stats/psd.h"
 
@@ -50,6 +73,15 @@ namespace foglab::model {
 /// The lines of `psd` (two-sided, stats::welch_psd()), strongest first, at
 /// most `max_lines`.
 std::vector<SpectralLine> find_spectral_lines(const stats::PsdResult& psd,
+                                              std::size_t max_lines = 8);
+
+/// The lines of `rate` (sampled at `sample_rate_hz`, with `gaps`) whose
+/// Welch PSD is `psd`: those of find_spectral_lines(psd) and the slow ones
+/// of the long-segment PSD below its search, strongest first, at most
+/// `max_lines`.
+std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, double sample_rate_hz,
+                                              const stats::PsdResult& psd,
+                                              std::span<const Gap> gaps = {},
                                               std::size_t max_lines = 8);
 
 }  // namespace foglab::model
