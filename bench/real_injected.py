@@ -30,9 +30,9 @@ the channel's own sample spread sd and scaled to its 2.78 h:
 - all: spikes, steps, gaps and the line together.
 
 Every sum but the slow line's is rounded to the sensor's own 0.05 deg/s
-grid, as its output word would be. Per record it prints whether the effect was found (the count, and
-the times within a tolerance), and N, B and the class against the clean
-record's. The derived files go to a temporary folder and are removed (the
+grid, as its output word would be. Per record it prints whether the effect
+was found (the count, and the times within a tolerance), and N, B and the
+class against the clean record's. The derived files go to a temporary folder and are removed (the
 data's licence: never into the repository).
 """
 import concurrent.futures as cf

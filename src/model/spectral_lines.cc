@@ -203,9 +203,8 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
              smooth[b] - floor[b] >= kSkirtShare * peak_excess;
     };
     std::size_t low = k, high = last;
-    while (low > lowest / 2 && skirt(low - 1))
-      --low;  // a line at the search's start has skirts
-              // below it
+    // A line at the search's start has skirts below it.
+    while (low > lowest / 2 && skirt(low - 1)) --low;
     while (high + 1 < n && skirt(high + 1)) ++high;
     // A line falls on both sides: its highest averaged bin stands the bin ratio
     // above the PSD where its skirts end. A steep roll-off of the output

@@ -52,9 +52,9 @@
 // resolutions (0.013 Hz for 2 h at 100 Hz with the automatic segments of
 // N/4 to N/8); below that the narrow pass is made once more on a PSD with
 // segments twice as long or longer (the largest power of two up to half the
-// longest stretch, at most 2^21 samples: 3 to 7 segments; from 0.0065 Hz,
-// 47 periods in a 2 h record), for lines that start below the first PSD's
-// search. That PSD is taken of the record's means over blocks that leave
+// longest stretch, at most 2^21 samples: 3 to 6 segments, more where that
+// cap binds; from 0.0065 Hz, 47 periods in a 2 h record), for lines that
+// start below the first PSD's search. That PSD is taken of the record's means over blocks that leave
 // 4096 to a segment (its band lies far below their Nyquist frequency): a
 // pass over the samples and short FFTs, where the full segments had cost
 // 0.3 s on 10^7 samples. Its lines keep their variance
