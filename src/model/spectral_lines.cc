@@ -250,8 +250,8 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
   }
 }
 
-// The means of `rate` over blocks of `block` samples inside each contiguous
-// stretch (a stretch's last partial block dropped), with a gap of one block
+// The means of `rate` over blocks of `block` samples inside each of its
+// contiguous `stretches` (a stretch's last partial block dropped), with a gap of one block
 // wherever a stretch ends: the slow lines' band lies far below the blocks'
 // Nyquist frequency, and what folds into it is tiny (content near k fs / block
 // meets the block mean's nulls there: a line at k fs / block + 0.01 Hz is
@@ -261,17 +261,16 @@ struct BlockMeans {
   std::vector<Gap> gaps;
 };
 
-BlockMeans block_means(std::span<const double> rate, std::span<const Gap> gaps, std::size_t block) {
+BlockMeans block_means(std::span<const double> rate, std::span<const Stretch> stretches,
+                       std::size_t block) {
   BlockMeans out;
-  for (const Stretch& s : contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps)) {
-    const auto begin = static_cast<std::size_t>(s.begin);
+  for (const Stretch& s : stretches) {
     const std::size_t blocks = static_cast<std::size_t>(s.size()) / block;
     if (blocks == 0) continue;
     if (!out.rate.empty()) out.gaps.push_back({static_cast<std::int64_t>(out.rate.size()), 1});
     for (std::size_t b = 0; b < blocks; ++b) {
-      double sum = 0.0;
-      for (std::size_t i = begin + b * block; i < begin + (b + 1) * block; ++i) sum += rate[i];
-      out.rate.push_back(sum / static_cast<double>(block));
+      out.rate.push_back(
+          compensated_mean(rate.subspan(static_cast<std::size_t>(s.begin) + b * block, block)));
     }
   }
   return out;
@@ -313,13 +312,14 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
                                               std::span<const Gap> gaps, std::size_t max_lines) {
   std::vector<FrequencyRange> taken;
   std::vector<SpectralLine> lines = lines_of(psd, taken);
-  const auto longest = static_cast<std::size_t>(
-      longest_stretch(contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps)));
+  const std::vector<Stretch> stretches =
+      contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps);
+  const auto longest = static_cast<std::size_t>(longest_stretch(stretches));
   std::size_t segment = 1;
   while (segment * 2 <= longest / 2 && segment * 2 <= kLongestSlowLineSegment) segment *= 2;
   if (searchable(psd) && segment > psd.segment_length) {
     const std::size_t block = std::max<std::size_t>(1, segment / kSlowLineSegmentBlocks);
-    const BlockMeans means = block_means(rate, gaps, block);
+    const BlockMeans means = block_means(rate, stretches, block);
     stats::WelchOptions welch;
     welch.segment_length = segment / block;
     const stats::PsdResult slow = stats::welch_psd(
