@@ -535,6 +535,9 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_lines_scale,
      " (the variance the fit used: {} times the PSD bins', as the Allan deviation's first taus "
      "show it)"},
+    {Text::an_line_removed,
+     "{} Hz (a period of {} s), a sinusoid of {} deg/h amplitude ({} deg/h rms), {} times the "
+     "PSD's floor, taken out of the record before the Allan variance"},
     {Text::an_lines_tail, " (its Allan variance is part of the fit, not of any noise term)"},
     {Text::an_drift_unchecked, "not checked (the record holds under 32 blocks of 256 samples)"},
     {Text::an_drift_steady,

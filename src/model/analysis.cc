@@ -207,6 +207,7 @@ Statistics statistics(std::vector<double>& residual, double fs, const AnalysisOp
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(residual, fs, s.psd, gaps);
+  remove_sinusoids(residual, fs, gaps, lines);  // the PSD keeps them
   stats::AllanResult other = other_grid_allan(residual, fs, options, gaps);
   const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
   add_reported_allan(s, all, std::move(other), fs, options);
@@ -225,9 +226,10 @@ stats::AllanResult without_intervals(stats::AllanResult all) {
 // statistics of its residual; `rate` is consumed (it ends as the residual).
 // The degree needs the noise model, the noise model a residual: the residual
 // of the highest degree (the cubic), in a second array (the record stays),
-// gives its PSD (whose spectral lines every fit takes as known) and its
-// OADEV with intervals, and from its deviations alone a quick first noise
-// model for the degree criterion. Whenever the criterion keeps the cubic,
+// gives its PSD (whose spectral lines every fit takes as known, or that
+// are taken out of the record first: remove_sinusoids()) and its OADEV with
+// intervals, and from its deviations alone a quick first noise model for
+// the degree criterion. Whenever the criterion keeps the cubic,
 // that PSD and OADEV are the final ones and its full noise fit the final model,
 // so that fit runs on a second thread alongside the quick one. Otherwise the
 // second array takes the final residual for its OADEV, and the noise fit runs
@@ -243,6 +245,7 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
   Statistics s;
   add_psd(s, residual, fs, options, gaps);
   const std::vector<SpectralLine> lines = find_spectral_lines(residual, fs, s.psd, gaps);
+  remove_sinusoids(residual, fs, gaps, lines);  // the PSD keeps them
   const stats::AllanResult cubic_allan = residual_allan(residual, fs, options, gaps);
   if (cubic_allan.tau_s.size() < 3) {
     throw DataError(fmt::format(
@@ -266,18 +269,21 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
 
   if (fit.degree == cubic_degree) {
     residual = {};  // the second array is not needed any more (peak memory)
+    remove_sinusoids(rate, fs, gaps, lines);
     add_reported_allan(s, cubic_allan, other_grid_allan(rate, fs, options, gaps), fs, options);
     s.noise = cubic_noise.get();
     return s;
   }
   residual.assign(rate.begin(), rate.end());  // the capacity (n + 1) stays
+  remove_sinusoids(residual, fs, gaps, lines);
   const stats::AllanResult all = residual_allan(residual, fs, options, gaps);
   residual = {};
   const AnalysisOptions final_options = with_record_trend(options, rate, fs, gaps, fit.degree);
   std::future<NoiseFitResult> noise = std::async(std::launch::async, [&] {
     return residual_noise_model(all, final_options, &record, fit.degree, lines);
   });
-  add_psd(s, rate, fs, options, gaps);  // the final residual's
+  add_psd(s, rate, fs, options, gaps);  // the final residual's, with its lines
+  remove_sinusoids(rate, fs, gaps, lines);
   add_reported_allan(s, all, other_grid_allan(rate, fs, options, gaps), fs, options);
   s.noise = noise.get();
   return s;

@@ -51,7 +51,8 @@ NoiseFitResult degenerate(const detail::Points& p) {
 }
 
 // The known Allan variance at every point: the output word's rounding
-// (white noise of level `known_white`) and the spectral lines.
+// (white noise of level `known_white`) and the spectral lines still in the
+// record (not removed_from_record).
 void add_known_allan_variance(detail::Points& p, double known_white,
                               std::span<const SpectralLine> lines) {
   if (!(known_white >= 0.0) || !std::isfinite(known_white)) {
@@ -70,6 +71,7 @@ void add_known_allan_variance(detail::Points& p, double known_white,
     p.fixed_avar[i] += known_white * known_white / p.tau[i];
     if (!with_lines) continue;
     for (const SpectralLine& line : lines) {
+      if (line.removed_from_record) continue;
       const double avar = line_allan_variance(line, p.tau[i], tau0);
       if (line.takes_variance_scale) p.line_avar[i] += avar;
       p.fixed_avar[i] += avar;
@@ -576,6 +578,7 @@ double fitted_allan_variance(const NoiseFitResult& fit, NoiseTerm term, double t
 double lines_allan_variance(const NoiseFitResult& fit, double tau_s) {
   double sum = 0.0;
   for (const SpectralLine& line : fit.lines) {
+    if (line.removed_from_record) continue;
     sum += line_allan_variance(line, tau_s, fit.bandwidth.sample_interval_s);
   }
   return sum;

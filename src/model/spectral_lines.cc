@@ -1,10 +1,12 @@
 // foglab — spectral lines in a Welch PSD (spectral_lines.h).
 #include "foglab/model/spectral_lines.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 
 #include "foglab/core/numeric.h"
 
@@ -259,21 +261,111 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
 struct BlockMeans {
   std::vector<double> rate;
   std::vector<Gap> gaps;
+  std::vector<double> time_s;   ///< [s] each block's centre, the gaps' time counted
+  std::size_t block = 1;        ///< samples a block
+  double sample_rate_hz = 0.0;  ///< of the samples
 };
 
 BlockMeans block_means(std::span<const double> rate, std::span<const Stretch> stretches,
-                       std::size_t block) {
+                       std::span<const Gap> gaps, double sample_rate_hz, std::size_t block) {
   BlockMeans out;
+  out.block = block;
+  out.sample_rate_hz = sample_rate_hz;
   for (const Stretch& s : stretches) {
     const std::size_t blocks = static_cast<std::size_t>(s.size()) / block;
     if (blocks == 0) continue;
     if (!out.rate.empty()) out.gaps.push_back({static_cast<std::int64_t>(out.rate.size()), 1});
+    const double start_s = elapsed_s(s.begin, gaps, sample_rate_hz) +
+                           0.5 * static_cast<double>(block - 1) / sample_rate_hz;
     for (std::size_t b = 0; b < blocks; ++b) {
       out.rate.push_back(
           compensated_mean(rate.subspan(static_cast<std::size_t>(s.begin) + b * block, block)));
+      out.time_s.push_back(start_s + static_cast<double>(b * block) / sample_rate_hz);
     }
   }
   return out;
+}
+
+// The least-squares sinusoid of the block means at `frequency_hz`, beside
+// a constant: the samples' sinusoid it stands for, a cos(w t) + b sin(w t)
+// [deg/h] (the block mean's Dirichlet factor taken out), and the sum of
+// squares it explains (what the frequency search maximises).
+struct SineFit {
+  double frequency_hz = 0.0;
+  double cos_deg_h = 0.0;
+  double sin_deg_h = 0.0;
+  double explained = 0.0;
+  double variance() const { return 0.5 * (cos_deg_h * cos_deg_h + sin_deg_h * sin_deg_h); }
+};
+
+SineFit fit_sine(const BlockMeans& m, double frequency_hz) {
+  const double w = 2.0 * std::numbers::pi * frequency_hz;
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < m.rate.size(); ++i) {
+    const Eigen::Vector3d x(1.0, std::cos(w * m.time_s[i]), std::sin(w * m.time_s[i]));
+    a.selfadjointView<Eigen::Lower>().rankUpdate(x);
+    b += x * m.rate[i];
+  }
+  a = a.selfadjointView<Eigen::Lower>();
+  const Eigen::Vector3d beta = a.ldlt().solve(b);
+  const double mean = b(0) / static_cast<double>(m.rate.size());
+  SineFit fit;
+  fit.frequency_hz = frequency_hz;
+  fit.explained = beta.dot(b) - mean * b(0);
+  const double tau0 = 1.0 / m.sample_rate_hz;
+  const double k = static_cast<double>(m.block);
+  const double dirichlet = std::sin(std::numbers::pi * frequency_hz * k * tau0) /
+                           (k * std::sin(std::numbers::pi * frequency_hz * tau0));
+  fit.cos_deg_h = beta(1) / dirichlet;
+  fit.sin_deg_h = beta(2) / dirichlet;
+  return fit;
+}
+
+// A slow line found in the long-segment PSD, taken again as the least-
+// squares sinusoid of the record's block means, to be removed from the
+// record, when that holds most of the line's variance (kCoherentShare; the
+// header says why): its frequency searched over +-2 / T (T the record's
+// span) around the bins' centre in steps of 1 / (20 T), then refined by
+// golden section over one step either side.
+constexpr double kCoherentShare = 0.8;
+
+void take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
+  if (m.time_s.size() < 16) return;
+  const double span_s =
+      m.time_s.back() - m.time_s.front() + static_cast<double>(m.block) / m.sample_rate_hz;
+  const double step_hz = 1.0 / (20.0 * span_s);
+  SineFit best;
+  for (int j = -40; j <= 40; ++j) {
+    const double f = line.frequency_hz + j * step_hz;
+    if (!(f > 0.0)) continue;
+    if (const SineFit fit = fit_sine(m, f); fit.explained > best.explained) best = fit;
+  }
+  if (!(best.explained > 0.0)) return;
+  double lo = best.frequency_hz - step_hz, hi = best.frequency_hz + step_hz;
+  const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo);
+  SineFit f1 = fit_sine(m, x1), f2 = fit_sine(m, x2);
+  for (int it = 0; it < 24; ++it) {
+    if (f1.explained > f2.explained) {
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - golden * (hi - lo), f1 = fit_sine(m, x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + golden * (hi - lo), f2 = fit_sine(m, x2);
+    }
+  }
+  for (const SineFit& f : {f1, f2}) {
+    if (f.explained > best.explained) best = f;
+  }
+  if (!(best.variance() >= kCoherentShare * line.variance)) return;
+  line.frequency_hz = best.frequency_hz;
+  line.variance = best.variance();
+  line.bin_frequency_hz = {best.frequency_hz};
+  line.bin_variance = {best.variance()};
+  line.removed_from_record = true;
+  line.amplitude_deg_h = std::hypot(best.cos_deg_h, best.sin_deg_h);
+  line.phase_rad = std::atan2(-best.sin_deg_h, best.cos_deg_h);
 }
 
 bool searchable(const stats::PsdResult& psd) {
@@ -319,7 +411,7 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
   while (segment * 2 <= longest / 2 && segment * 2 <= kLongestSlowLineSegment) segment *= 2;
   if (searchable(psd) && segment > psd.segment_length) {
     const std::size_t block = std::max<std::size_t>(1, segment / kSlowLineSegmentBlocks);
-    const BlockMeans means = block_means(rate, stretches, block);
+    const BlockMeans means = block_means(rate, stretches, gaps, sample_rate_hz, block);
     stats::WelchOptions welch;
     welch.segment_length = segment / block;
     const stats::PsdResult slow = stats::welch_psd(
@@ -328,11 +420,43 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
       const double start_below_hz = psd.frequency_hz[kNarrow.lowest_bin];
       const std::size_t first_slow = lines.size();
       find_lines(slow, smoothed(slow), kNarrow, start_below_hz, taken, lines);
-      for (std::size_t i = first_slow; i < lines.size(); ++i) lines[i].takes_variance_scale = false;
+      for (std::size_t i = first_slow; i < lines.size(); ++i) {
+        lines[i].takes_variance_scale = false;
+        take_as_sinusoid(lines[i], means);
+      }
     }
   }
   strongest_first(lines, max_lines);
   return lines;
+}
+
+void remove_sinusoids(std::span<double> rate, double sample_rate_hz, std::span<const Gap> gaps,
+                      std::span<const SpectralLine> lines) {
+  // The phase advanced by a rotation every sample, set afresh from cos and
+  // sin every kExact samples and at each stretch's start.
+  constexpr std::int64_t kExact = 4096;
+  const std::vector<Stretch> stretches =
+      contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps);
+  for (const SpectralLine& line : lines) {
+    if (!line.removed_from_record) continue;
+    const double w = 2.0 * std::numbers::pi * line.frequency_hz;
+    const double step_cos = std::cos(w / sample_rate_hz), step_sin = std::sin(w / sample_rate_hz);
+    for (const Stretch& s : stretches) {
+      const double start_s = elapsed_s(s.begin, gaps, sample_rate_hz);
+      double c = 0.0, sn = 0.0;
+      for (std::int64_t i = s.begin; i < s.end; ++i) {
+        if ((i - s.begin) % kExact == 0) {
+          const double phase =
+              w * (start_s + static_cast<double>(i - s.begin) / sample_rate_hz) + line.phase_rad;
+          c = std::cos(phase), sn = std::sin(phase);
+        }
+        rate[static_cast<std::size_t>(i)] -= line.amplitude_deg_h * c;
+        const double next = c * step_cos - sn * step_sin;
+        sn = sn * step_cos + c * step_sin;
+        c = next;
+      }
+    }
+  }
 }
 
 }  // namespace foglab::model

@@ -129,9 +129,14 @@ std::string bandwidth_sentence(const model::NoiseFitResult& fit, Language langua
 std::string lines_sentence(const model::NoiseFitResult& fit, Language language) {
   if (fit.lines.empty()) return say(language, Text::an_lines_none);
   std::string text;
+  bool kept = false;  // a line whose Allan variance the fit took
   for (const SpectralLine& line : fit.lines) {
     if (!text.empty()) text += "; ";
-    if (line.frequency_hz < 1.0) {  // a slow line's period reads better
+    kept = kept || !line.removed_from_record;
+    if (line.removed_from_record) {
+      text += say(language, Text::an_line_removed, g(line.frequency_hz), g(1.0 / line.frequency_hz),
+                  g(line.amplitude_deg_h), g(std::sqrt(line.variance)), g(line.peak_ratio));
+    } else if (line.frequency_hz < 1.0) {  // a slow line's period reads better
       text += say(language, Text::an_line_slow, g(line.frequency_hz), g(1.0 / line.frequency_hz),
                   g(line.width_hz), g(std::sqrt(line.variance)), g(line.peak_ratio));
     } else {
@@ -142,7 +147,7 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
   if (fit.line_variance_scale != 1.0) {
     text += say(language, Text::an_lines_scale, g(fit.line_variance_scale));
   }
-  return text + say(language, Text::an_lines_tail);
+  return kept ? text + say(language, Text::an_lines_tail) : text;
 }
 
 std::string called_taus(const stats::AllanDriftCalls& c, std::string_view separator) {

@@ -410,11 +410,16 @@ Plot adev_plot(const model::AnalysisResult& r, const std::string& title, Languag
     }
     plot.series.push_back(std::move(line));
   }
-  if (!r.noise.lines.empty()) {
+  // The lines the fit took (those taken out of the record are not in its
+  // Allan deviation either).
+  std::vector<double> kept_hz;
+  for (const SpectralLine& line : r.noise.lines) {
+    if (!line.removed_from_record) kept_hz.push_back(line.frequency_hz);
+  }
+  if (!kept_hz.empty()) {
     Series line;
-    line.title = r.noise.lines.size() == 1
-                     ? say(l, Text::an_legend_line, g(r.noise.lines.front().frequency_hz))
-                     : say(l, Text::an_legend_lines, r.noise.lines.size());
+    line.title = kept_hz.size() == 1 ? say(l, Text::an_legend_line, g(kept_hz.front()))
+                                     : say(l, Text::an_legend_lines, kept_hz.size());
     line.color = kPurple;
     line.dash_type = 3;
     line.line_width = 1.5;

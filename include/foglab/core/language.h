@@ -383,6 +383,8 @@ enum class Text {
   an_lines_none,                ///< lines_sentence(): none
   an_line,                      ///< one line: {frequency} {width} {rms} {peak ratio}
   an_line_slow,        ///< one line below 1 Hz: {frequency} {period} {width} {rms} {peak ratio}
+  an_line_removed,     ///< a slow sinusoid taken out of the record: {frequency} {period}
+                       ///< {amplitude} {rms} {peak ratio}
   an_lines_scale,      ///< {factor}: follows the lines
   an_lines_tail,       ///< ends the lines' sentence
   an_drift_unchecked,  ///< stationarity_sentence(): a record too short for the check

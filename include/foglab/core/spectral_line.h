@@ -34,10 +34,19 @@ struct SpectralLine {
   /// long-segment PSD, a sinusoid whose bins hold all of its variance and
   /// whose Allan variance the first taus do not see.
   bool takes_variance_scale = true;
+  /// A slow line that is one sinusoid, amplitude_deg_h cos(2 pi f t +
+  /// phase_rad) with t [s] from the record's first sample and f its
+  /// frequency_hz, taken out of the record before the Allan variance
+  /// (model::remove_sinusoids()): the noise fit leaves its Allan variance
+  /// out, for the record it sees has none.
+  bool removed_from_record = false;
+  double amplitude_deg_h = 0.0;  ///< [deg/h] when removed_from_record
+  double phase_rad = 0.0;        ///< [rad] when removed_from_record
 };
 
 /// The line's Allan variance [(deg/h)^2] at tau [s] for samples every
-/// `sample_interval_s` (tau0) [s].
+/// `sample_interval_s` (tau0) [s] (of the line as it is, removed from the
+/// record or not).
 double line_allan_variance(const SpectralLine& line, double tau_s, double sample_interval_s);
 
 }  // namespace foglab
