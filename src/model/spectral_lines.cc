@@ -26,6 +26,11 @@ constexpr std::size_t kClosedGap = 2;    // bins
 // samples a segment.
 constexpr std::size_t kLongestSlowLineSegment = std::size_t{1} << 21;
 constexpr std::size_t kSlowLineSegmentBlocks = 4096;
+// A narrow line of the record's own PSD below this share of the block
+// means' rate is tried as a sinusoid too (take_as_sinusoid()): the block
+// mean passes it with at least 97 % of its amplitude, which the fit takes
+// out, and nothing folds onto it.
+constexpr double kSlowestBlockShare = 0.125;
 
 // What makes a run of bins a line, for one noise floor.
 struct LinePass {
@@ -325,18 +330,21 @@ SineFit fit_sine(const BlockMeans& m, double frequency_hz) {
 // A slow line found in the long-segment PSD, taken again as the least-
 // squares sinusoid of the record's block means, to be removed from the
 // record, when that holds most of the line's variance (kCoherentShare; the
-// header says why): its frequency searched over +-2 / T (T the record's
-// span) around the bins' centre in steps of 1 / (20 T), then refined by
-// golden section over one step either side.
+// header says why): its frequency searched over +-(2 / T + half the line's
+// width) around the bins' centre (T the record's span; the bins' centre
+// lies within a Welch resolution of the sinusoid's frequency), in steps of
+// 1 / (4 T), a quarter of the least-squares fit's main lobe, then refined
+// by golden section over one step either side.
 constexpr double kCoherentShare = 0.8;
 
 void take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
   if (m.time_s.size() < 16) return;
   const double span_s =
       m.time_s.back() - m.time_s.front() + static_cast<double>(m.block) / m.sample_rate_hz;
-  const double step_hz = 1.0 / (20.0 * span_s);
+  const double step_hz = 1.0 / (4.0 * span_s);
+  const int steps = static_cast<int>(std::ceil((2.0 / span_s + 0.5 * line.width_hz) / step_hz));
   SineFit best;
-  for (int j = -40; j <= 40; ++j) {
+  for (int j = -steps; j <= steps; ++j) {
     const double f = line.frequency_hz + j * step_hz;
     if (!(f > 0.0)) continue;
     if (const SineFit fit = fit_sine(m, f); fit.explained > best.explained) best = fit;
@@ -364,6 +372,7 @@ void take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
   line.bin_frequency_hz = {best.frequency_hz};
   line.bin_variance = {best.variance()};
   line.removed_from_record = true;
+  line.takes_variance_scale = false;  // the sinusoid holds all of it
   line.amplitude_deg_h = std::hypot(best.cos_deg_h, best.sin_deg_h);
   line.phase_rad = std::atan2(-best.sin_deg_h, best.cos_deg_h);
 }
@@ -378,14 +387,18 @@ void strongest_first(std::vector<SpectralLine>& lines, std::size_t max_lines) {
   if (lines.size() > max_lines) lines.resize(max_lines);
 }
 
-// The lines of `psd` (both passes), their frequencies added to `taken`.
-std::vector<SpectralLine> lines_of(const stats::PsdResult& psd,
-                                   std::vector<FrequencyRange>& taken) {
+// The lines of `psd` (both passes), their frequencies added to `taken`;
+// `narrow` (when given) gets how many of them, the first, are the narrow
+// pass's.
+std::vector<SpectralLine> lines_of(const stats::PsdResult& psd, std::vector<FrequencyRange>& taken,
+                                   std::size_t* narrow = nullptr) {
   std::vector<SpectralLine> lines;
+  if (narrow) *narrow = 0;
   if (!searchable(psd)) return lines;
   const std::vector<double> smooth = smoothed(psd);
   constexpr double kEverywhere = std::numeric_limits<double>::infinity();
   find_lines(psd, smooth, kNarrow, kEverywhere, taken, lines);
+  if (narrow) *narrow = lines.size();
   find_lines(psd, smooth, kBroad, kEverywhere, taken, lines);
   return lines;
 }
@@ -403,29 +416,43 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
                                               const stats::PsdResult& psd,
                                               std::span<const Gap> gaps, std::size_t max_lines) {
   std::vector<FrequencyRange> taken;
-  std::vector<SpectralLine> lines = lines_of(psd, taken);
+  std::size_t narrow = 0;
+  std::vector<SpectralLine> lines = lines_of(psd, taken, &narrow);
   const std::vector<Stretch> stretches =
       contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps);
   const auto longest = static_cast<std::size_t>(longest_stretch(stretches));
   std::size_t segment = 1;
   while (segment * 2 <= longest / 2 && segment * 2 <= kLongestSlowLineSegment) segment *= 2;
-  if (searchable(psd) && segment > psd.segment_length) {
-    const std::size_t block = std::max<std::size_t>(1, segment / kSlowLineSegmentBlocks);
-    const BlockMeans means = block_means(rate, stretches, gaps, sample_rate_hz, block);
+  const std::size_t block = std::max<std::size_t>(1, segment / kSlowLineSegmentBlocks);
+  // The narrow lines slow enough for the block means (kSlowestBlockShare),
+  // and the slow pass's.
+  const double slow_below_hz = sample_rate_hz / static_cast<double>(block) * kSlowestBlockShare;
+  std::vector<std::size_t> slow;
+  for (std::size_t i = 0; i < narrow; ++i) {
+    if (lines[i].frequency_hz < slow_below_hz) slow.push_back(i);
+  }
+  const bool slow_pass = searchable(psd) && segment > psd.segment_length;
+  if (!slow_pass && slow.empty()) {
+    strongest_first(lines, max_lines);
+    return lines;
+  }
+  const BlockMeans means = block_means(rate, stretches, gaps, sample_rate_hz, block);
+  if (slow_pass) {
     stats::WelchOptions welch;
     welch.segment_length = segment / block;
-    const stats::PsdResult slow = stats::welch_psd(
+    const stats::PsdResult long_psd = stats::welch_psd(
         means.rate, sample_rate_hz / static_cast<double>(block), welch, means.gaps);
-    if (searchable(slow)) {
+    if (searchable(long_psd)) {
       const double start_below_hz = psd.frequency_hz[kNarrow.lowest_bin];
       const std::size_t first_slow = lines.size();
-      find_lines(slow, smoothed(slow), kNarrow, start_below_hz, taken, lines);
+      find_lines(long_psd, smoothed(long_psd), kNarrow, start_below_hz, taken, lines);
       for (std::size_t i = first_slow; i < lines.size(); ++i) {
         lines[i].takes_variance_scale = false;
-        take_as_sinusoid(lines[i], means);
+        slow.push_back(i);
       }
     }
   }
+  for (const std::size_t i : slow) take_as_sinusoid(lines[i], means);
   strongest_first(lines, max_lines);
   return lines;
 }

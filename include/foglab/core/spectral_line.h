@@ -32,7 +32,8 @@ struct SpectralLine {
   /// taus decide (NoiseFitResult::line_variance_scale: a broad resonance's
   /// bins hold only part of it), applies: not to a slow line found in the
   /// long-segment PSD, a sinusoid whose bins hold all of its variance and
-  /// whose Allan variance the first taus do not see.
+  /// whose Allan variance the first taus do not see, nor to a line
+  /// removed_from_record.
   bool takes_variance_scale = true;
   /// A slow line that is one sinusoid, amplitude_deg_h cos(2 pi f t +
   /// phase_rad) with t [s] from the record's first sample and f its

@@ -59,9 +59,13 @@
 // samples and short FFTs, where the full segments had cost 0.3 s on 10^7 samples. Its lines keep
 // their variance (SpectralLine::takes_variance_scale).
 //
-// A slow line is then taken again as the least-squares sinusoid of those
-// block means (a constant beside it; the frequency searched over +-2 / T
-// around the bins' centre, T the record's span), and when that sinusoid
+// A slow line, that PSD's or a narrow line of the record's own PSD below
+// 1/8 of the block means' rate (0.195 Hz for 2 h at 100 Hz; a block mean
+// passes it with 97 % of its amplitude or more, which the fit takes out),
+// is then taken again as the least-squares sinusoid of those block means
+// (a constant beside it; the frequency searched over +-2 / T and half the
+// line's width around the bins' centre, T the record's span), and when
+// that sinusoid
 // holds most of the line's variance (0.8 of it or more) it is taken out of
 // the record before the Allan variance (remove_sinusoids(),
 // SpectralLine::removed_from_record). The Welch bins give a strong line's
