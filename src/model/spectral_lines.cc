@@ -305,14 +305,29 @@ struct SineFit {
 
 SineFit fit_sine(const BlockMeans& m, double frequency_hz) {
   const double w = 2.0 * std::numbers::pi * frequency_hz;
-  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  // cos and sin advanced by a rotation from one block to the next, set
+  // afresh after a gap and every kExact blocks
+  constexpr std::size_t kExact = 1024;
+  const double block_s = static_cast<double>(m.block) / m.sample_rate_hz;
+  const double step_cos = std::cos(w * block_s), step_sin = std::sin(w * block_s);
+  // the normal equations' sums: of c, s, c^2, s^2, c s, and y, y c, y s
+  double sc = 0.0, ss = 0.0, scc = 0.0, sss = 0.0, scs = 0.0, sy = 0.0, syc = 0.0, sys = 0.0;
+  double c = 0.0, sn = 0.0;
   for (std::size_t i = 0; i < m.rate.size(); ++i) {
-    const Eigen::Vector3d x(1.0, std::cos(w * m.time_s[i]), std::sin(w * m.time_s[i]));
-    a.selfadjointView<Eigen::Lower>().rankUpdate(x);
-    b += x * m.rate[i];
+    if (i % kExact == 0 || !(std::fabs(m.time_s[i] - m.time_s[i - 1] - block_s) < 1e-6 * block_s)) {
+      c = std::cos(w * m.time_s[i]), sn = std::sin(w * m.time_s[i]);
+    } else {
+      const double next = c * step_cos - sn * step_sin;
+      sn = sn * step_cos + c * step_sin;
+      c = next;
+    }
+    const double y = m.rate[i];
+    sc += c, ss += sn, scc += c * c, sss += sn * sn, scs += c * sn;
+    sy += y, syc += y * c, sys += y * sn;
   }
-  a = a.selfadjointView<Eigen::Lower>();
+  Eigen::Matrix3d a;
+  a << static_cast<double>(m.rate.size()), sc, ss, sc, scc, scs, ss, scs, sss;
+  const Eigen::Vector3d b(sy, syc, sys);
   const Eigen::Vector3d beta = a.ldlt().solve(b);
   const double mean = b(0) / static_cast<double>(m.rate.size());
   SineFit fit;
@@ -459,28 +474,35 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
 
 void remove_sinusoids(std::span<double> rate, double sample_rate_hz, std::span<const Gap> gaps,
                       std::span<const SpectralLine> lines) {
-  // The phase advanced by a rotation every sample, set afresh from cos and
-  // sin every kExact samples and at each stretch's start.
-  constexpr std::int64_t kExact = 4096;
-  const std::vector<Stretch> stretches =
-      contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps);
+  struct Phasor {
+    double amplitude, w, phase, step_cos, step_sin;
+  };
+  std::vector<Phasor> removed;
   for (const SpectralLine& line : lines) {
     if (!line.removed_from_record) continue;
     const double w = 2.0 * std::numbers::pi * line.frequency_hz;
-    const double step_cos = std::cos(w / sample_rate_hz), step_sin = std::sin(w / sample_rate_hz);
-    for (const Stretch& s : stretches) {
-      const double start_s = elapsed_s(s.begin, gaps, sample_rate_hz);
-      double c = 0.0, sn = 0.0;
-      for (std::int64_t i = s.begin; i < s.end; ++i) {
-        if ((i - s.begin) % kExact == 0) {
-          const double phase =
-              w * (start_s + static_cast<double>(i - s.begin) / sample_rate_hz) + line.phase_rad;
-          c = std::cos(phase), sn = std::sin(phase);
+    removed.push_back({line.amplitude_deg_h, w, line.phase_rad, std::cos(w / sample_rate_hz),
+                       std::sin(w / sample_rate_hz)});
+  }
+  if (removed.empty()) return;
+  // Each line's phase advanced by a rotation every sample, set afresh from
+  // cos and sin every kExact samples of a stretch.
+  constexpr std::int64_t kExact = 4096;
+  for (const Stretch& stretch :
+       contiguous_stretches(static_cast<std::int64_t>(rate.size()), gaps)) {
+    const double start_s = elapsed_s(stretch.begin, gaps, sample_rate_hz);
+    for (std::int64_t chunk = stretch.begin; chunk < stretch.end; chunk += kExact) {
+      const double t = start_s + static_cast<double>(chunk - stretch.begin) / sample_rate_hz;
+      const auto first = static_cast<std::size_t>(chunk);
+      const auto end = static_cast<std::size_t>(std::min(chunk + kExact, stretch.end));
+      for (const Phasor& p : removed) {
+        double c = std::cos(p.w * t + p.phase), s = std::sin(p.w * t + p.phase);
+        for (std::size_t i = first; i < end; ++i) {
+          rate[i] -= p.amplitude * c;
+          const double next = c * p.step_cos - s * p.step_sin;
+          s = s * p.step_cos + c * p.step_sin;
+          c = next;
         }
-        rate[static_cast<std::size_t>(i)] -= line.amplitude_deg_h * c;
-        const double next = c * step_cos - sn * step_sin;
-        sn = sn * step_cos + c * step_sin;
-        c = next;
       }
     }
   }
