@@ -342,7 +342,7 @@ SineFit fit_sine(const BlockMeans& m, double frequency_hz) {
   return fit;
 }
 
-// A slow line found in the long-segment PSD, taken again as the least-
+// A slow line (spectral_lines.h says which), taken again as the least-
 // squares sinusoid of the record's block means, to be removed from the
 // record, when that holds most of the line's variance (kCoherentShare; the
 // header says why): its frequency searched over +-(2 / T + half the line's

@@ -54,20 +54,20 @@
 // segments twice as long or longer (the largest power of two up to half the
 // longest stretch, at most 2^21 samples: 3 to 6 segments, more where that
 // cap binds; from 0.0065 Hz, 47 periods in a 2 h record), for lines that
-// start below the first PSD's search. That PSD is taken of the record's means over blocks that
-// leave 4096 to a segment (its band lies far below their Nyquist frequency): a pass over the
-// samples and short FFTs, where the full segments had cost 0.3 s on 10^7 samples. Its lines keep
-// their variance (SpectralLine::takes_variance_scale).
+// start below the first PSD's search. That PSD is taken of the record's
+// means over blocks that leave 4096 to a segment (its band lies far below
+// their Nyquist frequency): a pass over the samples and short FFTs, where
+// the full segments had cost 0.3 s on 10^7 samples. Its lines keep their
+// variance (SpectralLine::takes_variance_scale).
 //
 // A slow line, that PSD's or a narrow line of the record's own PSD below
 // 1/8 of the block means' rate (0.195 Hz for 2 h at 100 Hz; a block mean
 // passes it with 97 % of its amplitude or more, which the fit takes out),
 // is then taken again as the least-squares sinusoid of those block means
 // (a constant beside it; the frequency searched over +-2 / T and half the
-// line's width around the bins' centre, T the record's span), and when
-// that sinusoid
-// holds most of the line's variance (0.8 of it or more) it is taken out of
-// the record before the Allan variance (remove_sinusoids(),
+// line's width around the bins' centre, T the record's span). When that
+// sinusoid holds most of the line's variance (0.8 of it or more) it is
+// taken out of the record before the Allan variance (remove_sinusoids(),
 // SpectralLine::removed_from_record). The Welch bins give a strong line's
 // variance to within about 6 %, and a Gauss-Markov hump at the line's taus
 // took that error: a 0.01 Hz line three times the random bias left Tc
@@ -75,8 +75,8 @@
 // the line's Allan variance taken as known. Taken out, the record's Allan
 // variance is that of the noise less its part at the line's frequency (two
 // degrees of freedom of hundreds of thousands), and the terms come out as
-// without the line. A line that is not one sinusoid (a drifting period, a
-// narrow random resonance) keeps its bins and its Allan variance.
+// without the line (Tc 6.8 %). A line that is not one sinusoid (a drifting
+// period, a narrow random resonance) keeps its bins and its Allan variance.
 #pragma once
 
 #include <span>
