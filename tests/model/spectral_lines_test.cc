@@ -270,6 +270,52 @@ TEST(SpectralLine, ASlowSinusoidIsTakenOutOfTheRecord) {
   }
 }
 
+TEST(SpectralLine, ALineThatIsNotOneSinusoidStaysInTheRecord) {
+  // Tactical-grade noise (N 0.3, B 0.1, K 0.02), 2 h at 100 Hz, with a
+  // 0.5 deg/h disturbance at 0.01 Hz that is periodic but not one
+  // sinusoid: its amplitude swinging by +-50 % once over the record (two
+  // sidebands of 6 % of its variance 1 / T either side), or a square wave
+  // (a thermostat's; harmonics at 3, 5, 7 ... times 0.01 Hz). Taken out as
+  // the least-squares sinusoid, the sidebands stayed and passed for a
+  // Gauss-Markov process (K lost on both seeds); the square wave's first
+  // harmonics, taken out one by one, left the rest to pass for a moving
+  // average (N +5.4 % on seed 2). They stay in the record, their Allan
+  // variance taken as known, and the model is that of the clean record.
+  constexpr double kAmplitude = 0.5, kFrequency = 0.01;  // [deg/h], [Hz]
+  const auto swinging = [&](double t) {
+    return kAmplitude * (1.0 + 0.5 * std::sin(2.0 * std::numbers::pi * t / 7200.0)) *
+           std::sin(2.0 * std::numbers::pi * kFrequency * t);
+  };
+  const auto square = [&](double t) {
+    return std::sin(2.0 * std::numbers::pi * kFrequency * t) >= 0.0 ? kAmplitude : -kAmplitude;
+  };
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    sim::ErrorModel m;
+    m.noise = {.N = 0.3, .B = 0.1, .K = 0.02};
+    const sim::Recording rec =
+        sim::generate(m, {}, {.sample_rate_hz = kFs, .duration_s = 7200.0, .seed = seed});
+    std::vector<double> clean = rec.rate_deg_h;
+    const AnalysisResult without = analyze(clean, {}, kFs);
+    ASSERT_EQ(without.noise.terms,
+              NoiseTermSet({NoiseTerm::white, NoiseTerm::flicker, NoiseTerm::random_walk}));
+    for (const bool is_square : {false, true}) {
+      SCOPED_TRACE(is_square ? "square wave" : "swinging amplitude");
+      std::vector<double> y = rec.rate_deg_h;
+      for (std::size_t k = 0; k < y.size(); ++k) {
+        const double t = static_cast<double>(k) / kFs;
+        y[k] += is_square ? square(t) : swinging(t);
+      }
+      const AnalysisResult r = analyze(y, {}, kFs);
+      ASSERT_FALSE(r.noise.lines.empty());
+      for (const SpectralLine& line : r.noise.lines) EXPECT_FALSE(line.removed_from_record);
+      EXPECT_EQ(r.noise.random_bias_process, RandomBiasProcess::wiener);
+      EXPECT_FALSE(r.noise.bandwidth.resolved);
+      EXPECT_NEAR(r.noise.N.value / without.noise.N.value, 1.0, 0.01);
+    }
+  }
+}
+
 // An oscillator at `frequency_hz` [Hz] with poles at `radius`, sampled at
 // `fs` [Hz]: the AR(2) process x_k = a1 x_{k-1} + a2 x_{k-2} + e_k driven
 // by white noise, scaled to `rms` [deg/h]; made here, independently of the

@@ -66,17 +66,19 @@
 // is then taken again as the least-squares sinusoid of those block means
 // (a constant beside it; the frequency searched over +-2 / T and half the
 // line's width around the bins' centre, T the record's span). When that
-// sinusoid holds most of the line's variance (0.8 of it or more) it is
-// taken out of the record before the Allan variance (remove_sinusoids(),
-// SpectralLine::removed_from_record). The Welch bins give a strong line's
-// variance to within about 6 %, and a Gauss-Markov hump at the line's taus
-// took that error: a 0.01 Hz line three times the random bias left Tc
-// 28.6 % off (median of 10 records, against 9.2 % without the line) with
-// the line's Allan variance taken as known. Taken out, the record's Allan
-// variance is that of the noise less its part at the line's frequency (two
-// degrees of freedom of hundreds of thousands), and the terms come out as
-// without the line (Tc 6.8 %). A line that is not one sinusoid (a drifting
-// period, a narrow random resonance) keeps its bins and its Allan variance.
+// sinusoid holds most of the line's variance (0.8 of it or more), leaves
+// no other sinusoid of 3 % of its variance in that band (an amplitude that
+// changes over the record puts sidebands there), and the line is not one
+// of a harmonic series (a square or triangle wave, whose harmonics the
+// search finds only the first of), it is taken out of the record before
+// the Allan variance (remove_sinusoids(), SpectralLine::removed_from_record). The Welch bins give a
+// strong line's variance to within about 6 %, and a Gauss-Markov hump at the line's taus took that
+// error: a 0.01 Hz line three times the random bias left Tc 28.6 % off (median of 10 records,
+// against 9.2 % without the line) with the line's Allan variance taken as known. Taken out, the
+// record's Allan variance is that of the noise less its part at the line's frequency (two degrees
+// of freedom of hundreds of thousands), and the terms come out as without the line (Tc 6.8 %). A
+// line that is not one sinusoid (a drifting period, a narrow random resonance) keeps its bins and
+// its Allan variance.
 #pragma once
 
 #include <span>
