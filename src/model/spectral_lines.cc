@@ -362,26 +362,33 @@ constexpr double kCoherentShare = 0.8;
 // sidebands (an amplitude that changes over the record: a 0.5 deg/h line at
 // 0.01 Hz whose amplitude swings by +-50 % once over 2 h left its
 // sidebands, 6 % of its variance each, in the record, and they passed for
-// a Gauss-Markov process). Over noise alone the second holds well under
-// 1 % of a line the search finds.
+// a Gauss-Markov process).
 constexpr double kSecondShare = 0.03;
+// ... and stands out of the band's noise: more than this many times the
+// median of the rest's sinusoids over the band (the noise's sinusoids
+// scatter as an exponential; where the line is weak against a random
+// walk, 3 % of it is within that scatter).
+constexpr double kSecondOverNoise = 10.0;
 
-// Whether `line` is taken as a sinusoid: then set as the sinusoid, to be
-// removed from the record.
-bool take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
-  if (m.time_s.size() < 16) return false;
-  const double span_s =
-      m.time_s.back() - m.time_s.front() + static_cast<double>(m.block) / m.sample_rate_hz;
-  const double step_hz = 1.0 / (4.0 * span_s);
-  const int steps = static_cast<int>(std::ceil((2.0 / span_s + 0.5 * line.width_hz) / step_hz));
+// The frequencies searched for a line's sinusoid: centre + j step for
+// |j| <= steps.
+struct SearchBand {
+  double centre_hz, step_hz;
+  int steps;
+  double span_s;  ///< the record's, T
+  double at(int j) const { return centre_hz + j * step_hz; }
+};
+
+// The best sinusoid over the band's grid, refined by golden section over
+// one step either side of the best point.
+SineFit best_sinusoid(const BlockMeans& m, const SearchBand& band) {
   SineFit best;
-  for (int j = -steps; j <= steps; ++j) {
-    const double f = line.frequency_hz + j * step_hz;
-    if (!(f > 0.0)) continue;
-    if (const SineFit fit = fit_sine(m, f); fit.explained > best.explained) best = fit;
+  for (int j = -band.steps; j <= band.steps; ++j) {
+    if (!(band.at(j) > 0.0)) continue;
+    if (const SineFit fit = fit_sine(m, band.at(j)); fit.explained > best.explained) best = fit;
   }
-  if (!(best.explained > 0.0)) return false;
-  double lo = best.frequency_hz - step_hz, hi = best.frequency_hz + step_hz;
+  if (!(best.explained > 0.0)) return best;
+  double lo = best.frequency_hz - band.step_hz, hi = best.frequency_hz + band.step_hz;
   const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
   double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo);
   SineFit f1 = fit_sine(m, x1), f2 = fit_sine(m, x2);
@@ -397,21 +404,48 @@ bool take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
   for (const SineFit& f : {f1, f2}) {
     if (f.explained > best.explained) best = f;
   }
-  if (!(best.variance() >= kCoherentShare * line.variance)) return false;
-  // One sinusoid leaves only noise beside it: the strongest sinusoid of the
-  // rest in the band, off the first's main lobe, holds under kSecondShare
-  // of its variance.
+  return best;
+}
+
+// Whether the sinusoid `first` leaves only noise in the band: the strongest
+// sinusoid of the rest there, off the first's main lobe, holds under
+// kSecondShare of its variance or under kSecondOverNoise times the rest's
+// median.
+bool leaves_only_noise(const BlockMeans& m, const SineFit& first, const SearchBand& band) {
   BlockMeans rest = m;
-  const double w = 2.0 * std::numbers::pi * best.frequency_hz;
-  const double gain = block_gain(m, best.frequency_hz);
+  const double w = 2.0 * std::numbers::pi * first.frequency_hz;
+  const double gain = block_gain(m, first.frequency_hz);
   for (std::size_t i = 0; i < rest.rate.size(); ++i) {
-    rest.rate[i] -= gain * (best.cos_deg_h * std::cos(w * rest.time_s[i]) +
-                            best.sin_deg_h * std::sin(w * rest.time_s[i]));
+    rest.rate[i] -= gain * (first.cos_deg_h * std::cos(w * rest.time_s[i]) +
+                            first.sin_deg_h * std::sin(w * rest.time_s[i]));
   }
-  for (int j = -steps; j <= steps; ++j) {
-    const double f = line.frequency_hz + j * step_hz;
-    if (!(f > 0.0) || std::fabs(f - best.frequency_hz) < 0.5 / span_s) continue;
-    if (fit_sine(rest, f).variance() > kSecondShare * best.variance()) return false;
+  std::vector<double> beside;
+  for (int j = -band.steps; j <= band.steps; ++j) {
+    const double f = band.at(j);
+    if (!(f > 0.0) || std::fabs(f - first.frequency_hz) < 0.5 / band.span_s) continue;
+    beside.push_back(fit_sine(rest, f).variance());
+  }
+  if (beside.empty()) return true;
+  const double second = *std::max_element(beside.begin(), beside.end());
+  return !(second > kSecondShare * first.variance() &&
+           second > kSecondOverNoise * median_in_place(beside));
+}
+
+// Whether `line` is taken as a sinusoid: then set as the sinusoid, to be
+// removed from the record.
+bool take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
+  if (m.time_s.size() < 16) return false;
+  SearchBand band;
+  band.span_s =
+      m.time_s.back() - m.time_s.front() + static_cast<double>(m.block) / m.sample_rate_hz;
+  band.centre_hz = line.frequency_hz;
+  band.step_hz = 1.0 / (4.0 * band.span_s);
+  band.steps =
+      static_cast<int>(std::ceil((2.0 / band.span_s + 0.5 * line.width_hz) / band.step_hz));
+  const SineFit best = best_sinusoid(m, band);
+  if (!(best.explained > 0.0) || !(best.variance() >= kCoherentShare * line.variance) ||
+      !leaves_only_noise(m, best, band)) {
+    return false;
   }
   line.frequency_hz = best.frequency_hz;
   line.variance = best.variance();

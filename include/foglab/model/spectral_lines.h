@@ -67,8 +67,9 @@
 // (a constant beside it; the frequency searched over +-2 / T and half the
 // line's width around the bins' centre, T the record's span). When that
 // sinusoid holds most of the line's variance (0.8 of it or more), leaves
-// no other sinusoid of 3 % of its variance in that band (an amplitude that
-// changes over the record puts sidebands there), and the line is not one
+// no other sinusoid in that band of 3 % of its variance and 10 times the
+// band's median (an amplitude that changes over the record puts sidebands
+// there), and the line is not one
 // of a harmonic series (a square or triangle wave, whose harmonics the
 // search finds only the first of), it is taken out of the record before
 // the Allan variance (remove_sinusoids(), SpectralLine::removed_from_record). The Welch bins give a
