@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "foglab/core/numeric.h"
 
@@ -291,6 +292,11 @@ BlockMeans block_means(std::span<const double> rate, std::span<const Stretch> st
   return out;
 }
 
+// [s] The record's span as its block means cover it, T.
+double record_span_s(const BlockMeans& m) {
+  return m.time_s.back() - m.time_s.front() + static_cast<double>(m.block) / m.sample_rate_hz;
+}
+
 // The least-squares sinusoid of the block means at `frequency_hz`, beside
 // a constant: the samples' sinusoid it stands for, a cos(w t) + b sin(w t)
 // [deg/h] (the block mean's Dirichlet factor taken out), and the sum of
@@ -436,8 +442,7 @@ bool leaves_only_noise(const BlockMeans& m, const SineFit& first, const SearchBa
 bool take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
   if (m.time_s.size() < 16) return false;
   SearchBand band;
-  band.span_s =
-      m.time_s.back() - m.time_s.front() + static_cast<double>(m.block) / m.sample_rate_hz;
+  band.span_s = record_span_s(m);
   band.centre_hz = line.frequency_hz;
   band.step_hz = 1.0 / (4.0 * band.span_s);
   band.steps =
@@ -458,8 +463,15 @@ bool take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
   return true;
 }
 
-// Whether `line` and another of `lines` are harmonics of one period: the
-// higher within half their widths (the harmonic's k times) of 2 to
+// A line's frequency and how far off it may be: its least-squares
+// sinusoid's to within 1 / (2 T), else its bins' centre to within half its
+// width.
+struct Located {
+  double frequency_hz, off_hz;
+};
+
+// Whether line `i` and another of `at` are harmonics of one period: the
+// higher within their uncertainties (the lower's k times) of k = 2 to
 // kHighestHarmonic times the lower. A periodic disturbance that is not a
 // sinusoid (a thermostat's square or triangle wave) has harmonics up to
 // the sample rate, which the search finds only the first of; taking those
@@ -469,17 +481,37 @@ bool take_as_sinusoid(SpectralLine& line, const BlockMeans& m) {
 // to the rest. Such a series stays in the record.
 constexpr int kHighestHarmonic = 9;
 
-bool in_harmonic_series(const SpectralLine& line, std::span<const SpectralLine> lines) {
-  return std::any_of(lines.begin(), lines.end(), [&](const SpectralLine& other) {
-    if (&other == &line) return false;
-    const bool above = other.frequency_hz > line.frequency_hz;
-    const SpectralLine& low = above ? line : other;
-    const SpectralLine& high = above ? other : line;
+bool in_harmonic_series(std::size_t i, std::span<const Located> at) {
+  for (std::size_t j = 0; j < at.size(); ++j) {
+    if (j == i) continue;
+    const bool above = at[j].frequency_hz > at[i].frequency_hz;
+    const Located& low = above ? at[i] : at[j];
+    const Located& high = above ? at[j] : at[i];
     const double k = std::round(high.frequency_hz / low.frequency_hz);
-    return k >= 2.0 && k <= kHighestHarmonic &&
-           std::fabs(high.frequency_hz - k * low.frequency_hz) <=
-               0.5 * (high.width_hz + k * low.width_hz);
-  });
+    if (k >= 2.0 && k <= kHighestHarmonic &&
+        std::fabs(high.frequency_hz - k * low.frequency_hz) <= high.off_hz + k * low.off_hz) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Takes each of `lines`' candidates (indices) that is one sinusoid, and no
+// harmonic of another line, as that sinusoid (removed from the record).
+void take_sinusoids(std::vector<SpectralLine>& lines, std::span<const std::size_t> candidates,
+                    const BlockMeans& m) {
+  std::vector<Located> at;
+  for (const SpectralLine& line : lines) at.push_back({line.frequency_hz, 0.5 * line.width_hz});
+  std::vector<std::optional<SpectralLine>> sinusoids(lines.size());
+  for (const std::size_t i : candidates) {
+    SpectralLine line = lines[i];
+    if (!take_as_sinusoid(line, m)) continue;
+    at[i] = {line.frequency_hz, 0.5 / record_span_s(m)};
+    sinusoids[i] = std::move(line);
+  }
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (sinusoids[i] && !in_harmonic_series(i, at)) lines[i] = std::move(*sinusoids[i]);
+  }
 }
 
 bool searchable(const stats::PsdResult& psd) {
@@ -557,10 +589,7 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
       }
     }
   }
-  for (const std::size_t i : slow) {
-    if (in_harmonic_series(lines[i], lines)) continue;
-    take_as_sinusoid(lines[i], means);
-  }
+  take_sinusoids(lines, slow, means);
   strongest_first(lines, max_lines);
   return lines;
 }
