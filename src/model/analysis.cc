@@ -105,6 +105,20 @@ stats::AllanResult other_grid_allan(std::span<const double> residual, double fs,
   return stats::allan_deviation(residual, fs, InputKind::rate, allan, gaps);
 }
 
+// other_grid_allan() of the final residual `rate` of a temperature fit,
+// less the sinusoids taken out of the record (remove_sinusoids(); `rate`
+// is consumed): the statistics' own residual had them taken out already,
+// and nothing else reads `rate`, so they are taken out only when that OADEV
+// is made.
+stats::AllanResult other_grid_allan_less_lines(std::vector<double>& rate, double fs,
+                                               const AnalysisOptions& options,
+                                               std::span<const Gap> gaps,
+                                               std::span<const SpectralLine> lines) {
+  if (reported_within_fit(options)) return {};
+  remove_sinusoids(rate, fs, gaps, lines);
+  return other_grid_allan(rate, fs, options, gaps);
+}
+
 struct Statistics {
   stats::PsdResult psd, smoothed;
   stats::AllanResult allan;
@@ -269,8 +283,8 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
 
   if (fit.degree == cubic_degree) {
     residual = {};  // the second array is not needed any more (peak memory)
-    remove_sinusoids(rate, fs, gaps, lines);
-    add_reported_allan(s, cubic_allan, other_grid_allan(rate, fs, options, gaps), fs, options);
+    add_reported_allan(s, cubic_allan, other_grid_allan_less_lines(rate, fs, options, gaps, lines),
+                       fs, options);
     s.noise = cubic_noise.get();
     return s;
   }
@@ -283,8 +297,8 @@ Statistics auto_degree_statistics(SystematicFit& fit, const TemperatureRecord& r
     return residual_noise_model(all, final_options, &record, fit.degree, lines);
   });
   add_psd(s, rate, fs, options, gaps);  // the final residual's, with its lines
-  remove_sinusoids(rate, fs, gaps, lines);
-  add_reported_allan(s, all, other_grid_allan(rate, fs, options, gaps), fs, options);
+  add_reported_allan(s, all, other_grid_allan_less_lines(rate, fs, options, gaps, lines), fs,
+                     options);
   s.noise = noise.get();
   return s;
 }
