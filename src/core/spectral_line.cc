@@ -6,17 +6,22 @@
 
 namespace foglab {
 
+double dirichlet_kernel(double frequency_hz, double samples, double sample_interval_s) {
+  return std::sin(std::numbers::pi * frequency_hz * samples * sample_interval_s) /
+         (samples * std::sin(std::numbers::pi * frequency_hz * sample_interval_s));
+}
+
 double line_allan_variance(const SpectralLine& line, double tau_s, double sample_interval_s) {
   if (!(sample_interval_s > 0.0) || !(tau_s > 0.0)) return 0.0;
   const double m = tau_s / sample_interval_s;
   double sum = 0.0;
   for (std::size_t b = 0; b < line.bin_frequency_hz.size(); ++b) {
     const double f = line.bin_frequency_hz[b];
-    const double s_tau = std::sin(std::numbers::pi * f * tau_s);
-    const double s_tau0 = m * std::sin(std::numbers::pi * f * sample_interval_s);
-    if (s_tau0 == 0.0) continue;  // a line at the sample rate aliases to DC
-    const double s2 = s_tau * s_tau;
-    sum += 2.0 * line.bin_variance[b] * s2 * s2 / (s_tau0 * s_tau0);
+    const double kernel = dirichlet_kernel(f, m, sample_interval_s);
+    if (!std::isfinite(kernel)) continue;  // a line at the sample rate aliases to DC
+    // two neighbouring m-averages differ by 2 sin(pi f tau) times the kernel
+    const double difference = std::sin(std::numbers::pi * f * tau_s) * kernel;
+    sum += 2.0 * line.bin_variance[b] * difference * difference;
   }
   return sum;
 }

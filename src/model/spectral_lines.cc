@@ -259,8 +259,8 @@ void find_lines(const stats::PsdResult& psd, const std::vector<double>& smooth,
 }
 
 // The means of `rate` over blocks of `block` samples inside each of its
-// contiguous `stretches` (a stretch's last partial block dropped), with a gap of one block
-// wherever a stretch ends: the slow lines' band lies far below the blocks'
+// contiguous `stretches` (a stretch's last partial block dropped), with a
+// gap of one block wherever a stretch ends: the slow lines' band lies far below the blocks'
 // Nyquist frequency, and what folds into it is tiny (content near k fs / block
 // meets the block mean's nulls there: a line at k fs / block + 0.01 Hz is
 // cut to below 1e-4 of its power for 2 h at 100 Hz).
@@ -309,13 +309,9 @@ struct SineFit {
   double variance() const { return 0.5 * (cos_deg_h * cos_deg_h + sin_deg_h * sin_deg_h); }
 };
 
-// The block mean's gain on a sinusoid of `frequency_hz` (the Dirichlet
-// kernel).
+// The block mean's gain on a sinusoid of `frequency_hz`.
 double block_gain(const BlockMeans& m, double frequency_hz) {
-  const double tau0 = 1.0 / m.sample_rate_hz;
-  const double k = static_cast<double>(m.block);
-  return std::sin(std::numbers::pi * frequency_hz * k * tau0) /
-         (k * std::sin(std::numbers::pi * frequency_hz * tau0));
+  return dirichlet_kernel(frequency_hz, static_cast<double>(m.block), 1.0 / m.sample_rate_hz);
 }
 
 SineFit fit_sine(const BlockMeans& m, double frequency_hz) {

@@ -45,6 +45,12 @@ struct SpectralLine {
   double phase_rad = 0.0;        ///< [rad] when removed_from_record
 };
 
+/// The Dirichlet kernel sin(pi f m tau0) / (m sin(pi f tau0)): the gain of
+/// the mean of m `samples` taken every `sample_interval_s` (tau0) [s] on a
+/// sinusoid of `frequency_hz` (f) [Hz]. Not finite where f is a multiple
+/// of the sample rate (such a line aliases to DC).
+double dirichlet_kernel(double frequency_hz, double samples, double sample_interval_s);
+
 /// The line's Allan variance [(deg/h)^2] at tau [s] for samples every
 /// `sample_interval_s` (tau0) [s] (of the line as it is, removed from the
 /// record or not).
