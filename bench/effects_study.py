@@ -61,6 +61,10 @@ def effects(grade, fs_hz=FS_HZ, hours=HOURS):
         # (0.01 Hz at 2 h), three times the flicker and Gauss-Markov levels
         "slow-sine": ["--sine", f"{slow_sine_hz(hours):.6g}:"
                                 f"{3 * (grade.get('B', 0) + grade.get('gm-sigma', 0)):.6g}"],
+        # a heater switched on and off at the same period and size: a
+        # periodic disturbance that is not one sinusoid (odd harmonics)
+        "square": ["--square", f"{slow_sine_hz(hours):.6g}:"
+                               f"{3 * (grade.get('B', 0) + grade.get('gm-sigma', 0)):.6g}"],
         "spikes": ["--spikes", f"3:{20 * sd:.6g}"],
         "steps": ["--step", f"{at(2000)}:{0.5 * sd:.6g}", "--step", f"{at(5000)}:{-0.4 * sd:.6g}"],
         # 30 s (scaled), 50 samples, and 1/8 of the record
@@ -133,6 +137,11 @@ def summarise(results, effect_name, misses=None, hours=HOURS):
             lines = r["spectral_lines"]
             found += (len(lines) == 1
                       and abs(lines[0]["frequency_hz"] / slow_sine_hz(hours) - 1) < 0.01)
+        elif effect_name == "square":  # one line taken out with its harmonics, no step
+            lines = r["spectral_lines"]
+            found += (len(lines) == 1 and bool(lines[0]["harmonics"])
+                      and abs(lines[0]["frequency_hz"] / slow_sine_hz(hours) - 1) < 0.01
+                      and r["steps"]["count"] == 0)
         elif effect_name == "spikes":
             found += r["spikes"]["count"] == len(out["spike_times_s"])
         elif effect_name == "steps":

@@ -274,6 +274,18 @@ nlohmann::json quantisation_json(const model::AnalysisResult& r) {
   return j;
 }
 
+// A periodic disturbance's harmonics above the first, taken out with it.
+nlohmann::json harmonics_json(const SpectralLine& line) {
+  nlohmann::json harmonics = nlohmann::json::array();
+  for (const LineHarmonic& h : line.harmonics) {
+    harmonics.push_back({{"number", h.number},
+                         {"frequency_hz", number(h.number * line.frequency_hz)},
+                         {"amplitude_deg_h", number(h.amplitude_deg_h)},
+                         {"phase_rad", number(h.phase_rad)}});
+  }
+  return harmonics;
+}
+
 nlohmann::json lines_json(const model::NoiseFitResult& f) {
   nlohmann::json lines = nlohmann::json::array();
   for (const SpectralLine& line : f.lines) {
@@ -287,6 +299,7 @@ nlohmann::json lines_json(const model::NoiseFitResult& f) {
          {"amplitude_deg_h",
           line.removed_from_record ? number(line.amplitude_deg_h) : nlohmann::json(nullptr)},
          {"phase_rad", line.removed_from_record ? number(line.phase_rad) : nlohmann::json(nullptr)},
+         {"harmonics", harmonics_json(line)},
          {"adev_at_quarter_period_deg_h",
           number(std::sqrt(line_allan_variance(line, 0.371 / line.frequency_hz,
                                                f.bandwidth.sample_interval_s)))}});
@@ -357,6 +370,9 @@ nlohmann::json units_json() {
       {"spectral_lines[].peak_ratio", "1 (PSD over the noise floor)"},
       {"spectral_lines[].amplitude_deg_h", "deg/h"},
       {"spectral_lines[].phase_rad", "rad"},
+      {"spectral_lines[].harmonics[].frequency_hz", "Hz"},
+      {"spectral_lines[].harmonics[].amplitude_deg_h", "deg/h"},
+      {"spectral_lines[].harmonics[].phase_rad", "rad"},
       {"spectral_lines[].adev_at_quarter_period_deg_h", "deg/h"},
       {"sensor_bandwidth.time_constant_s", "s"},
       {"sensor_bandwidth.memory_constant_samples", "samples"},

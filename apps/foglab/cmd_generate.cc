@@ -44,7 +44,7 @@ struct GenerateCommand {
   std::optional<double> filter_tc;
   std::optional<double> butterworth_hz;
   int moving_average = 1;
-  std::vector<std::string> sines, steps;
+  std::vector<std::string> sines, squares, steps;
   std::string spikes;
   std::optional<double> lsb;
   std::vector<std::string> drops;
@@ -96,6 +96,11 @@ sim::SensorOutput sensor_output_of(const GenerateCommand& c) {
     const auto v = numbers_of("--sine", text, ':', 2, 3, "F:A or F:A:PHASE (Hz, deg/h peak, rad)");
     o.sinusoids.push_back({v[0], v[1], v.size() > 2 ? v[2] : 0.0});
   }
+  for (const std::string& text : c.squares) {
+    const auto v = numbers_of("--square", text, ':', 2, 3,
+                              "F:A or F:A:PHASE (Hz, deg/h half peak-to-peak, rad)");
+    o.square_waves.push_back({v[0], v[1], v.size() > 2 ? v[2] : 0.0});
+  }
   for (const std::string& text : c.steps) {
     const auto v = numbers_of("--step", text, ':', 2, 2, "T:S (time in s, size in deg/h)");
     o.steps.push_back({v[0], v[1]});
@@ -143,11 +148,19 @@ nlohmann::json sensor_output_json(const sim::SensorOutput& o, const sim::Generat
                      {"rms_in_output_deg_h", gain * s.amplitude_deg_h / std::sqrt(2.0)},
                      {"phase_rad", s.phase_rad}});
   }
+  nlohmann::json squares = nlohmann::json::array();
+  for (const sim::SquareWave& s : o.square_waves) {
+    squares.push_back({{"frequency_hz", s.frequency_hz},
+                       {"amplitude_deg_h", s.amplitude_deg_h},
+                       {"rms_deg_h", s.amplitude_deg_h},
+                       {"phase_rad", s.phase_rad}});
+  }
   for (const sim::BiasStep& s : o.steps) {
     steps.push_back({{"time_s", s.time_s}, {"size_deg_h", s.size_deg_h}});
   }
   const double tc = o.filter_time_constant_s;
   return {{"sinusoids", sines},
+          {"square_waves", squares},
           {"steps", steps},
           {"moving_average_samples", o.moving_average_samples},
           {"filter_time_constant_s", tc},
@@ -283,9 +296,10 @@ void run_imu(const GenerateCommand& c) {
         c.preset));
   }
   if (c.filter_tc || c.butterworth_hz || c.moving_average != 1 || !c.sines.empty() ||
-      !c.steps.empty() || !c.spikes.empty() || c.lsb) {
+      !c.squares.empty() || !c.steps.empty() || !c.spikes.empty() || c.lsb) {
     throw UsageError(
-        "--imu takes --drop of the sensor-output options; the filter, sine, step, spike and "
+        "--imu takes --drop of the sensor-output options; the filter, sine, square, step, spike "
+        "and "
         "LSB options are a single gyroscope's (deg/h) and are not applied to an IMU");
   }
   if (!c.drop_mark.empty()) {
@@ -705,6 +719,9 @@ std::function<void()> register_generate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--sine", c->sines,
                   "sinusoidal disturbance F:A[:PHASE] (Hz, deg/h peak, rad); repeatable");
+  cmd->add_option("--square", c->squares,
+                  "square-wave disturbance F:A[:PHASE] (Hz, deg/h half peak-to-peak, rad: "
+                  "A sgn(sin(2 pi F t + PHASE)), a heater switched on and off); repeatable");
   cmd->add_option("--step", c->steps, "bias step T:S (from time s on, size deg/h); repeatable");
   cmd->add_option("--spikes", c->spikes, "spikes RATE:SIZE (mean per hour, deg/h each)");
   cmd->add_option("--lsb", c->lsb, "output word: round each sample to this step [deg/h]");

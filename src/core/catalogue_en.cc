@@ -538,6 +538,10 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_line_removed,
      "{} Hz (a period of {} s), a sinusoid of {} deg/h amplitude ({} deg/h rms), {} times the "
      "PSD's floor, taken out of the record before the Allan variance"},
+    {Text::an_line_removed_periodic,
+     "{} Hz (a period of {} s), a periodic disturbance of {} deg/h rms that is not one sinusoid "
+     "(its first harmonic of {} deg/h amplitude and {} more up to {} times its frequency), {} "
+     "times the PSD's floor, taken out of the record as a whole before the Allan variance"},
     {Text::an_lines_tail, " (its Allan variance is part of the fit, not of any noise term)"},
     {Text::an_drift_unchecked, "not checked (the record holds under 32 blocks of 256 samples)"},
     {Text::an_drift_steady,
@@ -712,6 +716,10 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_legend_welch_smoothed, "Welch estimate, log-smoothed"},
     {Text::an_legend_welch, "Welch estimate"},
     {Text::an_legend_line_band, "spectral line {} Hz, {} deg/h rms (in the fit as known noise)"},
+    {Text::an_legend_line_removed_band,
+     "spectral line {} Hz, {} deg/h rms (a sinusoid taken out of the record)"},
+    {Text::an_legend_periodic_band,
+     "periodic disturbance {} Hz and its harmonics, {} deg/h rms (taken out of the record)"},
     {Text::an_legend_white_level, "white noise level N = {} deg/h/sqrt(Hz) ({})"},
     {Text::an_legend_random_walk, "random walk K/(2 pi f), K = {} deg/h/sqrt(s) ({})"},
     {Text::an_plot_adev, "{}: overlapping Allan deviation of the residual"},

@@ -504,6 +504,13 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
           fit_temperature(rate_deg_h, temperature_c, sample_rate_hz, options.systematic);
       if (!first.constant_fallback && first.degree > 0) law = temperature_law(first, temperature_c);
     }
+    // and on top of a periodic disturbance, whose edges would pass for steps
+    if (const std::vector<SpectralLine> periodic =
+            find_periodic_disturbances(rate_deg_h, sample_rate_hz, gaps);
+        !periodic.empty()) {
+      if (law.empty()) law.assign(rate_deg_h.size(), 0.0);
+      add_sinusoids(law, sample_rate_hz, gaps, periodic);
+    }
     // Heavy-tailed noise keeps its outliers (spikes.h); the search for
     // steps pulls them in to where the Gaussian bulk ends.
     StepOptions step_options = options.steps;

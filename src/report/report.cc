@@ -133,7 +133,11 @@ std::string lines_sentence(const model::NoiseFitResult& fit, Language language) 
   for (const SpectralLine& line : fit.lines) {
     if (!text.empty()) text += "; ";
     kept = kept || !line.removed_from_record;
-    if (line.removed_from_record) {
+    if (!line.harmonics.empty()) {
+      text += say(language, Text::an_line_removed_periodic, g(line.frequency_hz),
+                  g(1.0 / line.frequency_hz), g(std::sqrt(line.variance)), g(line.amplitude_deg_h),
+                  line.harmonics.size(), line.harmonics.back().number, g(line.peak_ratio));
+    } else if (line.removed_from_record) {
       text += say(language, Text::an_line_removed, g(line.frequency_hz), g(1.0 / line.frequency_hz),
                   g(line.amplitude_deg_h), g(std::sqrt(line.variance)), g(line.peak_ratio));
     } else if (line.frequency_hz < 1.0) {  // a slow line's period reads better

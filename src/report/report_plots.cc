@@ -292,13 +292,24 @@ Plot psd_plot(const model::AnalysisResult& r, const std::string& title, Language
   // one bin of the raw estimate wide, so a single-bin line shows).
   const double bin_hz =
       r.psd.frequency_hz.size() > 1 ? r.psd.frequency_hz[1] - r.psd.frequency_hz[0] : 0.0;
+  // A periodic disturbance's harmonics each on its own (one key).
   for (const SpectralLine& line : r.noise.lines) {
     if (line.bin_frequency_hz.empty()) continue;
+    const Text legend = !line.harmonics.empty()    ? Text::an_legend_periodic_band
+                        : line.removed_from_record ? Text::an_legend_line_removed_band
+                                                   : Text::an_legend_line_band;
+    std::string title = say(l, legend, g(line.frequency_hz), g(std::sqrt(line.variance)));
+    if (!line.harmonics.empty()) {
+      for (const double f : line.bin_frequency_hz) {
+        plot.series.push_back(full_height_band(std::exchange(title, std::string()), kPurple, 0.2,
+                                               f - 0.5 * bin_hz, f + 0.5 * bin_hz, true));
+      }
+      continue;
+    }
     const auto [low, high] =
         std::minmax_element(line.bin_frequency_hz.begin(), line.bin_frequency_hz.end());
-    plot.series.push_back(full_height_band(
-        say(l, Text::an_legend_line_band, g(line.frequency_hz), g(std::sqrt(line.variance))),
-        kPurple, 0.2, *low - 0.5 * bin_hz, *high + 0.5 * bin_hz, true));
+    plot.series.push_back(full_height_band(std::move(title), kPurple, 0.2, *low - 0.5 * bin_hz,
+                                           *high + 0.5 * bin_hz, true));
   }
 
   const auto [n, n_source] = reading_or_fit(r.psd_readings.N, r.noise.N, l);

@@ -48,9 +48,9 @@ void check(bool ok, std::string_view field, double value, std::string_view expec
 }  // namespace
 
 bool SensorOutput::any() const {
-  return !sinusoids.empty() || !steps.empty() || moving_average_samples > 1 ||
-         filter_time_constant_s > 0.0 || butterworth_cutoff_hz > 0.0 || spike_rate_per_hour > 0.0 ||
-         lsb_deg_h > 0.0;
+  return !sinusoids.empty() || !square_waves.empty() || !steps.empty() ||
+         moving_average_samples > 1 || filter_time_constant_s > 0.0 ||
+         butterworth_cutoff_hz > 0.0 || spike_rate_per_hour > 0.0 || lsb_deg_h > 0.0;
 }
 
 void validate(const SensorOutput& o, double sample_rate_hz) {
@@ -61,6 +61,14 @@ void validate(const SensorOutput& o, double sample_rate_hz) {
     check(s.amplitude_deg_h >= 0.0 && s.amplitude_deg_h <= kMaxSize, "sinusoids[].amplitude_deg_h",
           s.amplitude_deg_h, "in [0, 1e9]");
     check(std::isfinite(s.phase_rad), "sinusoids[].phase_rad", s.phase_rad, "a finite number");
+  }
+  for (const SquareWave& s : o.square_waves) {
+    check(std::isfinite(s.frequency_hz) && s.frequency_hz > 0.0 &&
+              s.frequency_hz < 0.5 * sample_rate_hz,
+          "square_waves[].frequency_hz", s.frequency_hz, "> 0 and below half the sample rate");
+    check(s.amplitude_deg_h >= 0.0 && s.amplitude_deg_h <= kMaxSize,
+          "square_waves[].amplitude_deg_h", s.amplitude_deg_h, "in [0, 1e9]");
+    check(std::isfinite(s.phase_rad), "square_waves[].phase_rad", s.phase_rad, "a finite number");
   }
   for (const BiasStep& s : o.steps) {
     check(std::isfinite(s.time_s) && s.time_s >= 0.0, "steps[].time_s", s.time_s,
@@ -224,6 +232,10 @@ void OutputChain::apply(std::int64_t first, double* rate, std::size_t count) {
     // 1. Disturbances.
     for (const Sinusoid& s : output_.sinusoids) {
       x += s.amplitude_deg_h * std::sin(2.0 * std::numbers::pi * s.frequency_hz * t + s.phase_rad);
+    }
+    for (const SquareWave& s : output_.square_waves) {
+      const double sine = std::sin(2.0 * std::numbers::pi * s.frequency_hz * t + s.phase_rad);
+      x += sine >= 0.0 ? s.amplitude_deg_h : -s.amplitude_deg_h;
     }
     for (const BiasStep& s : output_.steps) {
       if (t >= s.time_s) x += s.size_deg_h;

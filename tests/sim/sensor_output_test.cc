@@ -89,6 +89,32 @@ TEST(SensorOutput, SinusoidStepsSpikesAndTheOutputWord) {
   }
 }
 
+TEST(SensorOutput, ASquareWaveIsItsAmplitudeWithTheSineSign) {
+  SensorOutput o;
+  o.square_waves = {{0.5, 2.0, 0.3}};  // 0.5 Hz, +-2 deg/h
+  const double fs = 20.0;
+  const std::size_t n = 400;  // 10 periods
+  std::vector<double> y(n, 1.0);
+  OutputChain chain(o, fs, 5, 2);
+  chain.apply(0, y.data(), n);
+  int high = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / fs;
+    const bool up = std::sin(2.0 * std::numbers::pi * 0.5 * t + 0.3) >= 0.0;
+    EXPECT_EQ(y[k], up ? 3.0 : -1.0) << "t " << t;
+    high += up;
+  }
+  EXPECT_NEAR(high, 200, 2);  // half of each period
+  o.square_waves = {{10.0, 2.0, 0.0}};
+  try {
+    validate(o, fs);
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("SensorOutput::square_waves[].frequency_hz"),
+              std::string::npos);
+  }
+}
+
 TEST(SensorOutput, ASpikeInADroppedStretchIsNotListed) {
   // The truth lists the spikes the file holds: those in the samples a
   // dropout loses are gone with them (analyze cannot find them).

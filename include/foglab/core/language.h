@@ -382,16 +382,18 @@ enum class Text {
   an_bandwidth_shape_decides,   ///< {percent}: follows it where the two N differ
   an_lines_none,                ///< lines_sentence(): none
   an_line,                      ///< one line: {frequency} {width} {rms} {peak ratio}
-  an_line_slow,        ///< one line below 1 Hz: {frequency} {period} {width} {rms} {peak ratio}
-  an_line_removed,     ///< a slow sinusoid taken out of the record: {frequency} {period}
-                       ///< {amplitude} {rms} {peak ratio}
-  an_lines_scale,      ///< {factor}: follows the lines
-  an_lines_tail,       ///< ends the lines' sentence
-  an_drift_unchecked,  ///< stationarity_sentence(): a record too short for the check
-  an_drift_steady,     ///< {tau from} {tau to} {blocks} {largest |z|} {threshold}
-  an_drift_trend,      ///< {taus} {|z|} {last/first}
-  an_class_both,       ///< class_sentence(): which criterion decided
-  an_class_by_arw,     ///< "decided by the angle random walk (the worse of the two)"
+  an_line_slow,     ///< one line below 1 Hz: {frequency} {period} {width} {rms} {peak ratio}
+  an_line_removed,  ///< a slow sinusoid taken out of the record: {frequency} {period}
+                    ///< {amplitude} {rms} {peak ratio}
+  an_line_removed_periodic,      ///< a periodic disturbance taken out: {frequency} {period} {rms}
+                                 ///< {first's amplitude} {harmonics} {highest k} {peak ratio}
+  an_lines_scale,                ///< {factor}: follows the lines
+  an_lines_tail,                 ///< ends the lines' sentence
+  an_drift_unchecked,            ///< stationarity_sentence(): a record too short for the check
+  an_drift_steady,               ///< {tau from} {tau to} {blocks} {largest |z|} {threshold}
+  an_drift_trend,                ///< {taus} {|z|} {last/first}
+  an_class_both,                 ///< class_sentence(): which criterion decided
+  an_class_by_arw,               ///< "decided by the angle random walk (the worse of the two)"
   an_class_by_bias_instability,  ///< "decided by the bias instability (the worse of the two)"
   an_class_sentence,             ///< {class} {decided} {BI} {its class} {ARW} {its class}
   an_class_strategic,            ///< the manual's Table 1 classes
@@ -534,6 +536,8 @@ enum class Text {
   an_legend_welch_smoothed,       ///< "Welch estimate, log-smoothed"
   an_legend_welch,                ///< "Welch estimate"
   an_legend_line_band,            ///< {frequency} {rms}
+  an_legend_line_removed_band,    ///< {frequency} {rms}: a sinusoid taken out of the record
+  an_legend_periodic_band,        ///< {frequency} {rms}: a periodic disturbance taken out
   an_legend_white_level,          ///< {N} {source}
   an_legend_random_walk,          ///< {K} {source}
   an_plot_adev,                   ///< plot title: {record}

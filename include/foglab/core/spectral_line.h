@@ -21,6 +21,14 @@
 
 namespace foglab {
 
+/// One harmonic of a periodic disturbance taken out of the record with its
+/// line (SpectralLine::harmonics).
+struct LineHarmonic {
+  int number = 2;                ///< k: at k times the line's frequency_hz
+  double amplitude_deg_h = 0.0;  ///< [deg/h] amplitude_deg_h cos(2 pi k f t + phase_rad)
+  double phase_rad = 0.0;        ///< [rad]
+};
+
 struct SpectralLine {
   double frequency_hz = 0.0;             ///< [Hz] the power-weighted centre of its bins
   double width_hz = 0.0;                 ///< [Hz] from its lowest to its highest bin
@@ -43,6 +51,11 @@ struct SpectralLine {
   bool removed_from_record = false;
   double amplitude_deg_h = 0.0;  ///< [deg/h] when removed_from_record
   double phase_rad = 0.0;        ///< [rad] when removed_from_record
+  /// A periodic disturbance that is not one sinusoid (a thermostat's square
+  /// wave), removed_from_record as a sum of harmonics: those above the
+  /// first, each also one of the bins (its bin_variance amplitude^2 / 2),
+  /// so that `variance` is the whole disturbance's. Empty for a sinusoid.
+  std::vector<LineHarmonic> harmonics;
 };
 
 /// The Dirichlet kernel sin(pi f m tau0) / (m sin(pi f tau0)): the gain of

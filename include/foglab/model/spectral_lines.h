@@ -70,16 +70,19 @@
 // no other sinusoid in that band of 3 % of its variance and 10 times the
 // band's median (an amplitude that changes over the record puts sidebands
 // there), and the line is not one
-// of a harmonic series (a square or triangle wave, whose harmonics the
-// search finds only the first of), it is taken out of the record before
-// the Allan variance (remove_sinusoids(), SpectralLine::removed_from_record). The Welch bins give a
+// of a harmonic series, it is taken out of the record before
+// the Allan variance (remove_sinusoids(), SpectralLine::removed_from_record). A periodic
+// disturbance that is not one sinusoid (a heater's square wave, a triangle wave: a harmonic series
+// whose lowest line is such a sinusoid, or that line alone with a harmonic 2 to 5 standing out of
+// the noise) is taken out as a whole, its harmonics up to 0.3 of the block means' rate
+// (SpectralLine::harmonics; the series' other lines are dropped). The Welch bins give a
 // strong line's variance to within about 6 %, and a Gauss-Markov hump at the line's taus took that
 // error: a 0.01 Hz line three times the random bias left Tc 28.6 % off (median of 10 records,
 // against 9.2 % without the line) with the line's Allan variance taken as known. Taken out, the
 // record's Allan variance is that of the noise less its part at the line's frequency (two degrees
 // of freedom of hundreds of thousands), and the terms come out as without the line (Tc 6.8 %). A
-// line that is not one sinusoid (a drifting period, a narrow random resonance) keeps its bins and
-// its Allan variance.
+// line that is not periodic (a drifting period, a changing amplitude, a narrow random resonance)
+// keeps its bins and its Allan variance.
 #pragma once
 
 #include <span>
@@ -109,5 +112,20 @@ std::vector<SpectralLine> find_spectral_lines(std::span<const double> rate, doub
 /// sinusoid of every line of `lines` that is removed_from_record.
 void remove_sinusoids(std::span<double> rate, double sample_rate_hz, std::span<const Gap> gaps,
                       std::span<const SpectralLine> lines);
+
+/// Adds them (the inverse of remove_sinusoids()).
+void add_sinusoids(std::span<double> rate, double sample_rate_hz, std::span<const Gap> gaps,
+                   std::span<const SpectralLine> lines);
+
+/// The periodic disturbances that are not one sinusoid (lines with
+/// harmonics) in the slow band of `rate`'s block means, as
+/// find_spectral_lines() would take them out of the record: looked for
+/// before the bias steps, whose search takes a square wave's edges for
+/// steps (a 0.5 deg/h square wave at 0.01 Hz over tactical-grade noise:
+/// 4 of its 144 edges levelled out, which left the record's level 1.5
+/// deg/h off for an hour).
+std::vector<SpectralLine> find_periodic_disturbances(std::span<const double> rate,
+                                                     double sample_rate_hz,
+                                                     std::span<const Gap> gaps = {});
 
 }  // namespace foglab::model

@@ -5,8 +5,10 @@
 //
 // In order, per sample k (tau0 = 1/fs, t_k = k tau0):
 //   1. disturbances added to the model's rate: sinusoids A sin(2 pi f t + p)
-//      (mains pickup, dither, a resonance) and bias steps (a jump of s deg/h
-//      from time t on: a power glitch, a mode change);
+//      (mains pickup, dither, a resonance), square waves A sgn(sin(2 pi f t
+//      + p)) (sgn 0 = +1: a heater switched on and off, whose current's
+//      field a FOG's coil feels) and bias steps (a jump of s deg/h from time
+//      t on: a power glitch, a mode change);
 //   2. the sensor's bandwidth: a moving average over the last k samples
 //      and/or a first-order low-pass y_k = rho y_(k-1) + (1 - rho) x_k with
 //      rho = exp(-tau0 / T) (unit gain at DC; on white noise exactly the
@@ -44,6 +46,14 @@ struct Sinusoid {
   double phase_rad = 0.0;
 };
 
+/// A periodic disturbance that is not a sinusoid: harmonics at the odd
+/// multiples k f of amplitude 4 A / (pi k).
+struct SquareWave {
+  double frequency_hz = 0.0;     ///< [Hz] > 0
+  double amplitude_deg_h = 0.0;  ///< [deg/h] half the peak-to-peak (rms = amplitude)
+  double phase_rad = 0.0;
+};
+
 struct BiasStep {
   double time_s = 0.0;      ///< [s] from here on
   double size_deg_h = 0.0;  ///< [deg/h]
@@ -56,6 +66,7 @@ struct Dropout {
 
 struct SensorOutput {
   std::vector<Sinusoid> sinusoids;
+  std::vector<SquareWave> square_waves;
   std::vector<BiasStep> steps;
   int moving_average_samples = 1;       ///< k >= 1 (1: none)
   double filter_time_constant_s = 0.0;  ///< [s] T of the first-order low-pass (0: none)
@@ -70,7 +81,7 @@ struct SensorOutput {
 };
 
 /// Throws UsageError naming the field for a negative or non-finite value,
-/// k < 1 or a sinusoid at or above the Nyquist frequency.
+/// k < 1 or a sinusoid (square wave) at or above the Nyquist frequency.
 void validate(const SensorOutput& output, double sample_rate_hz);
 
 /// The magnitude of the bandwidth filters' response at frequency f [Hz]
