@@ -299,8 +299,7 @@ void run_imu(const GenerateCommand& c) {
       !c.squares.empty() || !c.steps.empty() || !c.spikes.empty() || c.lsb) {
     throw UsageError(
         "--imu takes --drop of the sensor-output options; the filter, sine, square, step, spike "
-        "and "
-        "LSB options are a single gyroscope's (deg/h) and are not applied to an IMU");
+        "and LSB options are a single gyroscope's (deg/h) and are not applied to an IMU");
   }
   if (!c.drop_mark.empty()) {
     throw UsageError(
