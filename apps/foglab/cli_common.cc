@@ -347,6 +347,7 @@ constexpr FlagOfField kFlagsOfFields[] = {
     {R"(TauGrid::taus_s)", "--taus"},
     {R"re(parse_tau_grid\("([^"]*)"\))re", "--taus '$1'"},
     {R"(SensorOutput::sinusoids\[\]\.\w+)", "--sine"},
+    {R"(SensorOutput::square_waves\[\]\.\w+)", "--square"},
     {R"(SensorOutput::steps\[\]\.\w+)", "--step"},
     {R"(SensorOutput::moving_average_samples)", "--moving-average"},
     {R"(SensorOutput::filter_time_constant_s)", "--filter-tc"},

@@ -532,6 +532,8 @@ TEST(SensorEffects, BadEffectOptionsAreUsageErrorsNamingTheFlag) {
   for (const auto& [args, flag] :
        std::vector<std::pair<std::string, std::string>>{{"--sine 6:1", "--sine"},
                                                         {"--sine 1:x", "--sine"},
+                                                        {"--square 6:1", "--square"},
+                                                        {"--square 1", "--square"},
                                                         {"--moving-average 0", "--moving-average"},
                                                         {"--butterworth 5", "--butterworth"},
                                                         {"--butterworth -1", "--butterworth"},
