@@ -530,6 +530,7 @@ constexpr int kMostHarmonics = 256;
 // noise stands kSecondOverNoise above the median of 16 in 1 of 200 (of 8,
 // in 1 of 100)
 constexpr int kNoiseBeside = 8;
+constexpr double kRounding = 1e-20;  // of the fundamental's variance
 
 struct Harmonic {
   int number;
@@ -555,7 +556,10 @@ std::vector<Harmonic> periodic_fit(const BlockMeans& m, double f0_hz, double hig
       const double f = h.fit.frequency_hz + (j + (j < 0 ? -0.5 : 0.5)) / span_s;
       if (j != 0 && f > 0.0) noise.push_back(fit_sine(rest, f).variance());
     }
-    h.over_noise = h.fit.variance() / median_in_place(noise);
+    // (a harmonic below the rounding of a noiseless record's samples has
+    // nothing to stand out of)
+    const bool rounding = !(h.fit.variance() > kRounding * all.front().fit.variance());
+    h.over_noise = rounding ? 0.0 : h.fit.variance() / median_in_place(noise);
     if (h.number == 1 || h.over_noise > kSecondOverNoise) standing.push_back(h);
   }
   rest = m;
