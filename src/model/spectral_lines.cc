@@ -308,6 +308,9 @@ struct SineFit {
   double sin_deg_h = 0.0;
   double explained = 0.0;
   double variance() const { return 0.5 * (cos_deg_h * cos_deg_h + sin_deg_h * sin_deg_h); }
+  /// as amplitude cos(w t + phase): [deg/h], [rad]
+  double amplitude_deg_h() const { return std::hypot(cos_deg_h, sin_deg_h); }
+  double phase_rad() const { return std::atan2(-sin_deg_h, cos_deg_h); }
 };
 
 // The block mean's gain on a sinusoid of `frequency_hz`.
@@ -455,8 +458,8 @@ void set_removed(SpectralLine& line, const SineFit& fit) {
   line.bin_variance = {fit.variance()};
   line.removed_from_record = true;
   line.takes_variance_scale = false;  // the sinusoid holds all of it
-  line.amplitude_deg_h = std::hypot(fit.cos_deg_h, fit.sin_deg_h);
-  line.phase_rad = std::atan2(-fit.sin_deg_h, fit.cos_deg_h);
+  line.amplitude_deg_h = fit.amplitude_deg_h();
+  line.phase_rad = fit.phase_rad();
 }
 
 // Whether `line` is taken as a sinusoid: then set as the sinusoid.
@@ -622,8 +625,7 @@ bool take_periodic(std::vector<SpectralLine>& lines, std::span<const Member> mem
   set_removed(line, harmonics.front().fit);
   for (const Harmonic& h : harmonics) {
     if (h.number == 1) continue;
-    line.harmonics.push_back({h.number, std::hypot(h.fit.cos_deg_h, h.fit.sin_deg_h),
-                              std::atan2(-h.fit.sin_deg_h, h.fit.cos_deg_h)});
+    line.harmonics.push_back({h.number, h.fit.amplitude_deg_h(), h.fit.phase_rad()});
     line.bin_frequency_hz.push_back(h.fit.frequency_hz);
     line.bin_variance.push_back(h.fit.variance());
     line.variance += h.fit.variance();
@@ -648,7 +650,7 @@ void take_sinusoids(std::vector<SpectralLine>& lines, std::span<const std::size_
     at[i] = {line.frequency_hz, 0.5 / span_s};
     sinusoids[i] = std::move(line);
   }
-  std::vector<bool> dropped(lines.size(), false), periodic(lines.size(), false);
+  std::vector<bool> dropped(lines.size(), false);
   std::vector<std::size_t> upwards(candidates.begin(), candidates.end());
   std::sort(upwards.begin(), upwards.end(),
             [&](std::size_t a, std::size_t b) { return at[a].frequency_hz < at[b].frequency_hz; });
@@ -677,11 +679,11 @@ void take_sinusoids(std::vector<SpectralLine>& lines, std::span<const std::size_
       members.push_back({j, static_cast<int>(k)});
     }
     if (!take_periodic(lines, members, f0_hz, m, highest_hz)) continue;
-    periodic[i] = true;
     for (std::size_t x = 1; x < members.size(); ++x) dropped[members[x].line] = true;
   }
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (sinusoids[i] && !periodic[i] && !in_harmonic_series(i, at)) {
+    // (a periodic disturbance's line has its harmonics: take_periodic())
+    if (sinusoids[i] && lines[i].harmonics.empty() && !in_harmonic_series(i, at)) {
       lines[i] = std::move(*sinusoids[i]);
     }
   }
