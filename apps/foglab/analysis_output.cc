@@ -106,6 +106,7 @@ nlohmann::json allan_json(const model::AnalysisResult& r) {
           {"m", a.m},
           {"alpha", a.alpha},
           {"edf", numbers(a.edf)},
+          {"edf_reduction", numbers(a.edf_reduction)},
           {"gap_spanning_terms", a.gap_spanning_terms},
           {"model_adev_deg_h", numbers(model_adev(r))},
           {"psd_adev_deg_h", numbers(r.psd_allan.adev_deg_h)},

@@ -58,6 +58,7 @@ stats::AllanResult reported_part(const stats::AllanResult& all, const stats::Tau
   cut(r.alpha);
   cut(r.alpha_method);
   cut(r.edf);
+  cut(r.edf_reduction);
   cut(r.ci68_low);
   cut(r.ci68_high);
   cut(r.ci95_low);
@@ -81,6 +82,7 @@ stats::AllanOptions fit_allan_options(const AnalysisOptions& options, bool confi
   allan.grid.kind = stats::TauGridKind::octave;
   allan.grid.min_clusters = std::min(options.grid.min_clusters, options.fit_min_clusters);
   allan.confidence = confidence;
+  allan.term_spread_check = true;
   allan.max_missing_share = options.max_missing_share;
   allan.unbridged_gaps = options.unbridged_gaps;
   return allan;
@@ -100,6 +102,7 @@ stats::AllanResult other_grid_allan(std::span<const double> residual, double fs,
   allan.kind = stats::AllanKind::oadev;
   allan.grid = options.grid;
   allan.confidence = true;
+  allan.term_spread_check = true;
   allan.max_missing_share = options.max_missing_share;
   allan.unbridged_gaps = options.unbridged_gaps;
   return stats::allan_deviation(residual, fs, InputKind::rate, allan, gaps);

@@ -310,7 +310,7 @@ void drop_first_point(detail::Points& p) {
     if (!v.empty()) v.erase(v.begin());
   };
   drop(p.tau), drop(p.y), drop(p.v), drop(p.index), drop(p.edf_by_alpha), drop(p.factors);
-  drop(p.term_share);
+  drop(p.term_share), drop(p.edf_reduction);
   drop(p.fixed_avar), drop(p.line_avar), drop(p.white_shape), drop(p.flicker_shape);
 }
 
@@ -458,13 +458,14 @@ int widen_over_filter_shape(const detail::Points& p, const detail::BandwidthSear
 NoiseFitResult fit_impl(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                         std::span<const double> edf, std::span<const std::int64_t> factors,
                         std::span<const std::int64_t> segment_points,
-                        std::span<const double> term_share, const NoiseFitOptions& options,
-                        const DetrendFactors* detrend, std::span<const SpectralLine> lines) {
+                        std::span<const double> term_share, std::span<const double> edf_reduction,
+                        const NoiseFitOptions& options, const DetrendFactors* detrend,
+                        std::span<const SpectralLine> lines) {
   // 1. The points, the known Allan variance (output rounding, spectral
   // lines, their variance as the short taus show it) and the sensor
   // bandwidth they show.
   detail::Points p = detail::gather_points(tau_s, adev_deg_h, edf, factors, segment_points,
-                                           term_share, options, detrend);
+                                           term_share, edf_reduction, options, detrend);
   const double known_white = options.known_white_deg_h_sqrt_hz;
   add_known_allan_variance(p, known_white, lines);
   detail::BandwidthSearch bandwidth = find_bandwidth_and_line_scale(p, options);
@@ -638,7 +639,7 @@ double DetrendFactors::factor(NoiseTerm term, std::size_t index, double tc_s) co
 NoiseFitResult fit_noise_model(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                                std::span<const double> edf, const NoiseFitOptions& options,
                                const DetrendFactors* detrend) {
-  return fit_impl(tau_s, adev_deg_h, edf, {}, {}, {}, options, detrend, {});
+  return fit_impl(tau_s, adev_deg_h, edf, {}, {}, {}, {}, options, detrend, {});
 }
 
 NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOptions& options,
@@ -650,6 +651,9 @@ NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOp
   const std::vector<std::int64_t> segments = allan.segment_points.empty()
                                                  ? std::vector<std::int64_t>{allan.phase_points}
                                                  : allan.segment_points;
+  // What the terms' own spread divided each edf by (none where no check ran).
+  std::vector<double> reduction = allan.edf_reduction;
+  if (!reduction.empty()) reduction.resize(allan.dev.size(), 1.0);
   // Without intervals the edf come from the models alone (white noise's
   // stand in until the first model is fitted).
   std::vector<double> edf = allan.edf;
@@ -657,11 +661,12 @@ NoiseFitResult fit_noise_model(const stats::AllanResult& allan, const NoiseFitOp
   for (std::size_t i = 0; i < edf.size(); ++i) {
     if (!std::isfinite(edf[i])) {
       edf[i] = stats::pooled_edf(0, allan.m[i], segments) *
-               (allan.term_share.empty() ? 1.0 : allan.term_share[i]);
+               (allan.term_share.empty() ? 1.0 : allan.term_share[i]) /
+               (reduction.empty() ? 1.0 : reduction[i]);
     }
   }
-  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, segments, allan.term_share, options,
-                  detrend, lines);
+  return fit_impl(allan.tau_s, allan.dev, edf, allan.m, segments, allan.term_share, reduction,
+                  options, detrend, lines);
 }
 
 }  // namespace foglab::model

@@ -63,6 +63,11 @@ struct Points {
   /// (stats::AllanResult::term_share: clusters that miss a few samples);
   /// empty: every term (the edf and covariance of segment_points hold).
   std::vector<double> term_share;
+  /// What each point's edf was divided by for its terms' own spread
+  /// (stats::AllanResult::edf_reduction: a resonance, a noise that changes
+  /// over the run); empty: nothing. The candidates' edf and the points'
+  /// covariance take it too.
+  std::vector<double> edf_reduction;
   /// How every fit on these points iterates.
   IterationControl control;
   /// The known Allan variance at each point (the spectral lines'), added
@@ -130,14 +135,14 @@ enum class NonPositive {
 
 /// The usable points (edf >= options.min_edf) of the caller's Allan
 /// deviations; `factors` and `segment_points`, when known, give each point's
-/// edf for the candidate models' noise types, scaled by `term_share` (one
-/// per caller's point, or empty). Throws UsageError for mismatched sizes,
-/// non-positive values or fewer than 3 usable points.
+/// edf for the candidate models' noise types, scaled by `term_share` and
+/// divided by `edf_reduction` (each one per caller's point, or empty). Throws UsageError for
+/// mismatched sizes, non-positive values or fewer than 3 usable points.
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
                      std::span<const std::int64_t> segment_points,
-                     std::span<const double> term_share, const NoiseFitOptions& options,
-                     const DetrendFactors* detrend);
+                     std::span<const double> term_share, std::span<const double> edf_reduction,
+                     const NoiseFitOptions& options, const DetrendFactors* detrend);
 
 // --- 1b. the sensor bandwidth (noise_fit_bandwidth.cc) ----------------------
 

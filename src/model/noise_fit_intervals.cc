@@ -219,6 +219,13 @@ Eigen::MatrixXd point_covariance(const Points& p, const SubsetFit& f) {
       scale(i) = 1.0 / std::sqrt(p.term_share[static_cast<std::size_t>(i)]);
     c = scale.asDiagonal() * c * scale.asDiagonal();
   }
+  // A point whose terms spread more than the model's noise says
+  // (Points::edf_reduction r): its variance r times the model's.
+  if (!p.edf_reduction.empty()) {
+    for (Eigen::Index i = 0; i < n; ++i)
+      scale(i) = std::sqrt(p.edf_reduction[static_cast<std::size_t>(i)]);
+    c = scale.asDiagonal() * c * scale.asDiagonal();
+  }
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double undetrended = allan_variance(model, p.tau[k]);

@@ -12,8 +12,8 @@ namespace foglab::model::detail {
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
                      std::span<const std::int64_t> segment_points,
-                     std::span<const double> term_share, const NoiseFitOptions& options,
-                     const DetrendFactors* detrend) {
+                     std::span<const double> term_share, std::span<const double> edf_reduction,
+                     const NoiseFitOptions& options, const DetrendFactors* detrend) {
   if (options.max_iterations < 1) {
     throw UsageError(fmt::format("NoiseFitOptions::max_iterations must be >= 1, got {}",
                                  options.max_iterations));
@@ -29,6 +29,10 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
   if (!term_share.empty() && term_share.size() != tau_s.size()) {
     throw UsageError(fmt::format("noise-model fit: {} term shares for {} tau points",
                                  term_share.size(), tau_s.size()));
+  }
+  if (!edf_reduction.empty() && edf_reduction.size() != tau_s.size()) {
+    throw UsageError(fmt::format("noise-model fit: {} edf reductions for {} tau points",
+                                 edf_reduction.size(), tau_s.size()));
   }
   if (tau_s.size() != adev_deg_h.size() || tau_s.size() != edf.size()) {
     throw UsageError(
@@ -50,15 +54,17 @@ Points gather_points(std::span<const double> tau_s, std::span<const double> adev
     p.index.push_back(i);
     if (!factors.empty()) {
       const double share = term_share.empty() ? 1.0 : term_share[i];
+      const double reduction = edf_reduction.empty() ? 1.0 : edf_reduction[i];
       std::array<double, 4> e{};
       const int alphas[] = {-2, -1, 0, 2};
       for (int a = 0; a < 4; ++a) {
         e[static_cast<std::size_t>(a)] =
-            share * stats::pooled_edf(alphas[a], factors[i], segment_points);
+            share * stats::pooled_edf(alphas[a], factors[i], segment_points) / reduction;
       }
       p.edf_by_alpha.push_back(e);
       p.factors.push_back(factors[i]);
       if (!term_share.empty()) p.term_share.push_back(share);
+      if (!edf_reduction.empty()) p.edf_reduction.push_back(reduction);
     }
   }
   p.detrend = detrend;

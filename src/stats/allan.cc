@@ -481,6 +481,72 @@ double statistic_edf(AllanKind kind, int alpha, std::int64_t m,
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// The term spread check (AllanResult::edf_reduction): at most this many
+// angle points are read, in batches of max(kBatchPerFactor m, kShortestBatch)
+// terms and every doubling of that length that leaves kFewestBatches.
+constexpr std::int64_t kSpreadCheckPoints = std::int64_t{1} << 21;
+constexpr std::int64_t kBatchPerFactor = 64;
+constexpr std::int64_t kShortestBatch = 1024;
+constexpr std::int64_t kFewestBatches = 64;
+constexpr double kSpreadCheckFalseAlarm = 0.001;
+
+// What the OADEV edf `edf` of the angle points `phase` at factor m is to be
+// divided by: the variance of the mean of the squared second differences
+// from the spread of batch means, over 2 mean^2 / edf, where that ratio is
+// beyond chance; 1 otherwise or where too few batches fit. Short batches
+// see only the correlation shorter than they are, long ones are few: every
+// doubling of the batch is tried and the largest ratio beyond chance
+// taken, each tried at kSpreadCheckFalseAlarm over the number of lengths.
+double edf_reduction(std::span<const double> phase, std::int64_t m, double edf) {
+  const auto terms = static_cast<std::int64_t>(phase.size()) - 2 * m;
+  const std::int64_t shortest = std::max(kBatchPerFactor * m, kShortestBatch);
+  if (terms / shortest < kFewestBatches || !(edf > 0.0)) return 1.0;
+  std::vector<double> sums(static_cast<std::size_t>(terms / shortest));
+  for (std::size_t b = 0; b < sums.size(); ++b) {
+    double sum = 0.0;
+    const auto first = b * static_cast<std::size_t>(shortest);
+    for (std::size_t i = first; i < first + static_cast<std::size_t>(shortest); ++i) {
+      const double d = phase[i + 2 * static_cast<std::size_t>(m)] -
+                       2.0 * phase[i + static_cast<std::size_t>(m)] + phase[i];
+      sum += d * d;
+    }
+    sums[b] = sum;
+  }
+  int lengths = 0;
+  for (std::int64_t b = std::ssize(sums); b >= kFewestBatches; b /= 2) ++lengths;
+  double reduction = 1.0;
+  for (std::int64_t batch = shortest; std::ssize(sums) >= kFewestBatches; batch *= 2) {
+    const double count = static_cast<double>(sums.size());
+    double mean = 0.0;
+    for (double x : sums) mean += x;
+    mean /= count;
+    // Neighbours' differences (von Neumann's mean square successive
+    // difference): a slow change of the noise over the run, which the
+    // record's Allan variance averages, does not count as its spread.
+    double spread = 0.0;
+    for (std::size_t b = 1; b < sums.size(); ++b) {
+      spread += (sums[b] - sums[b - 1]) * (sums[b] - sums[b - 1]);
+    }
+    spread /= 2.0 * (count - 1.0);
+    if (!(mean > 0.0)) return 1.0;
+    // per term, and the noise type's edf for the batches' terms alone
+    const double term_mean = mean / static_cast<double>(batch);
+    const double spread_of_mean = spread / (static_cast<double>(batch * batch) * count);
+    const double batches_edf =
+        edf * count * static_cast<double>(batch) / static_cast<double>(terms);
+    const double ratio = spread_of_mean * batches_edf / (2.0 * term_mean * term_mean);
+    // that spread's degrees of freedom for independent batches:
+    // 2 (n - 1)^2 / (3 n - 4) for n batches
+    const double dof = 2.0 * (count - 1.0) * (count - 1.0) / (3.0 * count - 4.0);
+    const double chance = chi2_quantile(dof, 1.0 - kSpreadCheckFalseAlarm / lengths) / dof;
+    if (ratio > chance) reduction = std::max(reduction, ratio);
+    // the next length: pairs of these batches
+    for (std::size_t b = 0; 2 * b + 1 < sums.size(); ++b) sums[b] = sums[2 * b] + sums[2 * b + 1];
+    sums.resize(sums.size() / 2);
+  }
+  return reduction;
+}
+
 // Theo1's averaging factors: a generated grid's even factors from
 // kTheo1MinFactor on; an explicit list's Theo1 taus (0.75 m / fs) each at the
 // nearest even factor.
@@ -835,6 +901,7 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   result.alpha.assign(count, 0);
   result.alpha_method.assign(count, AlphaMethod{});
   result.edf.assign(count, nan);
+  result.edf_reduction.assign(count, 1.0);
   result.ci68_low.assign(count, nan);
   result.ci68_high.assign(count, nan);
   result.ci95_low.assign(count, nan);
@@ -849,9 +916,9 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   if (options.kind == AllanKind::theo1) {
     for (std::int64_t& m : id_factors) m = std::max<std::int64_t>(1, (3 * m + 2) / 4);
   }
-  std::vector<NoiseId> ids = identify_noise(phase.subspan(static_cast<std::size_t>(longest.begin),
-                                                          static_cast<std::size_t>(longest.size())),
-                                            id_factors, hadamard ? 3 : 2);
+  const std::span<const double> longest_phase = phase.subspan(
+      static_cast<std::size_t>(longest.begin), static_cast<std::size_t>(longest.size()));
+  std::vector<NoiseId> ids = identify_noise(longest_phase, id_factors, hadamard ? 3 : 2);
   if (bridging) {  // beyond the longest stretch: the longest part the bridged gaps join,
                    // its missing samples at the record's mean
     std::vector<std::int64_t> beyond;
@@ -894,10 +961,19 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
     if (htot_bias) result.dev[k] /= std::sqrt(htotdev_bias(id.alpha, m));
     if (!options.confidence) continue;
     // where terms spanning gaps entered, the gap-free record's edf for the share of its terms
-    const double edf =
+    double edf =
         bridging && result.gap_spanning_terms[k] > 0
             ? statistic_edf(options.kind, id.alpha, m, result.segment_points) * result.term_share[k]
             : statistic_edf(options.kind, id.alpha, m, stretch_points);
+    if (options.term_spread_check && options.kind == AllanKind::oadev) {
+      const std::span<const double> checked =
+          longest_phase.first(std::min<std::size_t>(longest_phase.size(), kSpreadCheckPoints));
+      const std::array<std::int64_t, 1> checked_points = {
+          static_cast<std::int64_t>(checked.size())};
+      result.edf_reduction[k] =
+          edf_reduction(checked, m, statistic_edf(options.kind, id.alpha, m, checked_points));
+      edf /= result.edf_reduction[k];
+    }
     result.edf[k] = edf;
     const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);
     const Interval ci95 = chi2_interval(result.dev[k], edf, kConfidence95);

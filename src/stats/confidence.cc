@@ -20,6 +20,10 @@ Interval chi2_interval(double dev, double edf, double p) {
   return {dev * std::sqrt(edf / chi2_high), dev * std::sqrt(edf / chi2_low)};
 }
 
+double chi2_quantile(double dof, double p) {
+  return boost::math::quantile(boost::math::chi_squared_distribution<double>(dof), p);
+}
+
 double edf_from_interval(double dev, double low, double high, double p) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (!(low > 0.0 && low < dev && dev < high) || !std::isfinite(high)) return nan;

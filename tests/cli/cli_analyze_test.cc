@@ -120,13 +120,14 @@ TEST_F(CliAnalyze, JsonHoldsEveryContractFieldWithItsType) {
   EXPECT_EQ(a["kind"], "oadev");
   const std::size_t points = a["tau_s"].size();
   EXPECT_GE(points, 10u);
-  for (const char* k :
-       {"tau_s", "adev_deg_h", "ci95_low", "ci95_high", "model_adev_deg_h", "edf"}) {
+  for (const char* k : {"tau_s", "adev_deg_h", "ci95_low", "ci95_high", "model_adev_deg_h", "edf",
+                        "edf_reduction"}) {
     expect_numbers(a[k], std::string("allan.") + k);
     EXPECT_EQ(a[k].size(), points) << k;
   }
   EXPECT_EQ(a["n"].size(), points);
   for (std::size_t k = 0; k < points; ++k) {
+    EXPECT_GE(a["edf_reduction"][k].get<double>(), 1.0);
     EXPECT_LT(a["ci95_low"][k].get<double>(), a["adev_deg_h"][k].get<double>());
     EXPECT_GT(a["ci95_high"][k].get<double>(), a["adev_deg_h"][k].get<double>());
   }

@@ -2,10 +2,11 @@
 // NIST SP 1065 Table 8): slopes, levels inside the confidence intervals, the
 // coverage of the intervals themselves, and numerical care with a large bias.
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <array>
 #include <cmath>
 #include <numeric>
-#include <omp.h>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,111 @@ TEST(AllanTheory, WhiteFmIsNeverCalledPhaseNoiseAtLongTauSoIntervalsStayHonest) 
     }
   }
   EXPECT_LE(outside, 3) << "of " << total;
+}
+
+// White noise of unit variance plus a resonance: the second-order
+// autoregression y_k = a1 y_{k-1} + a2 y_{k-2} + e_k with poles at radius r
+// and frequency f (cycles per sample), its innovations e of sd `drive`.
+struct Resonance {
+  double r = 0.97, f = 0.2, drive = 0.25;
+  double a1() const { return 2.0 * r * std::cos(6.283185307179586 * f); }
+  double a2() const { return -r * r; }
+  // The rate's autocovariance at lag l (Yule-Walker), the white noise's 1 at lag 0.
+  double autocovariance(std::int64_t l) const {
+    const double g0 =
+        drive * drive * (1.0 - a2()) / ((1.0 + a2()) * ((1.0 - a2()) * (1.0 - a2()) - a1() * a1()));
+    double before = g0, now = a1() * g0 / (1.0 - a2());
+    if (l == 0) return g0 + 1.0;
+    for (std::int64_t k = 1; k < l; ++k) {
+      const double next = a1() * now + a2() * before;
+      before = now, now = next;
+    }
+    return now;
+  }
+  // The exact Allan variance at factor m (tau0 = 1): the variance of the
+  // difference of two neighbouring m-sample means.
+  double allan_variance(std::int64_t m) const {
+    double v = 0.0;
+    for (std::int64_t i = 0; i < 2 * m; ++i) {
+      for (std::int64_t j = 0; j < 2 * m; ++j) {
+        const double wi = i < m ? -1.0 : 1.0, wj = j < m ? -1.0 : 1.0;
+        v += wi * wj * autocovariance(i > j ? i - j : j - i);
+      }
+    }
+    return v / (2.0 * static_cast<double>(m * m));
+  }
+  std::vector<double> record(std::size_t count, std::uint64_t seed) const {
+    std::vector<double> y = test::white(count, seed, 1.0);
+    const std::vector<double> e = test::white(count, seed + 77777, drive);
+    double y1 = 0.0, y2 = 0.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double next = a1() * y1 + a2() * y2 + e[k];
+      y2 = y1, y1 = next;
+      y[k] += next;
+    }
+    return y;
+  }
+};
+
+TEST(AllanTheory, AResonanceWidensTheIntervalsOfTheTausItCorrelates) {
+  // The noise type's edf (SP 1065 section 5.3) assumes one power law; a
+  // resonance keeps the second differences correlated over its decay time
+  // (1 / (1 - r) = 33 samples here), so the estimate varies more than that
+  // edf says. The terms' own spread (AllanOptions::term_spread_check) must
+  // see it: the 95 % intervals at m = 1 and 2 hold the exact Allan variance
+  // in 95 % of the records with the check (Binomial(100, 0.95): sd 2.2
+  // records, 3 sd allowed; measured 96 and 95); the noise type's edf alone
+  // held it in 71 and 56 of them (measured 2026-12-01).
+  const Resonance res{.drive = 0.35};
+  constexpr int kRecords = 100;
+  const std::array<std::int64_t, 2> factors = {1, 2};
+  std::array<int, 2> covered{}, covered_unchecked{};
+  for (int s = 0; s < kRecords; ++s) {
+    const std::vector<double> rate = res.record(1 << 17, 9000 + s);
+    AllanOptions options;
+    options.grid = parse_tau_grid("1,2");
+    const AllanResult plain = allan_deviation(rate, 1.0, InputKind::rate, options);
+    options.term_spread_check = true;
+    const AllanResult checked = allan_deviation(rate, 1.0, InputKind::rate, options);
+    for (std::size_t k = 0; k < factors.size(); ++k) {
+      const double truth = std::sqrt(res.allan_variance(factors[k]));
+      EXPECT_EQ(plain.dev[k], checked.dev[k]);
+      covered[k] += truth >= checked.ci95_low[k] && truth <= checked.ci95_high[k];
+      covered_unchecked[k] += truth >= plain.ci95_low[k] && truth <= plain.ci95_high[k];
+    }
+  }
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    EXPECT_NEAR(covered[k], 0.95 * kRecords, 7) << "m " << factors[k];
+  }
+  EXPECT_LT(covered_unchecked[1], 0.95 * kRecords - 7) << "the noise type's edf alone";
+}
+
+TEST(AllanTheory, TheTermSpreadCheckLeavesWhiteNoiseAlone) {
+  // It divides an edf only beyond the 99.9 % quantile of chance: on white
+  // noise about 0.1 % of the taus from m = 2 to 64 (expected 0.1 of 120
+  // here; allow 2), and the 99.9 % intervals keep their coverage. At m = 1
+  // Greenhall's edf for white rate noise is 1.174 times the exact 2 n / 3
+  // (n terms; the 17 % of edf_test.cc's first test), which the check sees
+  // on records long enough
+  // (6 h at 100 Hz: 1.17-1.28 on 7 of 8), so m = 1 is not counted here.
+  int divided = 0, checked = 0, outside = 0;
+  for (int s = 0; s < 20; ++s) {
+    const std::vector<double> rate = test::white(1 << 18, 7000 + s, 1.0);
+    AllanOptions options;
+    options.term_spread_check = true;
+    const AllanResult r = allan_deviation(rate, 1.0, InputKind::rate, options);
+    for (std::size_t k = 0; k < r.tau_s.size(); ++k) {
+      const Interval wide = chi2_interval(r.dev[k], r.edf[k], 0.999);
+      const double truth = 1.0 / std::sqrt(r.tau_s[k]);
+      outside += truth < wide.low || truth > wide.high;
+      if (r.m[k] == 1 || r.m[k] > 64) continue;  // beyond the check: fewer than 64 batches
+      ++checked;
+      divided += r.edf_reduction[k] > 1.0;
+    }
+  }
+  EXPECT_EQ(checked, 20 * 6);
+  EXPECT_LE(divided, 2) << "of " << checked;
+  EXPECT_LE(outside, 2);
 }
 
 TEST(AllanTheory, LargeBiasIsRemovedExactlyBeforeIntegration) {

@@ -21,6 +21,10 @@ struct Interval {
 /// `p` in (0, 1). NaN bounds when edf is not a positive finite number.
 Interval chi2_interval(double dev, double edf, double p);
 
+/// The chi-square quantile of probability `p` in (0, 1) with `dof` > 0
+/// degrees of freedom.
+double chi2_quantile(double dof, double p);
+
 /// The edf whose interval at confidence `p` has the width of [low, high]
 /// around `dev` (log ratio high/low, the inverse of chi2_interval(): a
 /// printed table's bounds give back its edf). NaN unless 0 < low < dev <
