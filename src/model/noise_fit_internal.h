@@ -64,9 +64,8 @@ struct Points {
   /// empty: every term (the edf and covariance of segment_points hold).
   std::vector<double> term_share;
   /// What each point's edf was divided by for its terms' own spread
-  /// (stats::AllanResult::edf_reduction: a resonance, a noise that changes
-  /// over the run); empty: nothing. The candidates' edf and the points'
-  /// covariance take it too.
+  /// (stats::AllanResult::edf_reduction: a resonance); empty: nothing. The
+  /// candidates' edf and the points' covariance take it too.
   std::vector<double> edf_reduction;
   /// How every fit on these points iterates.
   IterationControl control;
@@ -136,8 +135,9 @@ enum class NonPositive {
 /// The usable points (edf >= options.min_edf) of the caller's Allan
 /// deviations; `factors` and `segment_points`, when known, give each point's
 /// edf for the candidate models' noise types, scaled by `term_share` and
-/// divided by `edf_reduction` (each one per caller's point, or empty). Throws UsageError for
-/// mismatched sizes, non-positive values or fewer than 3 usable points.
+/// divided by `edf_reduction` (each one per caller's point, or empty).
+/// Throws UsageError for mismatched sizes, non-positive values or fewer
+/// than 3 usable points.
 Points gather_points(std::span<const double> tau_s, std::span<const double> adev_deg_h,
                      std::span<const double> edf, std::span<const std::int64_t> factors,
                      std::span<const std::int64_t> segment_points,

@@ -945,6 +945,10 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
       shortest_fm_m = std::min(shortest_fm_m, result.m[k]);
     }
   }
+  // The term spread check reads the start of the longest stretch.
+  const std::span<const double> checked = longest_phase.first(
+      std::min<std::size_t>(longest_phase.size(), static_cast<std::size_t>(kSpreadCheckPoints)));
+  const std::array<std::int64_t, 1> checked_points = {static_cast<std::int64_t>(checked.size())};
   int previous_alpha = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t m = result.m[k];
@@ -966,10 +970,6 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
             ? statistic_edf(options.kind, id.alpha, m, result.segment_points) * result.term_share[k]
             : statistic_edf(options.kind, id.alpha, m, stretch_points);
     if (options.term_spread_check && options.kind == AllanKind::oadev) {
-      const std::span<const double> checked =
-          longest_phase.first(std::min<std::size_t>(longest_phase.size(), kSpreadCheckPoints));
-      const std::array<std::int64_t, 1> checked_points = {
-          static_cast<std::int64_t>(checked.size())};
       result.edf_reduction[k] =
           edf_reduction(checked, m, statistic_edf(options.kind, id.alpha, m, checked_points));
       edf /= result.edf_reduction[k];

@@ -197,17 +197,16 @@ struct AllanResult {
   /// divided by (1 where nothing was). The edf of SP 1065 (section 5.3)
   /// assumes one power-law noise type; a narrow-band random process (a
   /// resonance) leaves the terms correlated over longer than that, and the
-  /// estimate varies more. The
-  /// variance of the mean of d_k^2 (d_k the second differences of the
-  /// angle at factor m) is measured from the means of batches of
-  /// max(64 m, 1024) terms and of every doubling of that length (at least
-  /// 64 batches, within the first 2^21 angle points of the longest
-  /// stretch), by the mean square difference of neighbouring batches (so
-  /// that a slow change over the run, which the record's value averages,
-  /// does not count), and compared with the noise type's, 2 AVAR^2 / edf;
-  /// the largest ratio beyond chance (the 99.9 % quantile of chi-square
-  /// over its degrees of freedom, 0.1 % shared among the lengths tried)
-  /// divides the edf. It does not change `dev`.
+  /// estimate varies more. The variance of the mean of d_k^2 (d_k the
+  /// second differences of the angle at factor m) is measured from the
+  /// means of batches of max(64 m, 1024) terms and of every doubling of
+  /// that length (at least 64 batches, within the first 2^21 angle points
+  /// of the longest stretch), by the mean square difference of neighbouring
+  /// batches (so that a slow change over the run, which the record's value
+  /// averages, does not count), and compared with the noise type's, 2
+  /// AVAR^2 / edf; the largest ratio beyond chance (the 99.9 % quantile of
+  /// chi-square over its degrees of freedom, 0.1 % shared among the lengths
+  /// tried) divides the edf. It does not change `dev`.
   std::vector<double> edf_reduction;
   std::vector<double> ci68_low, ci68_high;  ///< 68.27 % interval, same unit as dev
   std::vector<double> ci95_low, ci95_high;  ///< 95 % interval
