@@ -775,6 +775,12 @@ constexpr CatalogueEntry kEntries[] = {
      "cluster's mean over the samples it has (nothing interpolated; their edf is the gap-free "
      "record's for the share of its terms used): short gaps no longer end the taus at the "
      "longest stretch"},
+    {Text::note_allan_terms_spread,
+     "at tau {} s the Allan terms spread {} times more than the identified noise type "
+     "allows (measured from the means of batches of terms and their neighbours' differences, "
+     "beyond chance at 99.9 %: a resonance or dither keeps the terms correlated); the edf "
+     "there is divided by that much, which widens the 95 % intervals and lightens those "
+     "points in the noise fit"},
     {Text::note_step_item, "{:+.4g} deg/h at {:.6g} s"},
     {Text::note_steps,
      "{} bias step(s): {} (each beyond {:g} robust spreads of the difference of the "

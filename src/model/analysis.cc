@@ -8,6 +8,7 @@
 #include <cmath>
 #include <exception>
 #include <future>
+#include <limits>
 #include <thread>
 #include <utility>
 
@@ -644,6 +645,18 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     r.notes.emplace_back(Text::note_gap_clusters, std::ranges::count_if(spanning, spans),
                          r.allan.tau_s[first], r.allan.tau_s.back(),
                          100.0 * options.max_missing_share);
+  }
+  // The taus whose edf the terms' own spread divided (stats/allan.h).
+  if (const auto& reduction = r.allan.edf_reduction;
+      std::ranges::any_of(reduction, [](double x) { return x > 1.0; })) {
+    std::vector<Message> taus;
+    double low = std::numeric_limits<double>::infinity(), high = 0.0;
+    for (std::size_t k = 0; k < reduction.size(); ++k) {
+      if (!(reduction[k] > 1.0)) continue;
+      taus.emplace_back(Text::one_of, r.allan.tau_s[k]);
+      low = std::min(low, reduction[k]), high = std::max(high, reduction[k]);
+    }
+    r.notes.emplace_back(Text::note_allan_terms_spread, std::move(taus), range_message(low, high));
   }
 
   r.adev_readings = read_adev(r.allan.tau_s, r.allan.dev, r.noise.filter_memory_end_tau_s);

@@ -490,6 +490,21 @@ constexpr std::int64_t kShortestBatch = 1024;
 constexpr std::int64_t kFewestBatches = 64;
 constexpr double kSpreadCheckFalseAlarm = 0.001;
 
+// The OADEV edf the term spread check compares with on the angle points
+// `phase`: the noise type's (Greenhall's), but for white rate noise at
+// m = 1 the exact 2 n^2 / (3 n - 1) of its n sampled terms (their lag-one
+// correlation is -1/2; tests/model/allan_covariance_test.cc), of which
+// Greenhall's is 1.174 times: against it the check had seen that excess on
+// long records of white noise.
+double spread_check_edf(int alpha, std::int64_t m, std::span<const double> phase) {
+  if (m == 1 && alpha == 0) {
+    const auto n = static_cast<double>(phase.size()) - 2.0;
+    return 2.0 * n * n / (3.0 * n - 1.0);
+  }
+  const std::array<std::int64_t, 1> points = {static_cast<std::int64_t>(phase.size())};
+  return pooled_edf(alpha, m, points);
+}
+
 // What the OADEV edf `edf` of the angle points `phase` at factor m is to be
 // divided by: the variance of the mean of the squared second differences
 // from the spread of batch means, over 2 mean^2 / edf, where that ratio is
@@ -948,7 +963,6 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
   // The term spread check reads the start of the longest stretch.
   const std::span<const double> checked = longest_phase.first(
       std::min<std::size_t>(longest_phase.size(), static_cast<std::size_t>(kSpreadCheckPoints)));
-  const std::array<std::int64_t, 1> checked_points = {static_cast<std::int64_t>(checked.size())};
   int previous_alpha = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t m = result.m[k];
@@ -970,9 +984,15 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
             ? statistic_edf(options.kind, id.alpha, m, result.segment_points) * result.term_share[k]
             : statistic_edf(options.kind, id.alpha, m, stretch_points);
     if (options.term_spread_check && options.kind == AllanKind::oadev) {
-      result.edf_reduction[k] =
-          edf_reduction(checked, m, statistic_edf(options.kind, id.alpha, m, checked_points));
-      edf /= result.edf_reduction[k];
+      const double baseline = spread_check_edf(id.alpha, m, checked);
+      if (const double ratio = edf_reduction(checked, m, baseline); ratio > 1.0) {
+        // what the noise type's edf is divided by to give the checked terms' own
+        const std::array<std::int64_t, 1> checked_points = {
+            static_cast<std::int64_t>(checked.size())};
+        result.edf_reduction[k] =
+            ratio * statistic_edf(options.kind, id.alpha, m, checked_points) / baseline;
+        edf /= result.edf_reduction[k];
+      }
     }
     result.edf[k] = edf;
     const Interval ci68 = chi2_interval(result.dev[k], edf, kConfidence68);

@@ -571,6 +571,8 @@ enum class Text {
   note_gaps,  ///< the record's gaps and how they were treated
   /// {taus} {from s} {to s} {share %}: Allan clusters that miss a few samples
   note_gap_clusters,
+  /// {taus} {ratio range}: taus whose edf the Allan terms' own spread divided
+  note_allan_terms_spread,
   note_step_item,  ///< one bias step: {size} at {time}
   note_steps,      ///< {count} {list} {threshold} {levelled or kept}
   note_steps_levelled,
