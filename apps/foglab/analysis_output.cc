@@ -224,6 +224,22 @@ nlohmann::json spikes_json(const model::AnalysisResult& r) {
       {"excess_kurtosis", s.heavy_tailed ? number(s.excess_kurtosis) : nlohmann::json(nullptr)}};
 }
 
+// Why the jumps were left in as the bias's process (null: they are steps).
+nlohmann::json because(model::BiasSteps::AsNoise why) {
+  using AsNoise = model::BiasSteps::AsNoise;
+  switch (why) {
+    case AsNoise::beyond_limit:
+      return "more_than_the_limit";
+    case AsNoise::wander:
+      return "levelling_adds_wander";
+    case AsNoise::two_levels:
+      return "two_levels";
+    case AsNoise::none:
+      break;
+  }
+  return nullptr;
+}
+
 nlohmann::json steps_json(const model::AnalysisResult& r) {
   const model::BiasSteps& s = r.steps;
   std::vector<double> times;
@@ -239,6 +255,8 @@ nlohmann::json steps_json(const model::AnalysisResult& r) {
   }
   return {{"count", s.indices.size()},
           {"removed", s.removed},
+          {"left_as_noise", s.left_as_noise},
+          {"left_as_noise_because", because(s.left_as_noise_because)},
           {"times_s", times},
           {"sizes_deg_h", numbers(s.sizes_deg_h)},
           {"window_samples", s.window_samples},

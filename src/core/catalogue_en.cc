@@ -630,6 +630,8 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_drift, "short-tau stationarity"},
     {Text::an_steps, "bias steps"},
     {Text::an_steps_levelled, ", levelled before the analysis (the notes list them)"},
+    {Text::an_steps_as_noise,
+     ", left in: the bias jumps as a process, not at a few glitches (the notes say why)"},
     {Text::an_left_in, ", left in"},
     {Text::an_spikes, "spikes"},
     {Text::an_spikes_value, "{} (beyond {} deg/h from their neighbours' mean){}"},
@@ -692,6 +694,7 @@ constexpr CatalogueEntry kEntries[] = {
     {Text::an_md_class, "accuracy class"},
     {Text::an_plot_gap, "gap ({} found, nothing interpolated)"},
     {Text::an_plot_step, "bias step ({} found, levelled)"},
+    {Text::an_plot_step_as_noise, "bias jump ({} found, left in as the bias's process)"},
     {Text::an_plot_gap_jump, "bias jump across a gap ({} found, measured, not levelled)"},
     {Text::an_plot_spike, "spike ({} found, replaced)"},
     {Text::an_plot_time, "{}: rate and temperature"},
@@ -789,6 +792,15 @@ constexpr CatalogueEntry kEntries[] = {
      "the record was levelled (each size subtracted from the samples after it) before "
      "the analysis"},
     {Text::note_steps_kept, "they were left in (not levelled)"},
+    {Text::note_steps_as_noise,
+     "{}: the bias jumps as a process (a random telegraph or popcorn noise), not at a few "
+     "glitches, so none was levelled and the statistics take the jumps as noise (a "
+     "Gauss-Markov term follows such a process's Allan deviation)"},
+    {Text::note_steps_beyond_limit, "more jumps follow beyond these {}, the search's limit"},
+    {Text::note_steps_wander,
+     "levelling them would make the record wander more than chance allows (the means of "
+     "its neighbouring sixteenths)"},
+    {Text::note_steps_two_levels, "they go back and forth between two levels"},
     {Text::note_gap_jump_item,
      "{:+.4g} deg/h where the record resumes at {:.6g} s ({:.3g} spreads)"},
     {Text::note_gap_jumps,

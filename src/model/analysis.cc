@@ -530,9 +530,19 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       list.emplace_back(Text::note_step_item, r.steps.sizes_deg_h[i],
                         elapsed_s(r.steps.indices[i], gaps, sample_rate_hz));
     }
+    using AsNoise = BiasSteps::AsNoise;
+    const AsNoise why = r.steps.left_as_noise_because;
+    Message what = why == AsNoise::beyond_limit
+                       ? Message(Text::note_steps_as_noise,
+                                 Message(Text::note_steps_beyond_limit, r.steps.indices.size()))
+                   : why == AsNoise::wander
+                       ? Message(Text::note_steps_as_noise, Message(Text::note_steps_wander))
+                   : why == AsNoise::two_levels
+                       ? Message(Text::note_steps_as_noise, Message(Text::note_steps_two_levels))
+                   : r.steps.removed ? Message(Text::note_steps_levelled)
+                                     : Message(Text::note_steps_kept);
     r.notes.emplace_back(Text::note_steps, r.steps.indices.size(), std::move(list),
-                         options.steps.threshold,
-                         r.steps.removed ? Text::note_steps_levelled : Text::note_steps_kept);
+                         options.steps.threshold, std::move(what));
   }
   if (std::ranges::any_of(r.steps.across_gaps, &GapJump::significant)) {
     std::vector<Message> list;

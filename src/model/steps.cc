@@ -20,6 +20,7 @@ namespace {
 struct Candidate {
   std::int64_t index = -1;
   double size = 0.0, z = 0.0;
+  double spread = 0.0;  // D's robust spread at the window that found it
   std::int64_t window = 0;
 };
 
@@ -77,6 +78,12 @@ Differences differences_at(const std::vector<double>& p, std::int64_t w,
 
 // Fewer D than this give no spread to judge by.
 constexpr std::size_t kFewestDifferences = 16;
+// A step's size over 2 h agrees with its size over h within this many sd
+// of their difference (best_at(): for white noise one step in 3,000
+// measured over a shorter window than it could be).
+constexpr double kSizeAgreement = 4.0;
+// A size this small against D's spread is what levelling left: nothing.
+constexpr double kNothingLeft = 1e-9;
 
 // The most significant step at window length w, from prefix sums p, with
 // every window inside one of the contiguous `stretches`.
@@ -116,12 +123,31 @@ Candidate best_at(const std::vector<double>& p, std::int64_t w,
   const double best_dev =
       std::fabs(difference(raw, std::clamp(best, stretch.begin + w, stretch.end - w), w) - centre);
   // Its size from up to 4 W either side (four times the samples of the
-  // stretch that found it: half the scatter, where the noise is white).
-  const std::int64_t lo = std::max(stretch.begin, best - 4 * w);
-  const std::int64_t hi = std::min(stretch.end, best + 4 * w);
+  // stretch that found it: half the scatter, where the noise is white),
+  // unless another change lies nearer. The size is measured over h = W/8
+  // either side, and h doubled while the size over 2 h agrees with the
+  // size over h within kSizeAgreement sd of their difference (for white
+  // noise spread sqrt(W / 2 h), from D's spread at W). A short pulse of the
+  // bias (two steps closer than the window) had been measured across both
+  // edges, a fraction of its height, and then found again at the same
+  // sample with size 0.
+  const auto size_within = [&](std::int64_t h) {
+    const std::int64_t lo = std::max(stretch.begin, best - h);
+    const std::int64_t hi = std::min(stretch.end, best + h);
+    return level(best, hi) - level(lo, best);
+  };
+  std::int64_t h = std::max<std::int64_t>(1, w / 8);
+  c.size = size_within(h);
+  for (; h < 4 * w; h *= 2) {
+    const double wider = size_within(2 * h);
+    const double allowed = kSizeAgreement * spread *
+                           std::sqrt(static_cast<double>(w) / (2.0 * static_cast<double>(h)));
+    if (!(std::fabs(wider - c.size) <= allowed)) break;
+    c.size = wider;
+  }
   c.index = best;
-  c.size = level(best, hi) - level(lo, best);
   c.z = std::max(best_dev, top_dev) / spread;
+  c.spread = spread;
   c.window = w;
   return c;
 }
@@ -211,6 +237,83 @@ std::vector<GapJump> jumps_across(const std::vector<double>& p, std::span<const 
   return jumps;
 }
 
+// A step levelled out of the record takes a shift out of its level; the
+// jumps of a bounded process (a random telegraph bias) levelled in part
+// leave the rest as a walk. The record's wander over long times, from
+// prefix sums p: the differences of neighbouring means of `block` samples
+// inside each of `stretches` (their mean square is an Allan variance at
+// that length).
+std::vector<double> long_differences(const std::vector<double>& p, std::int64_t block,
+                                     std::span<const Stretch> stretches) {
+  const Means raw{p};
+  std::vector<double> d;
+  for (const Stretch& s : stretches) {
+    for (std::int64_t k = s.begin + block; k + block <= s.end; k += block) {
+      d.push_back(raw(k, k + block) - raw(k - block, k));
+    }
+  }
+  return d;
+}
+
+// Whether levelling made the record wander more than chance allows:
+// `before` and `after` its long differences unlevelled and levelled. With
+// delta = before - after (the levelled steps' own differences) the growth
+// of the sum of squares, sum(after^2) - sum(before^2) = -2 sum(after
+// delta) - sum(delta^2), is negative for steps that were there, give or
+// take 2 sqrt(v sum(delta^2)) where after's differences are noise of
+// variance v (their mean square; before's where that is less: a bounded
+// process levelled in part makes after's a walk). Beyond
+// kWanderSignificance of that, the levelled record wanders with what was
+// taken out. For steps that were there the growth is that scatter less
+// sum(delta^2), so a false call (2.3 % at 2) can only come where the steps
+// hardly move the long-term level, and leaving those in costs little: a
+// 46-sample pulse 6.3 s into the ADIS16405 imu1 y record stands at 1.3 and
+// stays two steps. A telegraph bias of +-0.5 deg/h (2 h, 100 s dwell) with
+// 15 of its jumps levelled stood at 2.6.
+constexpr double kWanderSignificance = 2.0;
+
+bool wanders_more(std::span<const double> before, std::span<const double> after) {
+  if (before.size() != after.size() || before.size() < 2) return false;
+  double delta_squares = 0.0, cross = 0.0, v_after = 0.0, v_before = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const double delta = before[i] - after[i];
+    delta_squares += delta * delta;
+    cross += after[i] * delta;
+    v_after += after[i] * after[i];
+    v_before += before[i] * before[i];
+  }
+  const double v = std::min(v_after, v_before) / static_cast<double>(after.size());
+  const double growth = -2.0 * cross - delta_squares;
+  return delta_squares > 0.0 && growth > kWanderSignificance * 2.0 * std::sqrt(v * delta_squares);
+}
+
+// From this many steps on, the wander (above) is asked: one step alone is
+// a glitch whatever its effect on the wander.
+constexpr std::size_t kFewestForAProcess = 2;
+// The wander is read at this share of the record (about 15 differences).
+constexpr std::int64_t kWanderBlocks = 16;
+
+// Whether the steps, `sizes` by their `indices`, go back and forth between
+// two levels, as a telegraph bias does when every jump of it is found (and
+// levelling them all leaves the record calm): at least four, and of the
+// neighbouring pairs in time three quarters or more opposite in sign and
+// within a quarter of their mean size of each other (a glitch's steps have
+// no reason to undo the one before; a missed short pulse spoils one pair).
+bool between_two_levels(std::span<const std::int64_t> indices, std::span<const double> sizes) {
+  constexpr std::size_t kFewest = 4;
+  if (indices.size() < kFewest) return false;
+  std::vector<std::size_t> order(indices.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return indices[a] < indices[b]; });
+  std::size_t returns = 0;
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const double a = sizes[order[i - 1]], b = sizes[order[i]];
+    returns += a * b < 0.0 && std::fabs(a + b) <= 0.25 * 0.5 * (std::fabs(a) + std::fabs(b));
+  }
+  return 4 * returns >= 3 * (order.size() - 1);
+}
+
 }  // namespace
 
 BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb_deg_h,
@@ -253,32 +356,58 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
       p[k + 1] = p[k] + value;
     }
   };
-  for (int round = 0; round < options.max_steps; ++round) {
+  using AsNoise = BiasSteps::AsNoise;
+  AsNoise as_noise = AsNoise::none;
+  const std::int64_t block = std::max<std::int64_t>(1, n / kWanderBlocks);
+  std::vector<double> unlevelled;  // its long differences
+  for (int round = 0;; ++round) {
     fill_prefix_sums();
+    if (round == 0) unlevelled = long_differences(p, block, stretches);
     Candidate best;
     for (std::int64_t w = 64; 64 * w <= n; w *= 2) {
       const Candidate c = best_at(p, w, stretches);
       if (c.index >= 0 && c.z > best.z) best = c;
     }
     if (best.index < 0 || !(best.z > options.threshold)) break;
-    if (!(std::fabs(best.size) > 0.0) || std::fabs(best.size) < lsb_deg_h) break;
+    if (!(std::fabs(best.size) > kNothingLeft * best.spread) || std::fabs(best.size) < lsb_deg_h)
+      break;
+    if (round == options.max_steps) {
+      as_noise = AsNoise::beyond_limit;
+      break;
+    }
     for (std::int64_t k = best.index; k < n; ++k) y[static_cast<std::size_t>(k)] -= best.size;
     steps.indices.push_back(best.index);
     steps.sizes_deg_h.push_back(best.size);
     steps.window_samples.push_back(best.window);
     steps.significance.push_back(best.z);
   }
-  if (!gaps.empty()) {  // on the record as the steps left it
-    fill_prefix_sums();
-    steps.across_gaps = jumps_across(p, gaps, stretches, options.threshold);
-  }
-  if (!options.remove) {
+  const auto put_back = [&] {
     for (std::size_t i = 0; i < steps.indices.size(); ++i) {
       for (std::int64_t k = steps.indices[i]; k < n; ++k) {
         y[static_cast<std::size_t>(k)] += steps.sizes_deg_h[i];
       }
     }
+  };
+  // More jumps than max_steps, levelling that makes the record wander
+  // more, or jumps back and forth between two levels: the bias jumps as a
+  // process (a random telegraph or popcorn noise), not at a few glitches;
+  // levelling some of them would leave a record that is neither, so none
+  // is levelled and the statistics see the process.
+  if (as_noise == AsNoise::none && steps.indices.size() >= kFewestForAProcess) {
+    fill_prefix_sums();
+    if (wanders_more(unlevelled, long_differences(p, block, stretches))) {
+      as_noise = AsNoise::wander;
+    } else if (between_two_levels(steps.indices, steps.sizes_deg_h)) {
+      as_noise = AsNoise::two_levels;
+    }
   }
+  const bool left_in = as_noise != AsNoise::none;
+  if (left_in) put_back();
+  if (!gaps.empty()) {  // on the record as the statistics see it (levelled unless as noise)
+    fill_prefix_sums();
+    steps.across_gaps = jumps_across(p, gaps, stretches, options.threshold);
+  }
+  if (!options.remove && !left_in) put_back();
   // Time order.
   std::vector<std::size_t> order(steps.indices.size());
   std::iota(order.begin(), order.end(), 0);
@@ -291,7 +420,9 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
     sorted.window_samples.push_back(steps.window_samples[i]);
     sorted.significance.push_back(steps.significance[i]);
   }
-  sorted.removed = options.remove && !sorted.indices.empty();
+  sorted.removed = options.remove && !left_in && !sorted.indices.empty();
+  sorted.left_as_noise_because = as_noise;
+  sorted.left_as_noise = left_in;
   sorted.across_gaps = std::move(steps.across_gaps);
   return sorted;
 }

@@ -463,6 +463,7 @@ enum class Text {
   an_drift,                      ///< "short-tau stationarity"
   an_steps,                      ///< "bias steps"
   an_steps_levelled,             ///< follows their count
+  an_steps_as_noise,             ///< follows their count: left in as the bias's process
   an_left_in,                    ///< follows a count of steps or spikes
   an_spikes,                     ///< "spikes"
   an_spikes_value,               ///< {count} {threshold} {replaced or left in}
@@ -512,6 +513,7 @@ enum class Text {
   an_md_class,                   ///< "accuracy class"
   an_plot_gap,                   ///< legends: {count}
   an_plot_step,                  ///< {count}
+  an_plot_step_as_noise,         ///< {count}: jumps left in as the bias's process
   an_plot_gap_jump,              ///< {count}
   an_plot_spike,                 ///< {count}
   an_plot_time,                  ///< plot title: {record}
@@ -577,9 +579,13 @@ enum class Text {
   note_steps,      ///< {count} {list} {threshold} {levelled or kept}
   note_steps_levelled,
   note_steps_kept,
-  note_gap_jump_item,  ///< one jump across a gap: {size} {resumes at} {significance}
-  note_gap_jumps,      ///< {count} {list} {threshold}
-  note_spikes,         ///< {count} {threshold} {sds} {replaced or kept}
+  note_steps_as_noise,      ///< {why}: the jumps left in as the bias's process
+  note_steps_beyond_limit,  ///< {limit}: more jumps than the search takes
+  note_steps_wander,        ///< levelling them makes the record wander more
+  note_steps_two_levels,    ///< they go back and forth between two levels
+  note_gap_jump_item,       ///< one jump across a gap: {size} {resumes at} {significance}
+  note_gap_jumps,           ///< {count} {list} {threshold}
+  note_spikes,              ///< {count} {threshold} {sds} {replaced or kept}
   note_spikes_replaced,
   note_spikes_kept,
   note_heavy_tail,  ///< {shoulder count} {Gaussian's} {alpha} {threshold} {excess kurtosis}

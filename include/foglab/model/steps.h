@@ -11,9 +11,17 @@
 // length, is a step; its sample is the best single change point of the
 // stretch W either side (the largest |mean after - mean before| sqrt(l r /
 // (l + r))), its size the difference of the means over up to 4 W either
-// side of it, both with the record's drift (the median of D over W) taken
-// out. It is levelled (its size subtracted from every later sample) and the
-// search repeats, up to `max_steps` times. The windows stay inside the
+// side of it (over W/8, doubled while the size stays within the noise of
+// the last: a nearer change, the other edge of a short pulse, ends it),
+// both with the record's drift (the median of D over W) taken out. It is
+// levelled (its size subtracted from every later sample) and the search
+// repeats. A bias that jumps as a process (a random telegraph or popcorn
+// noise) is no set of steps: when more than `max_steps` are found,
+// levelling two or more makes the record wander more (the mean square
+// difference of neighbouring sixteenths of the record), or four or more go
+// back and forth between two levels (three quarters of the neighbouring
+// pairs opposite and within a quarter of their size), none is levelled
+// (BiasSteps::left_as_noise). The windows stay inside the
 // contiguous stretches between gaps (a jump across a gap is the process
 // moving while nothing was recorded, not a step: it is measured on its
 // own, GapJump), and the search runs on
@@ -68,6 +76,12 @@ struct BiasSteps {
   std::vector<std::int64_t> window_samples;  ///< W at which each was found
   std::vector<double> significance;          ///< |D - median| / spread there
   bool removed = false;
+  /// The bias jumps as a process (a random telegraph or popcorn noise),
+  /// not at a few glitches: the jumps are listed (at most max_steps) and
+  /// none is levelled. Why (none: they are steps).
+  enum class AsNoise { none, beyond_limit, wander, two_levels };
+  AsNoise left_as_noise_because = AsNoise::none;
+  bool left_as_noise = false;  ///< left_as_noise_because != none
   /// Each gap whose stretches either side hold a window (64 samples or
   /// more, as for the steps), in time order.
   std::vector<GapJump> across_gaps;
