@@ -255,7 +255,7 @@ nlohmann::json steps_json(const model::AnalysisResult& r) {
   }
   return {{"count", s.indices.size()},
           {"removed", s.removed},
-          {"left_as_noise", s.left_as_noise},
+          {"left_as_noise", s.left_as_noise()},
           {"left_as_noise_because", because(s.left_as_noise_because)},
           {"times_s", times},
           {"sizes_deg_h", numbers(s.sizes_deg_h)},

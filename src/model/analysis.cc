@@ -422,6 +422,23 @@ Message gap_note(std::size_t samples, std::span<const Gap> gaps, std::span<const
                  stretches.size(), static_cast<double>(longest) / fs);
 }
 
+// What was done with the bias steps found: the note's last part.
+Message steps_treatment(const BiasSteps& steps) {
+  using AsNoise = BiasSteps::AsNoise;
+  switch (steps.left_as_noise_because) {
+    case AsNoise::beyond_limit:
+      return Message(Text::note_steps_as_noise,
+                     Message(Text::note_steps_beyond_limit, steps.indices.size()));
+    case AsNoise::wander:
+      return Message(Text::note_steps_as_noise, Message(Text::note_steps_wander));
+    case AsNoise::two_levels:
+      return Message(Text::note_steps_as_noise, Message(Text::note_steps_two_levels));
+    case AsNoise::none:
+      break;
+  }
+  return Message(steps.removed ? Text::note_steps_levelled : Text::note_steps_kept);
+}
+
 // N rests on the white noise's sample variance, whose relative variance is
 // (2 + g) / n for n samples of excess kurtosis g; the fit's interval counts
 // the Gaussian 2 / n. Under heavy-tailed noise (spikes.h) the rest, g / n,
@@ -530,19 +547,8 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       list.emplace_back(Text::note_step_item, r.steps.sizes_deg_h[i],
                         elapsed_s(r.steps.indices[i], gaps, sample_rate_hz));
     }
-    using AsNoise = BiasSteps::AsNoise;
-    const AsNoise why = r.steps.left_as_noise_because;
-    Message what = why == AsNoise::beyond_limit
-                       ? Message(Text::note_steps_as_noise,
-                                 Message(Text::note_steps_beyond_limit, r.steps.indices.size()))
-                   : why == AsNoise::wander
-                       ? Message(Text::note_steps_as_noise, Message(Text::note_steps_wander))
-                   : why == AsNoise::two_levels
-                       ? Message(Text::note_steps_as_noise, Message(Text::note_steps_two_levels))
-                   : r.steps.removed ? Message(Text::note_steps_levelled)
-                                     : Message(Text::note_steps_kept);
     r.notes.emplace_back(Text::note_steps, r.steps.indices.size(), std::move(list),
-                         options.steps.threshold, std::move(what));
+                         options.steps.threshold, steps_treatment(r.steps));
   }
   if (std::ranges::any_of(r.steps.across_gaps, &GapJump::significant)) {
     std::vector<Message> list;

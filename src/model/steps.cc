@@ -422,7 +422,6 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
   }
   sorted.removed = options.remove && !left_in && !sorted.indices.empty();
   sorted.left_as_noise_because = as_noise;
-  sorted.left_as_noise = left_in;
   sorted.across_gaps = std::move(steps.across_gaps);
   return sorted;
 }

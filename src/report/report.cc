@@ -464,9 +464,9 @@ std::string html_tables(const model::AnalysisResult& r, const ReportInput& in, L
   row(say(l, Text::an_steps),
       r.steps.indices.empty() ? say(l, Text::an_none)
                               : fmt::format("{}{}", r.steps.indices.size(),
-                                            say(l, r.steps.left_as_noise ? Text::an_steps_as_noise
-                                                   : r.steps.removed     ? Text::an_steps_levelled
-                                                                         : Text::an_left_in)));
+                                            say(l, r.steps.left_as_noise() ? Text::an_steps_as_noise
+                                                   : r.steps.removed       ? Text::an_steps_levelled
+                                                                           : Text::an_left_in)));
   row(say(l, Text::an_spikes),
       (r.spikes.count == 0
            ? say(l, Text::an_none)

@@ -105,7 +105,7 @@ void mark_steps_and_spikes(Plot& plot, const model::AnalysisResult& r, const Rec
   for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
     const double t = elapsed_s(r.steps.indices[i], r.gaps, r.sample_rate_hz) / kSecondsPerHour;
     plot.series.push_back(vertical_line(
-        i == 0 ? say(l, r.steps.left_as_noise ? Text::an_plot_step_as_noise : Text::an_plot_step,
+        i == 0 ? say(l, r.steps.left_as_noise() ? Text::an_plot_step_as_noise : Text::an_plot_step,
                      r.steps.indices.size())
                : std::string(),
         t, lo, hi, 2));

@@ -110,6 +110,9 @@ TEST(SensorEffects, BiasStepsAreFoundAndLevelled) {
   EXPECT_NEAR(s["sizes_deg_h"][0].get<double>() / 600.0, 1.0, 0.25);
   EXPECT_NEAR(s["sizes_deg_h"][1].get<double>() / -400.0, 1.0, 0.25);
   EXPECT_TRUE(s["removed"].get<bool>());
+  // two glitches, not a process: levelling them takes the wander down
+  EXPECT_FALSE(s["left_as_noise"].get<bool>());
+  EXPECT_TRUE(s["left_as_noise_because"].is_null());
   EXPECT_NEAR(r.analysis["noise_model"]["N"]["value"].get<double>() / 150.0, 1.0, 0.03);
 }
 

@@ -341,7 +341,7 @@ TEST(Analysis, ATelegraphBiasIsAGaussMarkovProcessNotSteps) {
       v += level;
     }
     const AnalysisResult r = analyze(rec.rate_deg_h, {}, fs);
-    EXPECT_TRUE(r.steps.left_as_noise) << seed;
+    EXPECT_TRUE(r.steps.left_as_noise()) << seed;
     EXPECT_FALSE(r.steps.removed) << seed;
     EXPECT_TRUE(contains(r.notes, "random telegraph")) << seed;
     EXPECT_EQ(r.noise.random_bias_process, RandomBiasProcess::gauss_markov) << seed;

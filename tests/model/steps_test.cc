@@ -69,7 +69,7 @@ TEST(Steps, AShortPulseIsTwoStepsOfItsHeight) {
   EXPECT_NEAR(s.sizes_deg_h[0], 2.0, 0.15);
   EXPECT_NEAR(s.sizes_deg_h[1], -2.0, 0.15);
   EXPECT_TRUE(s.removed);
-  EXPECT_FALSE(s.left_as_noise);
+  EXPECT_FALSE(s.left_as_noise());
 }
 
 // White noise of unit sd with a random telegraph bias of +-amplitude (a
@@ -107,7 +107,7 @@ TEST(Steps, ATelegraphBiasIsLeftInAsTheProcessItIs) {
     const std::vector<double> before = y;
     const BiasSteps s = find_steps(y);
     EXPECT_GE(s.indices.size(), 2u) << c.amplitude;
-    EXPECT_TRUE(s.left_as_noise) << c.amplitude;
+    EXPECT_TRUE(s.left_as_noise()) << c.amplitude;
     EXPECT_EQ(s.left_as_noise_because, c.why) << c.amplitude;
     EXPECT_FALSE(s.removed) << c.amplitude;
     for (std::size_t k = 0; k < y.size(); k += 1000) ASSERT_NEAR(y[k], before[k], 1e-9);

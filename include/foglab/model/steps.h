@@ -81,7 +81,7 @@ struct BiasSteps {
   /// none is levelled. Why (none: they are steps).
   enum class AsNoise { none, beyond_limit, wander, two_levels };
   AsNoise left_as_noise_because = AsNoise::none;
-  bool left_as_noise = false;  ///< left_as_noise_because != none
+  bool left_as_noise() const { return left_as_noise_because != AsNoise::none; }
   /// Each gap whose stretches either side hold a window (64 samples or
   /// more, as for the steps), in time order.
   std::vector<GapJump> across_gaps;
