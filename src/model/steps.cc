@@ -245,13 +245,9 @@ std::vector<GapJump> jumps_across(const std::vector<double>& p, std::span<const 
 // that length).
 std::vector<double> long_differences(const std::vector<double>& p, std::int64_t block,
                                      std::span<const Stretch> stretches) {
-  const Means raw{p};
   std::vector<double> d;
-  for (const Stretch& s : stretches) {
-    for (std::int64_t k = s.begin + block; k + block <= s.end; k += block) {
-      d.push_back(raw(k, k + block) - raw(k - block, k));
-    }
-  }
+  for_each_difference(p, block, 0, block, stretches,
+                      [&](double value, std::int64_t, std::size_t) { d.push_back(value); });
   return d;
 }
 
@@ -293,25 +289,21 @@ constexpr std::size_t kFewestForAProcess = 2;
 // The wander is read at this share of the record (about 15 differences).
 constexpr std::int64_t kWanderBlocks = 16;
 
-// Whether the steps, `sizes` by their `indices`, go back and forth between
+// Whether the steps, their `sizes` in time order, go back and forth between
 // two levels, as a telegraph bias does when every jump of it is found (and
 // levelling them all leaves the record calm): at least four, and of the
-// neighbouring pairs in time three quarters or more opposite in sign and
-// within a quarter of their mean size of each other (a glitch's steps have
-// no reason to undo the one before; a missed short pulse spoils one pair).
-bool between_two_levels(std::span<const std::int64_t> indices, std::span<const double> sizes) {
+// neighbouring pairs three quarters or more opposite in sign and within a
+// quarter of their mean size of each other (a glitch's steps have no
+// reason to undo the one before; a missed short pulse spoils one pair).
+bool between_two_levels(std::span<const double> sizes) {
   constexpr std::size_t kFewest = 4;
-  if (indices.size() < kFewest) return false;
-  std::vector<std::size_t> order(indices.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return indices[a] < indices[b]; });
+  if (sizes.size() < kFewest) return false;
   std::size_t returns = 0;
-  for (std::size_t i = 1; i < order.size(); ++i) {
-    const double a = sizes[order[i - 1]], b = sizes[order[i]];
+  for (std::size_t i = 1; i < sizes.size(); ++i) {
+    const double a = sizes[i - 1], b = sizes[i];
     returns += a * b < 0.0 && std::fabs(a + b) <= 0.25 * 0.5 * (std::fabs(a) + std::fabs(b));
   }
-  return 4 * returns >= 3 * (order.size() - 1);
+  return 4 * returns >= 3 * (sizes.size() - 1);
 }
 
 }  // namespace
@@ -381,33 +373,6 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
     steps.window_samples.push_back(best.window);
     steps.significance.push_back(best.z);
   }
-  const auto put_back = [&] {
-    for (std::size_t i = 0; i < steps.indices.size(); ++i) {
-      for (std::int64_t k = steps.indices[i]; k < n; ++k) {
-        y[static_cast<std::size_t>(k)] += steps.sizes_deg_h[i];
-      }
-    }
-  };
-  // More jumps than max_steps, levelling that makes the record wander
-  // more, or jumps back and forth between two levels: the bias jumps as a
-  // process (a random telegraph or popcorn noise), not at a few glitches;
-  // levelling some of them would leave a record that is neither, so none
-  // is levelled and the statistics see the process.
-  if (as_noise == AsNoise::none && steps.indices.size() >= kFewestForAProcess) {
-    fill_prefix_sums();
-    if (wanders_more(unlevelled, long_differences(p, block, stretches))) {
-      as_noise = AsNoise::wander;
-    } else if (between_two_levels(steps.indices, steps.sizes_deg_h)) {
-      as_noise = AsNoise::two_levels;
-    }
-  }
-  const bool left_in = as_noise != AsNoise::none;
-  if (left_in) put_back();
-  if (!gaps.empty()) {  // on the record as the statistics see it (levelled unless as noise)
-    fill_prefix_sums();
-    steps.across_gaps = jumps_across(p, gaps, stretches, options.threshold);
-  }
-  if (!options.remove && !left_in) put_back();
   // Time order.
   std::vector<std::size_t> order(steps.indices.size());
   std::iota(order.begin(), order.end(), 0);
@@ -420,9 +385,35 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
     sorted.window_samples.push_back(steps.window_samples[i]);
     sorted.significance.push_back(steps.significance[i]);
   }
+  const auto put_back = [&] {
+    for (std::size_t i = 0; i < sorted.indices.size(); ++i) {
+      for (std::int64_t k = sorted.indices[i]; k < n; ++k) {
+        y[static_cast<std::size_t>(k)] += sorted.sizes_deg_h[i];
+      }
+    }
+  };
+  // More jumps than max_steps, levelling that makes the record wander
+  // more, or jumps back and forth between two levels: the bias jumps as a
+  // process (a random telegraph or popcorn noise), not at a few glitches;
+  // levelling some of them would leave a record that is neither, so none
+  // is levelled and the statistics see the process.
+  if (as_noise == AsNoise::none && sorted.indices.size() >= kFewestForAProcess) {
+    fill_prefix_sums();
+    if (wanders_more(unlevelled, long_differences(p, block, stretches))) {
+      as_noise = AsNoise::wander;
+    } else if (between_two_levels(sorted.sizes_deg_h)) {
+      as_noise = AsNoise::two_levels;
+    }
+  }
+  const bool left_in = as_noise != AsNoise::none;
+  if (left_in) put_back();
+  if (!gaps.empty()) {  // on the record as the statistics see it (levelled unless as noise)
+    fill_prefix_sums();
+    sorted.across_gaps = jumps_across(p, gaps, stretches, options.threshold);
+  }
+  if (!options.remove && !left_in) put_back();
   sorted.removed = options.remove && !left_in && !sorted.indices.empty();
   sorted.left_as_noise_because = as_noise;
-  sorted.across_gaps = std::move(steps.across_gaps);
   return sorted;
 }
 

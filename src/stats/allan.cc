@@ -490,19 +490,14 @@ constexpr std::int64_t kShortestBatch = 1024;
 constexpr std::int64_t kFewestBatches = 64;
 constexpr double kSpreadCheckFalseAlarm = 0.001;
 
-// The OADEV edf the term spread check compares with on the angle points
-// `phase`: the noise type's (Greenhall's), but for white rate noise at
-// m = 1 the exact 2 n^2 / (3 n - 1) of its n sampled terms (their lag-one
-// correlation is -1/2; tests/model/allan_covariance_test.cc), of which
-// Greenhall's is 1.174 times: against it the check had seen that excess on
-// long records of white noise.
-double spread_check_edf(int alpha, std::int64_t m, std::span<const double> phase) {
-  if (m == 1 && alpha == 0) {
-    const auto n = static_cast<double>(phase.size()) - 2.0;
-    return 2.0 * n * n / (3.0 * n - 1.0);
-  }
-  const std::array<std::int64_t, 1> points = {static_cast<std::int64_t>(phase.size())};
-  return pooled_edf(alpha, m, points);
+// The exact OADEV edf of white rate noise at m = 1 from n + 2 angle
+// points: 2 n^2 / (3 n - 1) for its n sampled terms (their lag-one
+// correlation is -1/2; tests/model/allan_covariance_test.cc). Greenhall's
+// is 1.174 times that, and against it the term spread check had seen the
+// excess on long records of white noise.
+double white_m1_edf(std::size_t points) {
+  const auto n = static_cast<double>(points) - 2.0;
+  return 2.0 * n * n / (3.0 * n - 1.0);
 }
 
 // What the OADEV edf `edf` of the angle points `phase` at factor m is to be
@@ -984,13 +979,13 @@ AllanResult allan_from_phase(std::span<const double> phase, std::span<const Stre
             ? statistic_edf(options.kind, id.alpha, m, result.segment_points) * result.term_share[k]
             : statistic_edf(options.kind, id.alpha, m, stretch_points);
     if (options.term_spread_check && options.kind == AllanKind::oadev) {
-      const double baseline = spread_check_edf(id.alpha, m, checked);
+      // the checked terms' edf by the noise type (Greenhall's), but white
+      // noise's exact one at m = 1
+      const double greenhall = greenhall_edf(id.alpha, m, std::ssize(checked));
+      const double baseline = m == 1 && id.alpha == 0 ? white_m1_edf(checked.size()) : greenhall;
       if (const double ratio = edf_reduction(checked, m, baseline); ratio > 1.0) {
         // what the noise type's edf is divided by to give the checked terms' own
-        const std::array<std::int64_t, 1> checked_points = {
-            static_cast<std::int64_t>(checked.size())};
-        result.edf_reduction[k] =
-            ratio * statistic_edf(options.kind, id.alpha, m, checked_points) / baseline;
+        result.edf_reduction[k] = ratio * greenhall / baseline;
         edf /= result.edf_reduction[k];
       }
     }
