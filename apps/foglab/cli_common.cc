@@ -11,6 +11,7 @@
 #include <iostream>
 #include <mutex>
 #include <regex>
+#include <unordered_set>
 
 #include "foglab/core/error.h"
 #include "foglab/io/channels.h"
@@ -320,12 +321,23 @@ nlohmann::json gaps_json(const io::Series& series) {
 }
 
 nlohmann::json input_json(const io::Series& series) {
+  nlohmann::json jitter = nullptr;
+  if (series.time_jitter) {
+    const io::TimeJitter& j = *series.time_jitter;
+    jitter = {{"irregular_steps", j.irregular_steps},
+              {"steps", j.steps},
+              {"median_step_s", j.median_step_s},
+              {"rms_s", j.rms_s},
+              {"max_s", j.max_s},
+              {"rows_dropped", j.rows_dropped}};
+  }
   return {{"path", series.path},
           {"channel", series.channel},
           {"sample_rate_hz", series.sample_rate_hz},
           {"sample_rate_source", sample_rate_source_text(series)},
           {"samples", series.values.size()},
-          {"gaps", gaps_json(series)}};
+          {"gaps", gaps_json(series)},
+          {"time_jitter", jitter}};
 }
 
 namespace {
@@ -336,6 +348,7 @@ struct FlagOfField {
   const char* flag;   // the replacement
 };
 constexpr FlagOfField kFlagsOfFields[] = {
+    {R"(BagReadOptions::sample_rate_hz)", "--fs"},
     {R"(ReadOptions::sample_rate_hz)", "--fs"},
     {R"(ReadOptions::channel)", "--channel"},
     {R"(ReadOptions::time_channel)", "--time"},
@@ -354,6 +367,7 @@ constexpr FlagOfField kFlagsOfFields[] = {
     {R"(SensorOutput::butterworth_cutoff_hz)", "--butterworth"},
     {R"(SensorOutput::spike_(rate_per_hour|size_deg_h))", "--spikes"},
     {R"(SensorOutput::lsb_deg_h)", "--lsb"},
+    {R"(SensorOutput::time_jitter_s)", "--stamp-jitter"},
 };
 
 }  // namespace
@@ -403,6 +417,9 @@ void note(const std::string& text) {
   }
   const std::string line = "foglab: note: " + in_cli_terms(text) + "\n";
   const std::lock_guard<std::mutex> lock(stderr_lines);
+  // once: the channels of one file, read in parallel, each say what the file's time axis says
+  static std::unordered_set<std::string> printed;
+  if (!printed.insert(line).second) return;
   std::cerr << line;
 }
 

@@ -136,7 +136,8 @@ std::string in_cli_terms(std::string message);
 /// (shorter runs; UsageError unless > 0).
 sim::Lab2Options lab2_options(std::uint64_t seed, const std::optional<double>& hours);
 
-/// Prints a note on stderr ("foglab: note: ...").
+/// Prints a note on stderr ("foglab: note: ..."), once: a note already printed word for word
+/// (each channel of a file read in parallel says what the file's time axis says) is not repeated.
 void note(const std::string& text);
 
 /// Announces a long step on stderr ("foglab: reading ..."), only when stderr

@@ -9,7 +9,6 @@
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <random>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -114,6 +113,7 @@ sim::SensorOutput sensor_output_of(const GenerateCommand& c) {
   if (c.filter_tc) o.filter_time_constant_s = *c.filter_tc;
   if (c.butterworth_hz) o.butterworth_cutoff_hz = *c.butterworth_hz;
   if (c.lsb) o.lsb_deg_h = *c.lsb;
+  if (c.stamp_jitter_s) o.time_jitter_s = *c.stamp_jitter_s;
   for (const std::string& text : c.drops) {
     const auto v = numbers_of("--drop", text, ':', 2, 2, "T:D (start and duration in s)");
     o.dropouts.push_back({v[0], v[1]});
@@ -174,6 +174,8 @@ nlohmann::json sensor_output_json(const sim::SensorOutput& o, const sim::Generat
           {"spike_size_deg_h", o.spike_size_deg_h},
           {"spike_times_s", sim::spike_times_s(o, g.sample_rate_hz, g.seed, g.stream, samples)},
           {"lsb_deg_h", o.lsb_deg_h},
+          {"time_jitter_s", o.time_jitter_s},
+          {"time_jitter_rms_s", o.time_jitter_s / std::sqrt(3.0)},
           {"dropouts", dropouts_json(o, g, samples)}};
 }
 
@@ -326,15 +328,8 @@ void run_imu(const GenerateCommand& c) {
     throw UsageError(fmt::format(
         "--out '{}' with --imu: write a .csv, .mat or .bag (ROS 1) file, not '{}'", c.out, ext));
   }
-  if (c.stamp_jitter_s && ext != ".bag") {
-    throw UsageError("--stamp-jitter: only a ROS bag (.bag) has message stamps to jitter");
-  }
-  const double jitter_s = c.stamp_jitter_s.value_or(0.0);
-  if (!(jitter_s >= 0.0 && jitter_s < 0.4 / options.sample_rate_hz)) {
-    throw UsageError(
-        fmt::format("--stamp-jitter {} s: expected 0 to 0.4 sample intervals ({:.6g} s)", jitter_s,
-                    0.4 / options.sample_rate_hz));
-  }
+  sim::validate(output, options.sample_rate_hz);
+  const double jitter_s = output.time_jitter_s;
   const sim::TemperatureProfile temperature = temperature_of(c);
   progress(fmt::format("generating 6 x {} samples ({} h at {} Hz)", samples, *c.hours,
                        options.sample_rate_hz));
@@ -346,6 +341,7 @@ void run_imu(const GenerateCommand& c) {
     sim::GeneratorOptions o = options;
     o.stream = c.stream * 8 + a;
     sim::Recording rec = sim::generate(imu.axes[a], temperature, o);
+    if (a == 0) sim::jitter_times(rec.time_s, 0, output, o.sample_rate_hz, o.seed, o.stream);
     sim::remove_dropouts(rec, imu.axes[a].output);
     axes[a] = std::move(rec.rate_deg_h);
     if (a == 0) first = std::move(rec);
@@ -357,14 +353,10 @@ void run_imu(const GenerateCommand& c) {
     bag.topic = "/imu";
     bag.frame_id = "imu_link";
     // ROS time: the recording starts at 1.7e9 s (November 2023); the stamps
-    // carry the sensor's clock plus a uniform jitter when asked.
+    // carry the sensor's clock plus the jitter asked for (sim::jitter_times).
     constexpr double kStartS = 1.7e9;
-    std::mt19937_64 random(c.seed * 0x9e3779b97f4a7c15ULL + c.stream);
-    std::uniform_real_distribution<double> jitter(-jitter_s, jitter_s);
     bag.stamps_s.reserve(first.time_s.size());
-    for (const double t : first.time_s) {
-      bag.stamps_s.push_back(kStartS + t + (jitter_s > 0.0 ? jitter(random) : 0.0));
-    }
+    for (const double t : first.time_s) bag.stamps_s.push_back(kStartS + t);
     for (std::size_t a = 0; a < 3; ++a) {
       bag.angular_velocity_rad_s[a] = std::move(axes[a]);
       for (double& v : bag.angular_velocity_rad_s[a])
@@ -464,6 +456,12 @@ Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
 
   std::vector<std::string> variables;
   const bool raw = format == OutFormat::f32 || format == OutFormat::f64;
+  if (raw && model.output.time_jitter_s > 0.0) {
+    throw UsageError(
+        fmt::format("--stamp-jitter: '{}' is a raw file, which has no time column; "
+                    "write a .mat or .csv file",
+                    shown_out));
+  }
   if (raw && c.drop_mark == "time" && !model.output.dropouts.empty()) {
     throw UsageError(
         fmt::format("--drop-mark time: '{}' is a raw file, which has no time column to show "
@@ -489,6 +487,8 @@ Written write_recording(const GenerateCommand& c, const sim::ErrorModel& model,
     variables = {"rate"};
   } else {
     sim::Recording rec = sim::generate(model, temperature, options);
+    sim::jitter_times(rec.time_s, 0, model.output, options.sample_rate_hz, options.seed,
+                      options.stream);
     if (c.drop_mark == "nan") {
       // the lost rows stay, rate and temperature NaN (the time goes on)
       const auto total = static_cast<std::int64_t>(rec.rate_deg_h.size());
@@ -640,8 +640,8 @@ void run(const GenerateCommand& c) {
     run_imu(c);
     return;
   }
-  if (c.accel_N || c.accel_B || c.accel_K || c.stamp_jitter_s) {
-    throw UsageError("--accel-N, --accel-B, --accel-K and --stamp-jitter need --imu");
+  if (c.accel_N || c.accel_B || c.accel_K) {
+    throw UsageError("--accel-N, --accel-B and --accel-K need --imu");
   }
   if (!c.fleet && (c.fleet_outliers != 0 || c.fleet_spread_given || c.outlier_factor_given)) {
     throw UsageError("--spread, --outliers and --outlier-factor need --fleet");
@@ -743,7 +743,9 @@ std::function<void()> register_generate(CLI::App& app) {
   cmd->add_option("--accel-K", c->accel_K,
                   "--imu: accelerometer bias random walk K [m/s^2/sqrt(s)] (= m/s^3/sqrt(Hz))");
   cmd->add_option("--stamp-jitter", c->stamp_jitter_s,
-                  "--imu to a .bag: uniform jitter of the message stamps, +- this many s");
+                  "the logger's clock: each time written (the time column, a bag's stamps) "
+                  "moves by a uniform draw of +- this many s, under 0.4 sample steps; the "
+                  "samples stay on the sensor's grid");
   cmd->add_option("--fleet", c->fleet,
                   "a fleet of this many units scattered about the model, one file each: --out "
                   "FOLDER/NAME.EXT writes FOLDER/NAME_001.EXT ... and FOLDER/fleet_truth.json")

@@ -977,6 +977,20 @@ constexpr CatalogueEntry kEntries[] = {
      "message before it, or earlier (a repeated or out-of-order {})"},
     {Text::io_stamp_header, "header.stamp"},
     {Text::io_stamp_receive, "bag receive time"},
+    {Text::io_note_time_jitter,
+     "{}: the times in '{}' are not evenly spaced ({} of the {} steps differ from the median "
+     "step, {} s, by more than 1 %): they are read as a uniform sampling grid with jitter (rms "
+     "{} s, largest {} s), as a ROS bag's stamps are: each sample is put on the grid's nearest "
+     "slot, a slot skipped is a gap, nothing is interpolated, and the sample rate, {} Hz, is "
+     "the least-squares slope of time against slot"},
+    {Text::io_note_time_bursts,
+     "{}: the times in '{}' show {} gaps among {} samples, with {} samples missing on a grid of "
+     "{} s steps: more are missing than present. If the times are a logger's, stamping the "
+     "samples in bursts as they arrive, they say nothing of the sampling: give the sample "
+     "rate in ReadOptions::sample_rate_hz to read the samples as evenly spaced"},
+    {Text::io_note_time_rows_dropped,
+     "{} of the {} rows dropped: each fell on the time slot of the row before it, or earlier "
+     "(a repeated time in '{}')"},
 };
 
 }  // namespace

@@ -546,6 +546,9 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
 
   // The rate first: the time vector is read and freed before the channel,
   // so that at most one full-length vector is held at a time.
+  std::optional<TimeAxis> axis;
+  std::string axis_name;
+  bool rate_from_axis = false;
   if (!options.sample_rate_hz) {
     const VarInfo* f = file.find("f");
     if (options.time_channel.empty() && f != nullptr) {
@@ -561,17 +564,13 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
       // A time vector beside f must agree with the channel too: a record
       // of another length is refused, and its gaps are the record's.
       if (time != nullptr && time != &channel && time->readable() && time->numel() >= 2) {
-        TimeAxis axis = time_axis_variable(path, file, *time, channel);
-        series.gaps = std::move(axis.gaps);
-        series.start_time_s = axis.start_s;
+        axis = time_axis_variable(path, file, *time, channel);
+        axis_name = time->name;
       }
     } else if (time != nullptr) {
-      TimeAxis axis = time_axis_variable(path, file, *time, channel);
-      series.sample_rate_hz = axis.rate_hz;
-      series.gaps = std::move(axis.gaps);
-      series.start_time_s = axis.start_s;
-      series.sample_rate_source = SampleRateSource::time_channel;
-      series.sample_rate_channel = time->name;
+      axis = time_axis_variable(path, file, *time, channel);
+      axis_name = time->name;
+      rate_from_axis = true;
     } else {
       throw UsageError(
           fmt::format("{} has no sample rate (no variable f and no time variable "
@@ -580,6 +579,7 @@ Series read_mat(const std::string& path, const ReadOptions& options) {
     }
   }
   series.values = file.read(channel);
+  if (axis) apply_time_axis(series, std::move(*axis), axis_name, rate_from_axis);
   return series;
 }
 

@@ -23,6 +23,7 @@
 #include "foglab/io/channels.h"
 #include "foglab/io/rosbag.h"
 #include "readers_internal.h"
+#include "stamp_grid.h"
 
 namespace foglab::io {
 namespace internal {
@@ -117,16 +118,30 @@ void TimeAxisCheck::add(double time_s, std::size_t line, double resolution_s) {
     throw_data_error(path_, fmt::format("time at {} is {}{}", where(index, line),
                                         format_value(time_s), kIgnoreTimeHint));
   }
+  bool increasing = true;
   if (index == 0) {
     first_s_ = time_s;
   } else if (!(time_s > previous_s_)) {
-    throw_data_error(
-        path_, fmt::format("time is not increasing at {}: {} s follows {} s (a repeated or "
-                           "decreasing time){}",
-                           where(index, line), format_value(time_s), format_value(previous_s_),
-                           kIgnoreTimeHint));
+    increasing = false;
+    // counted once, when the reference is known (the first 64 steps are replayed)
+    if (settled_ && faults_++ == 0) {
+      first_fault_ = fmt::format(
+          "time is not increasing at {}: {} s follows {} s (a repeated or "
+          "decreasing time)",
+          where(index, line), format_value(time_s), format_value(previous_s_));
+    }
   }
-  if (settled_ && index > 0) {
+  if (settled_) {
+    // kept for a jittered axis while they fit in int64 nanoseconds (292 years)
+    const double offset_ns = (time_s - first_s_) * 1e9;
+    if (times_fit_ && std::fabs(offset_ns) < 9e18) {
+      times_ns_.push_back(std::llround(offset_ns));
+    } else {
+      times_fit_ = false;
+      times_ns_.clear();
+    }
+  }
+  if (settled_ && index > 0 && increasing) {
     const double step = time_s - previous_s_;
     const double magnitude = std::max(std::fabs(first_s_), std::fabs(time_s));
     const double rounding_s = resolution_s_ < 0.5 * reference_s_ ? resolution_s_ : 0.0;
@@ -144,12 +159,14 @@ void TimeAxisCheck::add(double time_s, std::size_t line, double resolution_s) {
       }
       gaps_.push_back({static_cast<std::int64_t>(index), std::llround(steps) - 1});
     } else if (std::fabs(step - reference_s_) > tolerance_s) {
-      throw_data_error(
-          path_, fmt::format("time is not uniformly sampled at {}: step {} s ({} s "
-                             "-> {} s), expected {} s (an irregular step; a gap would be at least "
-                             "1.5 steps){}",
-                             where(index, line), format_value(step), format_value(previous_s_),
-                             format_value(time_s), format_value(reference_s_), kIgnoreTimeHint));
+      ++irregular_steps_;
+      if (faults_++ == 0) {
+        first_fault_ = fmt::format(
+            "time is not uniformly sampled at {}: step {} s ({} s -> {} s), expected {} s (an "
+            "irregular step; a gap would be at least 1.5 steps)",
+            where(index, line), format_value(step), format_value(previous_s_), format_value(time_s),
+            format_value(reference_s_));
+      }
     }
   } else if (!settled_) {
     head_s_.push_back(time_s);
@@ -185,6 +202,8 @@ TimeAxis TimeAxisCheck::result() {
                                  name_, count_));
   }
   if (!settled_) settle_reference();
+  if (faults_ > 0) return jittered_axis();
+  times_ns_ = {};
   TimeAxis axis;
   axis.rate_hz =
       static_cast<double>(static_cast<std::int64_t>(count_) - 1 + missing_samples(gaps_)) /
@@ -193,6 +212,90 @@ TimeAxis TimeAxisCheck::result() {
   axis.gaps = gaps_;
   axis.start_s = first_s_;
   return axis;
+}
+
+// Irregular steps and times that do not increase: a few are each a fault in the times (the
+// first is named); many are a logger's jitter when the times scatter about a uniform grid
+// (stamp_grid.h) and few rows fall on the slot of the row before them.
+TimeAxis TimeAxisCheck::jittered_axis() {
+  constexpr std::size_t kFewestFaults = 16;
+  constexpr double kLeastFaultFraction = 0.01;
+  constexpr double kMostDroppedFraction = 0.01;
+  const std::size_t steps = count_ - 1;
+  const std::vector<std::int64_t> times_ns = std::move(times_ns_);
+  times_ns_ = {};
+  auto refuse = [&](const std::string& why) {
+    throw_data_error(path_, fmt::format("{}{}{}{}", first_fault_,
+                                        faults_ > 1 ? fmt::format(" and {} more irregular or "
+                                                                  "decreasing step(s) of {}",
+                                                                  faults_ - 1, steps)
+                                                    : std::string(),
+                                        why, kIgnoreTimeHint));
+  };
+  const bool many =
+      faults_ >= kFewestFaults &&
+      static_cast<double>(faults_) >= kLeastFaultFraction * static_cast<double>(steps);
+  if (!many || !times_fit_) refuse("");
+  const StampGrid grid = fit_stamp_grid(times_ns);
+  if (!(grid.step_s > 0.0) || grid.scatter_rms_steps > kMostScatterSteps) {
+    refuse(
+        fmt::format(", and the times do not scatter about a uniform grid either (rms {:.2f} "
+                    "of a step about the grid that fits them best; up to {} is read as a "
+                    "logger's jitter)",
+                    grid.scatter_rms_steps, kMostScatterSteps));
+  }
+  if (static_cast<double>(grid.dropped.size()) >
+      kMostDroppedFraction * static_cast<double>(count_)) {
+    refuse(
+        fmt::format(", and on the uniform grid they scatter about, {} of the {} rows fall on "
+                    "the slot of the row before them or earlier (up to 1 % is read as a "
+                    "logger's repeated rows)",
+                    grid.dropped.size(), count_));
+  }
+  TimeAxis axis;
+  axis.rate_hz = 1.0 / grid.step_s;
+  check_file_sample_rate(path_, axis.rate_hz, fmt::format("time column {}", name_));
+  axis.gaps = grid.gaps;
+  axis.start_s = first_s_;
+  axis.dropped = grid.dropped;
+  axis.jitter = TimeJitter{irregular_steps_,   steps,
+                           grid.median_step_s, grid.jitter_rms_s,
+                           grid.jitter_max_s,  grid.dropped.size()};
+  return axis;
+}
+
+void apply_time_axis(Series& series, TimeAxis axis, const std::string& time_name,
+                     bool rate_from_axis) {
+  if (axis.dropped.size() > 0 && axis.dropped.back() >= series.values.size()) {
+    throw std::logic_error("apply_time_axis: the time axis has more rows than the values");
+  }
+  const std::size_t rows = series.values.size();
+  drop_entries(series.values, axis.dropped);
+  if (rate_from_axis) {
+    series.sample_rate_hz = axis.rate_hz;
+    series.sample_rate_source = SampleRateSource::time_channel;
+    series.sample_rate_channel = time_name;
+  }
+  series.gaps = std::move(axis.gaps);
+  series.start_time_s = axis.start_s;
+  series.time_jitter = axis.jitter;
+  const std::int64_t missing = missing_samples(series.gaps);
+  const auto present = static_cast<std::int64_t>(series.values.size());
+  if (missing > present && static_cast<std::int64_t>(series.gaps.size()) > present / 16) {
+    series.notes.emplace_back(
+        Text::io_note_time_bursts, quoted_path(series.path), time_name, series.gaps.size(), present,
+        missing, format_value(rate_from_axis ? 1.0 / axis.rate_hz : 1.0 / series.sample_rate_hz));
+  }
+  if (axis.jitter) {
+    const TimeJitter& j = *axis.jitter;
+    series.notes.emplace_back(Text::io_note_time_jitter, quoted_path(series.path), time_name,
+                              j.irregular_steps, j.steps, format_value(j.median_step_s),
+                              fmt::format("{:.3g}", j.rms_s), fmt::format("{:.3g}", j.max_s),
+                              format_value(axis.rate_hz));
+    if (j.rows_dropped > 0) {
+      series.notes.emplace_back(Text::io_note_time_rows_dropped, j.rows_dropped, rows, time_name);
+    }
+  }
 }
 
 TimeAxis time_axis_of(const std::string& path, std::string_view name,

@@ -57,20 +57,29 @@ std::string format_value(double value);
 /// to proceed past a bad time axis, appended to its messages.
 extern const char* const kIgnoreTimeHint;
 
-/// What a time axis says: the sample rate, the gaps, the first time.
+/// What a time axis says: the sample rate, the gaps, the first time; for times read as a
+/// grid with jitter, how they sit on it and the rows to drop.
 struct TimeAxis {
   double rate_hz = 0.0;   ///< [Hz]
-  std::vector<Gap> gaps;  ///< core/gaps.h
+  std::vector<Gap> gaps;  ///< core/gaps.h; Gap::before_sample counts the rows kept
   double start_s = 0.0;   ///< [s]
+  std::optional<TimeJitter> jitter;
+  /// Rows (0-based, increasing) on the slot of the row before them, or earlier; the values
+  /// read beside the times lose them (stamp_grid.h's drop_entries).
+  std::vector<std::size_t> dropped;
 };
 
-/// Checks a time axis sample by sample, so that a text reader need not keep
-/// the time column: every time must be finite, every step positive (else
-/// "time is not increasing") and either within 1% of the reference step plus
-/// the time's resolution or at least 1.5 reference steps: a gap, of
-/// round(step / reference) - 1 missing samples (else "not uniformly sampled
-/// ... an irregular step"). The reference step is the median of the first 64 steps, so one
-/// odd step at the start does not make every regular step look wrong. The
+/// Checks a time axis sample by sample: every time must be finite, every step
+/// positive (else "time is not increasing") and either within 1% of the
+/// reference step plus the time's resolution or at least 1.5 reference steps:
+/// a gap, of round(step / reference) - 1 missing samples. Other steps are
+/// irregular. result() refuses a few of them (fewer than 16, or under 1 % of
+/// the steps: "not uniformly sampled ... an irregular step", naming the
+/// first); more are a logger's jitter when the times scatter about a uniform
+/// grid (stamp_grid.h), and the axis is that grid. The times are kept for it
+/// (8 bytes a sample until result()). The reference step is the median of the
+/// first 64 steps, so one odd step at the start does not make every regular
+/// step look wrong. The
 /// resolution is that of the stored or printed times (single precision,
 /// "%.3f"): rounding each time moves a step by up to one resolution unit.
 /// It is allowed for only while it is below half the reference step; a
@@ -90,6 +99,7 @@ class TimeAxisCheck {
  private:
   static constexpr std::size_t kHeadSteps = 64;
   void settle_reference();
+  TimeAxis jittered_axis();
   std::string where(std::size_t index, std::size_t line) const;
 
   std::string path_;
@@ -105,11 +115,24 @@ class TimeAxisCheck {
   bool settled_ = false;
   double reference_s_ = 0.0;
   std::vector<Gap> gaps_;
+  // every time, from the first [ns], for the grid of a jittered axis
+  std::vector<std::int64_t> times_ns_;
+  bool times_fit_ = true;
+  std::size_t irregular_steps_ = 0;
+  std::size_t faults_ = 0;   // irregular steps and times that do not increase
+  std::string first_fault_;  // its message
 };
 
 /// A whole time vector, checked as by TimeAxisCheck.
 TimeAxis time_axis_of(const std::string& path, std::string_view name,
                       std::span<const double> time_s, double resolution_s);
+
+/// Gives `series` (its values read, one a row of the time axis) what the time axis
+/// `time_name` says: the gaps and the first time, the rate too when `rate_from_axis`; for a
+/// jittered axis its rows on an earlier slot dropped from the values, Series::time_jitter and
+/// the notes.
+void apply_time_axis(Series& series, TimeAxis axis, const std::string& time_name,
+                     bool rate_from_axis);
 
 /// Throws DataError unless a rate read from the file is finite and > 0.
 void check_file_sample_rate(const std::string& path, double rate_hz, std::string_view source);

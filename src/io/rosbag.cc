@@ -27,7 +27,6 @@
 #include <filesystem>
 #include <memory>
 #include <new>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -39,6 +38,7 @@
 #include "foglab/core/output.h"
 #include "readers_internal.h"
 #include "rosbag_plugin.h"
+#include "stamp_grid.h"
 
 namespace foglab::io {
 namespace {
@@ -420,185 +420,6 @@ TopicRead read_guarded(const std::string& path, const BagReadOptions& options,
   return read;
 }
 
-// --- The time grid (rosbag.h explains what it is for) ---------------------------------------
-//
-// A uniform grid has two parameters: its step T and its phase. A stamp's position relative to
-// the grid, frac((t - t0) / T), is its phase; jitter spreads the phases about the grid's, and a
-// dropped or repeated message shifts a stamp by whole steps, which leaves its phase alone. So
-// the step and the phase are found from phases (circular statistics: the angle of the mean of
-// exp(2 pi i phase)), never by counting steps, and a stamp then lies in the slot
-// round((t - t0) / T - phase). Rounding against the grid rather than against the previous
-// stamp is what keeps jitter of up to +-40 % of a step from making a gap (a step between two
-// jittered stamps can be 0.2 or 1.8 steps, which step counting would call a duplicate or a
-// gap).
-//   1. T starts as the median step. It is refined in stages: the phase differences of stamps
-//      L messages apart show L times the step's relative error (mod 1), so each stage takes a
-//      lag four times longer than the last, up to half the record, while L times the
-//      remaining error stays well below half a step.
-//   2. The phase is the circular mean over a window of about 4000 messages around each
-//      message (blocks of 256, unwrapped from block to block), which follows a slow drift of
-//      the recording host's clock against the sensor's.
-//   3. A message whose slot is not after the previous message's is dropped; slots skipped are
-//      a gap. The rate is then the least-squares slope of stamp against slot.
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-// Angle, in cycles in (-0.5, 0.5], of a sum of unit vectors.
-double cycles(double sum_cos, double sum_sin) { return std::atan2(sum_sin, sum_cos) / kTwoPi; }
-
-// `x` minus the nearest integer: in [-0.5, 0.5].
-double wrap(double x) { return x - std::round(x); }
-
-// The median of the positive steps between consecutive stamps [s], exact, without a copy of
-// all of them (10^7 steps: a second of page faults on a virtual machine): a strided sample
-// brackets the median, one pass counts the steps below the bracket and keeps those inside it,
-// and the median is the right one of those. Should the bracket miss it (a sample that does not
-// represent the record), every step is copied.
-double median_step_s(const std::vector<std::int64_t>& stamps_ns) {
-  const std::size_t n = stamps_ns.size();
-  auto step = [&](std::size_t k) { return stamps_ns[k] - stamps_ns[k - 1]; };
-  auto select = [](std::vector<std::int64_t>& v, std::size_t rank) {
-    const auto at = v.begin() + static_cast<std::ptrdiff_t>(rank);
-    std::nth_element(v.begin(), at, v.end());
-    return static_cast<double>(*at) * 1e-9;
-  };
-  std::size_t positive = 0;
-  for (std::size_t k = 1; k < n; ++k) positive += step(k) > 0 ? 1 : 0;
-  if (positive == 0) return 0.0;
-  const std::size_t rank = (positive - 1) / 2;  // of the median, among the positive steps
-
-  constexpr std::size_t kSample = std::size_t{1} << 16;
-  if (positive > 16 * kSample) {
-    std::vector<std::int64_t> sample;
-    sample.reserve(kSample + 1);
-    const std::size_t stride = (n - 1) / kSample;
-    for (std::size_t k = 1; k < n; k += stride) {
-      if (step(k) > 0) sample.push_back(step(k));
-    }
-    std::sort(sample.begin(), sample.end());
-    // A bracket of +-2 % of the sample about its median: wide against the sample's error in
-    // rank (about 0.2 % of the steps for 65,536 samples).
-    const std::size_t margin = sample.size() / 50;
-    const std::int64_t low = sample[sample.size() / 2 - margin];
-    const std::int64_t high = sample[sample.size() / 2 + margin];
-    std::size_t below = 0;
-    std::vector<std::int64_t> inside;
-    inside.reserve(positive / 10);
-    for (std::size_t k = 1; k < n; ++k) {
-      const std::int64_t d = step(k);
-      if (d <= 0) continue;
-      if (d < low) {
-        ++below;
-      } else if (d <= high) {
-        inside.push_back(d);
-      }
-    }
-    if (rank >= below && rank - below < inside.size()) return select(inside, rank - below);
-  }
-  std::vector<std::int64_t> steps;
-  steps.reserve(positive);
-  for (std::size_t k = 1; k < n; ++k) {
-    if (step(k) > 0) steps.push_back(step(k));
-  }
-  return select(steps, rank);
-}
-
-// Step 1 above: the step [s] refined from `step_s` by phase differences at growing lags.
-double refine_step_s(const std::vector<std::int64_t>& stamps_ns, double step_s) {
-  constexpr std::size_t kMaxPairs = std::size_t{1} << 17;  // spread over the record
-  const std::size_t n = stamps_ns.size();
-  for (std::size_t lag = 1; lag <= (n - 1) / 2 || lag == 1; lag *= 4) {
-    const std::size_t pairs = n - lag;
-    const std::size_t stride = std::max<std::size_t>(1, pairs / kMaxPairs);
-    double c = 0.0;
-    double s = 0.0;
-    std::size_t used = 0;
-    for (std::size_t k = 0; k < pairs; k += stride) {
-      const double steps = static_cast<double>(stamps_ns[k + lag] - stamps_ns[k]) * 1e-9 / step_s;
-      // Only pairs `lag` slots apart: across a gap (a pause of an hour) the phase difference
-      // is the step's error times the slots between, not times the lag.
-      if (std::round(steps) != static_cast<double>(lag)) continue;
-      c += std::cos(kTwoPi * steps);
-      s += std::sin(kTwoPi * steps);
-      ++used;
-    }
-    if (used == 0) break;
-    // The pairs' phase differences are the lag times step_s' relative error.
-    step_s *= 1.0 + cycles(c, s) / static_cast<double>(lag);
-    if (lag > (n - 1) / 2) break;
-  }
-  return step_s;
-}
-
-// Step 2 above: the grid's phase along the record, and from it each message's slot (the first
-// message's is 0), computed when asked for rather than stored (10^7 slots).
-class GridSlots {
- public:
-  GridSlots(const std::vector<std::int64_t>& stamps_ns, double step_s)
-      : stamps_ns_(stamps_ns), step_s_(step_s) {
-    const std::size_t n = stamps_ns.size();
-    const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    std::vector<double> block_cos(blocks, 0.0);
-    std::vector<double> block_sin(blocks, 0.0);
-    for (std::size_t k = 0; k < n; ++k) {
-      const double angle = kTwoPi * position(k);
-      block_cos[k / kBlock] += std::cos(angle);
-      block_sin[k / kBlock] += std::sin(angle);
-    }
-    // The windowed phase at each block, unwrapped from block to block.
-    phase_.resize(blocks);
-    double c = 0.0;
-    double s = 0.0;
-    for (std::size_t b = 0; b < std::min(blocks, kHalfWindowBlocks + 1); ++b) {
-      c += block_cos[b];
-      s += block_sin[b];
-    }
-    for (std::size_t b = 0; b < blocks; ++b) {
-      if (b > 0) {
-        if (b + kHalfWindowBlocks < blocks) {
-          c += block_cos[b + kHalfWindowBlocks];
-          s += block_sin[b + kHalfWindowBlocks];
-        }
-        if (b > kHalfWindowBlocks) {
-          c -= block_cos[b - kHalfWindowBlocks - 1];
-          s -= block_sin[b - kHalfWindowBlocks - 1];
-        }
-      }
-      const double angle = cycles(c, s);
-      phase_[b] = b == 0 ? angle : phase_[b - 1] + wrap(angle - phase_[b - 1]);
-    }
-    first_ = 0;
-    first_ = slot(0);
-  }
-
-  // The slot of message k, from the first stamp's.
-  std::int64_t slot(std::size_t k) const {
-    // The phase between block centres by linear interpolation.
-    const double at = (static_cast<double>(k) + 0.5) / kBlock - 0.5;
-    double p = phase_.front();
-    if (at >= static_cast<double>(phase_.size() - 1)) {
-      p = phase_.back();
-    } else if (at > 0.0) {
-      const auto b = static_cast<std::size_t>(at);
-      const double f = at - static_cast<double>(b);
-      p = phase_[b] + f * (phase_[b + 1] - phase_[b]);
-    }
-    return std::llround(position(k) - p) - first_;
-  }
-
- private:
-  static constexpr std::size_t kBlock = 256;
-  static constexpr std::size_t kHalfWindowBlocks = 8;
-  // Message k's stamp in steps from the first.
-  double position(std::size_t k) const {
-    return static_cast<double>(stamps_ns_[k] - stamps_ns_.front()) * 1e-9 / step_s_;
-  }
-  const std::vector<std::int64_t>& stamps_ns_;
-  double step_s_;
-  std::vector<double> phase_;
-  std::int64_t first_ = 0;
-};
-
 }  // namespace
 
 bool has_bag_extension(const std::string& path) { return internal::has_extension(path, ".bag"); }
@@ -634,7 +455,7 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
                                        read.topic, n, n == 1 ? "" : "s"));
   }
   record.timing.messages = n;
-  record.timing.median_step_s = median_step_s(stamps_ns);
+  record.timing.median_step_s = internal::median_step_s(stamps_ns);
   record.start_time_s = static_cast<double>(stamps_ns.front()) * 1e-9;
   if (options.sample_rate_hz) {
     record.sample_rate_hz = *options.sample_rate_hz;
@@ -646,85 +467,39 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
                                        internal::format_value(record.start_time_s)));
   }
 
-  // The grid, then the samples kept on it (in place) and their gaps.
-  const double step_s = refine_step_s(stamps_ns, record.timing.median_step_s);
-  const GridSlots grid(stamps_ns, step_s);
-  std::size_t kept = 1;
-  std::int64_t last_slot = 0;
-  for (std::size_t k = 1; k < n; ++k) {
-    const std::int64_t slot = grid.slot(k);
-    const std::int64_t skipped = slot - last_slot - 1;
-    if (skipped < 0 || stamps_ns[k] <= stamps_ns[kept - 1]) {
-      ++record.timing.duplicates_dropped;
-      continue;
-    }
-    if (skipped > 0) record.gaps.push_back(Gap{static_cast<std::int64_t>(kept), skipped});
-    last_slot = slot;
-    stamps_ns[kept] = stamps_ns[k];
-    for (std::size_t j = 0; j < 3; ++j) {
-      record.angular_velocity_rad_s[j][kept] = record.angular_velocity_rad_s[j][k];
-      record.linear_acceleration_m_s2[j][kept] = record.linear_acceleration_m_s2[j][k];
-    }
-    ++kept;
+  // The grid (stamp_grid.h), then the samples kept on it, compacted in place.
+  internal::StampGrid grid = internal::fit_stamp_grid(stamps_ns);
+  if (grid.scatter_rms_steps > internal::kMostScatterSteps) {
+    throw_data_error(
+        path, fmt::format("topic '{}': the {}s scatter {:.2f} of a step about the uniform grid "
+                          "that fits them best (evenly spread: 0.29; up to {} is read as "
+                          "jitter), so the messages cannot be put on their sample slots; give "
+                          "BagReadOptions::sample_rate_hz to read them as evenly spaced",
+                          read.topic, record.timing.stamp_source, grid.scatter_rms_steps,
+                          internal::kMostScatterSteps));
   }
-  stamps_ns.resize(kept);
+  record.gaps = std::move(grid.gaps);
+  record.timing.duplicates_dropped = grid.dropped.size();
   for (std::size_t j = 0; j < 3; ++j) {
-    record.angular_velocity_rad_s[j].resize(kept);
-    record.linear_acceleration_m_s2[j].resize(kept);
+    internal::drop_entries(record.angular_velocity_rad_s[j], grid.dropped);
+    internal::drop_entries(record.linear_acceleration_m_s2[j], grid.dropped);
   }
   if (record.timing.duplicates_dropped > 0) {
     record.notes.emplace_back(Text::io_note_duplicates, record.timing.duplicates_dropped, n,
                               read.topic,
                               read.header_stamps ? Text::io_stamp_header : Text::io_stamp_receive);
   }
-  if (kept < 2) {
+  if (n - grid.dropped.size() < 2) {
     throw_data_error(
         path, fmt::format("topic '{}': fewer than 2 messages on distinct time slots", read.topic));
   }
-
-  // Least squares of stamp (from the first, [s]) against slot, in two passes for accuracy;
-  // the slot of sample i is i plus the samples missing before it.
-  auto for_each_sample = [&](auto&& f) {
-    std::int64_t missing = 0;
-    std::size_t g = 0;
-    for (std::size_t i = 0; i < kept; ++i) {
-      while (g < record.gaps.size() &&
-             record.gaps[g].before_sample == static_cast<std::int64_t>(i)) {
-        missing += record.gaps[g++].missing_samples;
-      }
-      f(static_cast<double>(static_cast<std::int64_t>(i) + missing),
-        static_cast<double>(stamps_ns[i] - stamps_ns.front()) * 1e-9);
-    }
-  };
-  double mean_slot = 0.0;
-  double mean_s = 0.0;
-  for_each_sample([&](double slot, double t_s) {
-    mean_slot += slot;
-    mean_s += t_s;
-  });
-  mean_slot /= static_cast<double>(kept);
-  mean_s /= static_cast<double>(kept);
-  double sxx = 0.0;
-  double sxy = 0.0;
-  for_each_sample([&](double slot, double t_s) {
-    sxx += (slot - mean_slot) * (slot - mean_slot);
-    sxy += (slot - mean_slot) * (t_s - mean_s);
-  });
-  const double fitted_step_s = sxy / sxx;
-  double sum_squares = 0.0;
-  double largest = 0.0;
-  for_each_sample([&](double slot, double t_s) {
-    const double residual = t_s - mean_s - fitted_step_s * (slot - mean_slot);
-    sum_squares += residual * residual;
-    largest = std::max(largest, std::abs(residual));
-  });
-  record.timing.jitter_rms_s = std::sqrt(sum_squares / static_cast<double>(kept));
-  record.timing.jitter_max_s = largest;
-  if (!(fitted_step_s > 0.0)) {
+  record.timing.jitter_rms_s = grid.jitter_rms_s;
+  record.timing.jitter_max_s = grid.jitter_max_s;
+  if (!(grid.step_s > 0.0)) {
     throw_data_error(
         path, fmt::format("topic '{}': the stamps give no positive sample step", read.topic));
   }
-  record.sample_rate_hz = 1.0 / fitted_step_s;
+  record.sample_rate_hz = 1.0 / grid.step_s;
   return record;
 }
 

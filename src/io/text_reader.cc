@@ -629,12 +629,7 @@ Series read_text(const std::string& path, const ReadOptions& options) {
   }
 
   if (need_time) {
-    TimeAxis axis = time_check->result();
-    series.sample_rate_hz = axis.rate_hz;
-    series.gaps = std::move(axis.gaps);
-    series.start_time_s = axis.start_s;
-    series.sample_rate_source = SampleRateSource::time_channel;
-    series.sample_rate_channel = layout.names[*time];
+    apply_time_axis(series, time_check->result(), layout.names[*time], /*rate_from_axis=*/true);
   }
   return series;
 }

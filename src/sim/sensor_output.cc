@@ -22,6 +22,7 @@ namespace {
 // generator.cc's; never reuse or renumber).
 constexpr std::uint64_t kSpike = 9;
 constexpr std::uint64_t kSpikeSign = 10;
+constexpr std::uint64_t kTimeJitter = 11;
 
 // Whether sample `index` carries a spike: one draw of the counter-based
 // generator under the spike process's key, below the per-sample probability
@@ -89,6 +90,9 @@ void validate(const SensorOutput& o, double sample_rate_hz) {
   check(o.spike_size_deg_h >= 0.0 && o.spike_size_deg_h <= kMaxSize, "spike_size_deg_h",
         o.spike_size_deg_h, "in [0, 1e9]");
   check(o.lsb_deg_h >= 0.0 && o.lsb_deg_h <= kMaxSize, "lsb_deg_h", o.lsb_deg_h, "in [0, 1e9]");
+  check(o.time_jitter_s >= 0.0 && o.time_jitter_s < 0.4 / sample_rate_hz, "time_jitter_s",
+        o.time_jitter_s,
+        fmt::format("from 0 to below 0.4 sample steps ({:.6g} s)", 0.4 / sample_rate_hz));
   for (const Dropout& d : o.dropouts) {
     check(std::isfinite(d.start_s) && d.start_s >= 0.0, "dropouts[].start_s", d.start_s,
           "a finite time >= 0");
@@ -158,6 +162,18 @@ std::vector<Gap> remove_dropouts(Recording& rec, const SensorOutput& output) {
     throw UsageError("SensorOutput::dropouts lose every sample of the record");
   }
   return dropout_gaps(output, rec.sample_rate_hz, samples);
+}
+
+void jitter_times(std::span<double> time_s, std::int64_t first_index, const SensorOutput& output,
+                  double sample_rate_hz, std::uint64_t seed, std::uint64_t stream) {
+  validate(output, sample_rate_hz);
+  if (output.time_jitter_s <= 0.0) return;
+  const std::uint64_t key = detail::process_key(seed, stream, kTimeJitter);
+  const double scale_s = output.time_jitter_s;
+  for (std::size_t i = 0; i < time_s.size(); ++i) {
+    const auto index = static_cast<std::uint64_t>(first_index + static_cast<std::int64_t>(i));
+    time_s[i] += (2.0 * detail::uniform_of(detail::word_at(key, index)) - 1.0) * scale_s;
+  }
 }
 
 void mark_dropouts_nan(std::span<double> values, std::int64_t first_index, std::int64_t samples,

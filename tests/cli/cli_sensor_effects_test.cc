@@ -379,6 +379,65 @@ TEST(SensorEffects, GapsAreFoundAndTheStretchesAnalysed) {
   EXPECT_NE(raw.err.find("--drop-mark"), std::string::npos) << raw.err;
 }
 
+TEST(SensorEffects, ALoggersJitteredTimesGiveTheSameAnalysisAsExactOnes) {
+  // The same record written with exact times and with a logger's (+-35 % of a 10 ms step),
+  // with a 30 s and a 50 ms dropout: the jittered times are put back on the sensor's grid,
+  // so the gaps, the samples and every estimate are those of the exact times.
+  const test::TempDir dir;
+  const std::string model =
+      "--N 0.2 --B 0.02 --K 0.002 --fs 100 --hours 0.5 --drop 600:30 --drop 1000:0.05 "
+      "--seed 4";
+  json runs[2];
+  for (int jittered = 0; jittered < 2; ++jittered) {
+    const fs::path out = dir.path() / (jittered ? "jitter.csv" : "exact.csv");
+    const fs::path truth = dir.path() / (jittered ? "jitter.json" : "exact.json");
+    const test::CliRun g =
+        test::run_foglab("generate " + model + (jittered ? " --stamp-jitter 0.0035" : "") +
+                         " --out " + test::quote(out) + " --truth " + test::quote(truth));
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+    const test::CliRun a = test::run_foglab("analyze " + test::quote(out) + " --json -");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    runs[jittered] = json::parse(a.out);
+    const json t = read_json(truth)["sensor_output"];
+    const json& gaps = runs[jittered]["input"]["gaps"];
+    ASSERT_EQ(gaps["count"], 2);
+    for (std::size_t k = 0; k < 2; ++k) {
+      EXPECT_EQ(gaps["list"][k]["before_sample"], t["dropouts"]["gaps"][k]["before_sample"]);
+      EXPECT_EQ(gaps["list"][k]["missing_samples"], t["dropouts"]["gaps"][k]["missing_samples"]);
+    }
+    const json& jitter = runs[jittered]["input"]["time_jitter"];
+    if (jittered) {
+      ASSERT_TRUE(jitter.is_object()) << runs[jittered]["input"].dump();
+      EXPECT_NEAR(jitter["rms_s"].get<double>() / t["time_jitter_rms_s"].get<double>(), 1.0, 0.02);
+      EXPECT_EQ(jitter["rows_dropped"], 0);
+      EXPECT_NE(a.err.find("uniform sampling grid with jitter"), std::string::npos) << a.err;
+    } else {
+      EXPECT_TRUE(jitter.is_null());
+    }
+  }
+  EXPECT_EQ(runs[1]["input"]["samples"], runs[0]["input"]["samples"]);
+  EXPECT_NEAR(runs[1]["input"]["sample_rate_hz"].get<double>(), 100.0, 1e-5);
+  for (const char* term : {"N", "B", "K"}) {
+    SCOPED_TRACE(term);
+    const json& exact = runs[0]["noise_model"][term];
+    const json& jittered = runs[1]["noise_model"][term];
+    EXPECT_EQ(jittered["status"], exact["status"]);
+    if (exact["value"].is_number()) {
+      EXPECT_NEAR(jittered["value"].get<double>() / exact["value"].get<double>(), 1.0, 1e-5);
+    }
+  }
+  // a raw file has no time column to jitter
+  const test::CliRun raw = test::run_foglab("generate " + model + " --stamp-jitter 0.003 --out " +
+                                            test::quote(dir.path() / "x.f64"));
+  EXPECT_EQ(raw.exit_code, 2);
+  EXPECT_NE(raw.err.find("--stamp-jitter"), std::string::npos) << raw.err;
+  // 0.4 of a step or more is refused, naming the flag
+  const test::CliRun wide = test::run_foglab("generate " + model + " --stamp-jitter 0.004 --out " +
+                                             test::quote(dir.path() / "x.csv"));
+  EXPECT_EQ(wide.exit_code, 2);
+  EXPECT_NE(wide.err.find("--stamp-jitter"), std::string::npos) << wide.err;
+}
+
 TEST(SensorEffects, ASampleLostHereAndThereLeavesTheLongTausAndTheirModel) {
   // 1 h at 100 Hz losing 200 single samples at random times (a bag's or a
   // serial link's dropouts): no stretch is longer than a few minutes, and

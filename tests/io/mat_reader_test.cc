@@ -20,6 +20,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -227,6 +228,35 @@ TEST_P(MatVersionTest, NoDataChannelListsWhatIsThere) {
   EXPECT_THAT(message, HasSubstr("no data channel"));
   EXPECT_THAT(message, HasSubstr("M (3x4 double matrix)"));
   EXPECT_THAT(message, HasSubstr("f (1x1 double)"));
+}
+
+TEST_P(MatVersionTest, TimesThatJitterAreReadOnTheirGridBesideF) {
+  // a logger's times: +-30 % of a 10 ms step about the grid, one sample lost before the 301st
+  std::mt19937_64 random(8);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  std::vector<double> t;
+  for (int k = 0; k < 2001; ++k) {
+    if (k != 300) t.push_back((k + jitter(random)) / 100.0);
+  }
+  std::vector<double> y = ramp(2000, 0.0, 1.0);
+  for (const bool with_f : {false, true}) {
+    SCOPED_TRACE(with_f ? "with f" : "without f");
+    const std::string path = make([&](MatWriter& mat) {
+      if (with_f) mat.scalar("f", 100.0);
+      mat.vector("t", t);
+      mat.vector("Y1", y);
+    });
+    const Series series = read_series(path, {});
+    ASSERT_EQ(series.gaps.size(), 1u);
+    EXPECT_EQ(series.gaps[0].before_sample, 300);
+    EXPECT_EQ(series.gaps[0].missing_samples, 1);
+    EXPECT_EQ(series.values.size(), 2000u);
+    ASSERT_TRUE(series.time_jitter.has_value());
+    EXPECT_EQ(series.time_jitter->rows_dropped, 0u);
+    EXPECT_NEAR(series.sample_rate_hz, 100.0, with_f ? 0.0 : 0.01);
+    EXPECT_EQ(series.sample_rate_source,
+              with_f ? SampleRateSource::variable_f : SampleRateSource::time_channel);
+  }
 }
 
 TEST_P(MatVersionTest, TimeWithAGapListsTheMissingSamples) {

@@ -179,6 +179,22 @@ TEST_F(RosbagTest, ALongPauseIsOneGap) {
   EXPECT_NEAR(r.sample_rate_hz, 100.0, 1e-6);
 }
 
+TEST_F(RosbagTest, StampsOnNoGridAreRefusedAndTheRateOptionReadsThem) {
+  // event times (a Poisson process at 100 Hz): no sampling grid to put them on
+  ImuBagContent c = uniform_content(4000, 100.0);
+  std::mt19937_64 rng(12);
+  std::exponential_distribution<double> step_s(100.0);
+  double t_s = kStart_s;
+  for (double& stamp : c.stamps_s) stamp = t_s += step_s(rng);
+  const std::string path = bag("events.bag", c);
+  const std::string message = test::message_of<DataError>([&] { read_imu_bag(path); });
+  EXPECT_THAT(message, HasSubstr("the header.stamps scatter 0.2"));
+  EXPECT_THAT(message, HasSubstr("BagReadOptions::sample_rate_hz"));
+  BagReadOptions options;
+  options.sample_rate_hz = 100.0;
+  EXPECT_EQ(read_imu_bag(path, options).angular_velocity_rad_s[0].size(), 4000u);
+}
+
 TEST_F(RosbagTest, RepeatedAndOutOfOrderStampsAreDropped) {
   ImuBagContent c = uniform_content(1000, 100.0);
   ImuBagContent expected = c;

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::IsEmpty;
 
 using test::message_of;
 
@@ -187,6 +190,110 @@ TEST_F(TextReaderTest, TimeWithAGapListsItsMissingSamples) {
   const Series ignored = read_series(path, with_fs(10.0));
   EXPECT_EQ(ignored.values.size(), 5u);
   EXPECT_TRUE(ignored.gaps.empty());
+}
+
+// A logger's clock beside a sensor's samples: times 50 Hz apart from 1.7e9 s, each moved by a
+// uniform draw of +-35 % of a step, printed to the microsecond; the samples are numbered so
+// that the ones kept can be told.
+std::string jittered_table(std::size_t rows, const std::function<bool(std::size_t)>& lost,
+                           std::size_t repeated) {
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> jitter(-0.35, 0.35);
+  std::string text = "time_s,rate\n";
+  for (std::size_t k = 0; k < rows; ++k) {
+    const double t = 1.7e9 + (static_cast<double>(k) + jitter(random)) / 50.0;
+    if (lost(k)) continue;
+    const std::string row = fmt::format("{:.6f},{}\n", t, k);
+    text += row;
+    if (k == repeated) text += row;  // the logger wrote the row twice
+  }
+  return text;
+}
+
+TEST_F(TextReaderTest, TimesThatJitterAreReadOnTheirGridWithTheirGaps) {
+  // 10 samples lost at 1000-1009, one at 2000, row 1500 written twice
+  const std::string path =
+      write("jitter.csv",
+            jittered_table(
+                3000, [](std::size_t k) { return (k >= 1000 && k < 1010) || k == 2000; }, 1500));
+  const Series series = read_series(path, {});
+  ASSERT_EQ(series.values.size(), 3000u - 11u);
+  ASSERT_EQ(series.gaps.size(), 2u);
+  EXPECT_EQ(series.gaps[0].before_sample, 1000);
+  EXPECT_EQ(series.gaps[0].missing_samples, 10);
+  EXPECT_EQ(series.gaps[1].before_sample, 1990);
+  EXPECT_EQ(series.gaps[1].missing_samples, 1);
+  // every sample kept once, in order: the repeated row dropped
+  EXPECT_EQ(series.values[999], 999.0);
+  EXPECT_EQ(series.values[1000], 1010.0);
+  EXPECT_EQ(series.values[1490], 1500.0);
+  EXPECT_EQ(series.values[1491], 1501.0);
+  EXPECT_EQ(series.values[1990], 2001.0);
+  EXPECT_NEAR(series.sample_rate_hz, 50.0, 50.0 * 1e-4);
+  EXPECT_EQ(series.sample_rate_source, SampleRateSource::time_channel);
+  ASSERT_TRUE(series.time_jitter.has_value());
+  const TimeJitter& j = *series.time_jitter;
+  EXPECT_EQ(j.rows_dropped, 1u);
+  EXPECT_EQ(j.steps, 3000u - 11u);  // the rows read, less one
+  EXPECT_GT(j.irregular_steps, j.steps * 9 / 10);
+  // uniform +-35 % of 20 ms: rms 4.04 ms, largest just under 7 ms
+  EXPECT_NEAR(j.rms_s / (0.35 * 0.02 / std::sqrt(3.0)), 1.0, 0.05);
+  EXPECT_LT(j.max_s, 0.0071);
+  EXPECT_GT(j.max_s, 0.0065);
+  ASSERT_EQ(series.notes.size(), 2u);
+  EXPECT_THAT(series.notes[0].text(), HasSubstr("read as a uniform sampling grid with jitter"));
+  EXPECT_THAT(series.notes[1].text(), HasSubstr("1 of the 2990 rows dropped"));
+  // exact times are not jitter
+  EXPECT_FALSE(read_series(write("exact.csv", "t,rate\n0,1\n0.1,2\n0.2,3\n"), {}).time_jitter);
+}
+
+TEST_F(TextReaderTest, TimesStampedInBurstsSayTheyMayNotBeTheSampling) {
+  // a 100 Hz sensor's samples handed over four at a time every 40 ms, stamped 1 ms apart as
+  // they arrive: a regular 1 ms step with a gap after every fourth sample
+  std::string text = "t,rate\n";
+  for (int k = 0; k < 2000; ++k)
+    text += fmt::format("{:.3f},{}\n", (k / 4) * 0.04 + (k % 4) * 0.001, k);
+  const Series series = read_series(write("bursts.csv", text), {});
+  EXPECT_EQ(series.gaps.size(), 499u);
+  ASSERT_EQ(series.notes.size(), 1u);
+  EXPECT_THAT(series.notes[0].text(),
+              HasSubstr("show 499 gaps among 2000 samples, with 17964 samples missing on a grid "
+                        "of 0.001 s steps: more are missing than present"));
+  EXPECT_THAT(series.notes[0].text(), HasSubstr("ReadOptions::sample_rate_hz"));
+  // a record with a few gaps has no such note
+  EXPECT_THAT(read_series(write("gap.csv", "t,rate\n0,1\n0.1,1\n0.2,1\n0.5,1\n0.6,1\n"), {}).notes,
+              IsEmpty());
+}
+
+TEST_F(TextReaderTest, AFewIrregularStepsAreEachAFaultAndNamed) {
+  // 1000 regular times at 10 Hz, five of them late by 0.3 of a step: not jitter
+  std::string text = "t,rate\n";
+  for (int k = 0; k < 1000; ++k) {
+    const bool late = k % 200 == 100;
+    text += fmt::format("{:.2f},1\n", k * 0.1 + (late ? 0.03 : 0.0));
+  }
+  const std::string message =
+      message_of<DataError>([&] { read_series(write("late.csv", text), {}); });
+  EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample 101 of 't' (line 102)"));
+  EXPECT_THAT(message, HasSubstr("and 9 more irregular or decreasing step(s) of 999"));
+  EXPECT_THAT(message, HasSubstr("ReadOptions::sample_rate_hz"));
+}
+
+TEST_F(TextReaderTest, TimesWithoutAGridStayAnError) {
+  // times of a Poisson process (events, not samples): no grid to put them on
+  std::mt19937_64 random(5);
+  std::exponential_distribution<double> step(100.0);
+  std::string text = "t,rate\n";
+  double t = 0.0;
+  for (int k = 0; k < 5000; ++k) {
+    t += step(random);
+    text += fmt::format("{:.9f},1\n", t);
+  }
+  const std::string message =
+      message_of<DataError>([&] { read_series(write("events.csv", text), {}); });
+  EXPECT_THAT(message, HasSubstr("not uniformly sampled at sample"));
+  EXPECT_THAT(message, HasSubstr("do not scatter about a uniform grid either"));
+  EXPECT_THAT(message, HasSubstr("ReadOptions::sample_rate_hz"));
 }
 
 TEST_F(TextReaderTest, IrregularStepIsAnErrorWithIndexAndValues) {

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "foglab/core/error.h"
@@ -194,6 +196,45 @@ TEST(SensorOutput, DropoutsLeaveGapsAndKeepTheOtherSamplesAsTheyWere) {
   EXPECT_THROW(remove_dropouts(rec, o), UsageError);
   o.dropouts = {{1.0, 0.0}};
   EXPECT_THROW(validate(o, 10.0), UsageError);
+}
+
+TEST(SensorOutput, StampJitterIsUniformPerSampleAndTheSameInAnyBlocks) {
+  const double fs = 100.0;
+  const double jitter_s = 0.003;
+  SensorOutput o;
+  o.time_jitter_s = jitter_s;
+  constexpr std::size_t n = 100000;
+  std::vector<double> t(n);
+  for (std::size_t k = 0; k < n; ++k) t[k] = static_cast<double>(k) / fs;
+  std::vector<double> whole = t;
+  jitter_times(whole, 0, o, fs, 7, 2);
+  double sum_squares = 0.0;
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = whole[k] - t[k];
+    sum_squares += u * u;
+    largest = std::max(largest, std::abs(u));
+  }
+  // uniform on +-j: rms j / sqrt(3), within 4 standard errors (sd of u^2: j^2 * 0.298)
+  const double rms = std::sqrt(sum_squares / n);
+  EXPECT_NEAR(rms * rms / (jitter_s * jitter_s / 3.0), 1.0, 4.0 * 0.298 * 3.0 / std::sqrt(n));
+  EXPECT_LE(largest, jitter_s);
+  EXPECT_GT(largest, 0.999 * jitter_s);
+  // the draws are a function of the sample index: the record in two blocks is the same
+  std::vector<double> blocks = t;
+  jitter_times(std::span<double>(blocks).first(40000), 0, o, fs, 7, 2);
+  jitter_times(std::span<double>(blocks).subspan(40000), 40000, o, fs, 7, 2);
+  EXPECT_EQ(blocks, whole);
+  // another stream draws otherwise; no jitter leaves the times exact
+  std::vector<double> other = t;
+  jitter_times(other, 0, o, fs, 7, 3);
+  EXPECT_NE(other, whole);
+  std::vector<double> exact = t;
+  jitter_times(exact, 0, SensorOutput{}, fs, 7, 2);
+  EXPECT_EQ(exact, t);
+  // 0.4 of a step or more is refused, naming the field
+  o.time_jitter_s = 0.004;
+  EXPECT_THROW(validate(o, fs), UsageError);
 }
 
 }  // namespace

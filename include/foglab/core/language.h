@@ -645,6 +645,9 @@ enum class Text {
   io_note_duplicates,        ///< {dropped} {messages} {topic} {stamp source}
   io_stamp_header,           ///< the stamps' source
   io_stamp_receive,          ///< the stamps' source
+  io_note_time_jitter,       ///< {file} {time} {irregular} {steps} {median step} {rms} {max} {rate}
+  io_note_time_rows_dropped,  ///< {dropped} {rows} {time}
+  io_note_time_bursts,        ///< {file} {time} {gaps} {present} {missing} {step}
   count_
 };
 

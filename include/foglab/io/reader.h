@@ -22,10 +22,17 @@
 // step of at least 1.5 reference steps is round(step / reference) - 1
 // missing samples, listed in Series::gaps (core/gaps.h) so that a record
 // with a gap is never analysed as if it were continuous, and nothing is
-// interpolated. Non-monotonic time and irregular steps (neither within 1 %
-// of the reference nor a gap) are data errors whose message says to give
-// ReadOptions::sample_rate_hz to ignore the time; that option skips every
-// time check (and finds no gaps). With ReadOptions::nan_is_missing a NaN
+// interpolated. Non-monotonic time is a data error whose message says to
+// give ReadOptions::sample_rate_hz to ignore the time; that option skips
+// every time check (and finds no gaps). Irregular steps (neither within 1 %
+// of the reference nor a gap) are a data error too, naming the first, unless
+// they are at least 16 and 1 % of the steps and the times scatter about a
+// uniform grid (rms at most 0.25 of a step about it): a logger's clock
+// stamping a sensor's samples. The times are then read as the ROS bag
+// reader reads its stamps (rosbag.h): each sample on the grid's nearest slot,
+// a slot skipped a gap, a row on the slot of the row before it dropped, the
+// rate the least-squares slope of time against slot; Series::time_jitter
+// says how, with a note. With ReadOptions::nan_is_missing a NaN
 // sample (an empty text cell) is a missing sample: drop_missing_samples()
 // leaves its row out and makes a gap of it, with or without a time axis.
 // An explicit ReadOptions::time_channel is used before `f`. Text headers
@@ -141,6 +148,17 @@ struct MissingSamples {
   std::int64_t at_end = 0;     ///< rows after the last one kept (the record ends earlier)
 };
 
+/// How the times of a time axis that is not evenly spaced sit on the uniform sampling grid
+/// they were read as (a logger's clock stamping a sensor's samples).
+struct TimeJitter {
+  std::size_t irregular_steps = 0;  ///< steps neither within 1 % of the median nor a gap
+  std::size_t steps = 0;            ///< steps between the times read
+  double median_step_s = 0.0;       ///< [s] median step between consecutive times
+  double rms_s = 0.0;               ///< [s] rms of time minus the fitted line of time against slot
+  double max_s = 0.0;               ///< [s] largest magnitude of that difference
+  std::size_t rows_dropped = 0;     ///< rows on the slot of the row before them, or earlier
+};
+
 /// One channel read from a file, converted to foglab's units.
 struct Series {
   std::string path;             ///< as given; "-" for standard input
@@ -160,6 +178,9 @@ struct Series {
   MissingSamples nan_left_out;
   /// [s] The time axis' first time (0 without one).
   double start_time_s = 0.0;
+  /// Set when the time axis was not evenly spaced and was read as a grid with jitter (see
+  /// above); the samples are then those on distinct slots of that grid.
+  std::optional<TimeJitter> time_jitter;
   /// Every data channel the file holds (for messages and listings). MAT:
   /// the real numeric vectors of two or more samples, in file order (v7.3:
   /// name order), `t` and `T1` included, scalars such as `f` not; text:

@@ -25,7 +25,11 @@
 //   5. dropouts: stretches of samples the logger loses. They are not part of
 //      the chain (the record is generated whole, so the other effects do not
 //      depend on them); remove_dropouts() takes them out of a recording,
-//      whose time column then shows the gaps (core/gaps.h).
+//      whose time column then shows the gaps (core/gaps.h);
+//   6. the logger's time stamps: each time written is t_k + u_k, u_k
+//      uniform on [-j, j] seconds (a host that stamps each sample when it
+//      arrives; rms j / sqrt(3)); the samples stay on the sensor's grid.
+//      jitter_times() applies it to a recording's time column.
 #pragma once
 
 #include <array>
@@ -75,6 +79,8 @@ struct SensorOutput {
   double spike_size_deg_h = 0.0;        ///< [deg/h] each spike's magnitude (random sign)
   double lsb_deg_h = 0.0;               ///< [deg/h] output step (0: not rounded)
   std::vector<Dropout> dropouts;        ///< lost stretches (step 5, not in any())
+  /// [s] j of step 6: 0 (exact times) to below 0.4 tau0 (not in any())
+  double time_jitter_s = 0.0;
 
   /// Whether any effect of steps 1-4 is on.
   bool any() const;
@@ -106,6 +112,12 @@ std::vector<Gap> dropout_gaps(const SensorOutput& output, double sample_rate_hz,
 /// the gaps (as dropout_gaps(), indices among the samples kept). Throws
 /// UsageError when no sample would be left.
 std::vector<Gap> remove_dropouts(Recording& recording, const SensorOutput& output);
+
+/// Step 6: adds the logger's jitter to `time_s`, which holds the times of samples
+/// first_index, first_index + 1, ... (before any dropout is removed); the draws are a pure
+/// function of seed, stream and sample index, like the chain's.
+void jitter_times(std::span<double> time_s, std::int64_t first_index, const SensorOutput& output,
+                  double sample_rate_hz, std::uint64_t seed, std::uint64_t stream);
 
 /// Marks the dropouts' samples NaN instead of removing them, as a logger
 /// that writes NaN for a lost sample does: `values` holds samples
