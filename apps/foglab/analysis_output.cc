@@ -257,6 +257,7 @@ nlohmann::json steps_json(const model::AnalysisResult& r) {
           {"removed", s.removed},
           {"left_as_noise", s.left_as_noise()},
           {"left_as_noise_because", because(s.left_as_noise_because)},
+          {"at_temperature_turns", s.at_temperature_turns},
           {"times_s", times},
           {"sizes_deg_h", numbers(s.sizes_deg_h)},
           {"window_samples", s.window_samples},

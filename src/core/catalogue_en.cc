@@ -801,6 +801,13 @@ constexpr CatalogueEntry kEntries[] = {
      "levelling them would make the record wander more than chance allows (the means of "
      "its neighbouring sixteenths)"},
     {Text::note_steps_two_levels, "they go back and forth between two levels"},
+    {Text::note_steps_at_temperature_turns,
+     "the {} bias jumps lie at turns of the temperature (where its rate of change changes "
+     "sign; {} turns), each against that change the same way: the bias follows the "
+     "temperature's rate of change dT/dt (in a FOG, the Shupe effect of a temperature gradient "
+     "along the coil), not a random process, and in a cycle of ramps it jumps with dT/dt, as "
+     "they did. The temperature law is a polynomial in T: a dT/dt that changes smoothly (a "
+     "sinusoidal cycle) is not taken out, and the noise terms would carry it"},
     {Text::note_gap_jump_item,
      "{:+.4g} deg/h where the record resumes at {:.6g} s ({:.3g} spreads)"},
     {Text::note_gap_jumps,

@@ -9,8 +9,10 @@
 #include <exception>
 #include <future>
 #include <limits>
+#include <span>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "foglab/core/error.h"
 #include "foglab/core/numeric.h"
@@ -439,6 +441,91 @@ Message steps_treatment(const BiasSteps& steps) {
   return Message(steps.removed ? Text::note_steps_levelled : Text::note_steps_kept);
 }
 
+// A turn of the temperature: where its rate of change changes sign.
+struct TemperatureTurn {
+  std::int64_t sample = 0;  ///< about where
+  int rate_change = 0;      ///< the sign of the change of dT/dt there
+};
+
+// The temperature's turns: its means over 256 blocks, the slope of those over +-2 blocks, and
+// a turn where that slope changes sign between two ramps, each of at least 4 blocks whose
+// slope is beyond a quarter of the largest and beyond 8 times its noise (the block means'
+// second differences: a thermostat's jitter or hunting has no ramps). Nothing when the block
+// means span less than `min_span_c`.
+std::vector<TemperatureTurn> temperature_turns(std::span<const double> temperature_c,
+                                               double min_span_c) {
+  constexpr std::size_t kBlocks = 256;
+  constexpr std::size_t kShortestRamp = 4;
+  std::vector<TemperatureTurn> turns;
+  const std::size_t n = temperature_c.size();
+  if (n < 16 * kBlocks) return turns;
+  std::vector<double> means(kBlocks, 0.0);
+  for (std::size_t b = 0; b < kBlocks; ++b) {
+    const std::size_t first = b * n / kBlocks;
+    const std::size_t end = (b + 1) * n / kBlocks;
+    for (std::size_t k = first; k < end; ++k) means[b] += temperature_c[k];
+    means[b] /= static_cast<double>(end - first);
+  }
+  if (const auto [lowest, highest] = std::ranges::minmax(means); highest - lowest < min_span_c) {
+    return turns;
+  }
+  // the block means' noise sd, robustly from their second differences (var 6 sigma^2)
+  std::vector<double> curvature;
+  for (std::size_t b = 1; b + 1 < kBlocks; ++b) {
+    curvature.push_back(std::abs(means[b + 1] - 2.0 * means[b] + means[b - 1]));
+  }
+  const auto middle = curvature.begin() + static_cast<std::ptrdiff_t>(curvature.size() / 2);
+  std::nth_element(curvature.begin(), middle, curvature.end());
+  const double noise = 1.4826 * *middle / std::sqrt(6.0);
+  std::vector<double> slope(kBlocks, 0.0);
+  double largest = 0.0;
+  for (std::size_t b = 2; b + 2 < kBlocks; ++b) {
+    slope[b] = means[b + 2] - means[b - 2];
+    largest = std::max(largest, std::abs(slope[b]));
+  }
+  const double least = std::max(0.25 * largest, 8.0 * std::sqrt(2.0) * noise);
+  if (!(largest > least)) return turns;
+  // ramps: runs of one sign among the blocks beyond `least` (others between them ignored)
+  struct Ramp {
+    int sign;
+    std::size_t count, first, last;
+  };
+  std::vector<Ramp> ramps;
+  for (std::size_t b = 2; b + 2 < kBlocks; ++b) {
+    if (std::abs(slope[b]) < least) continue;
+    const int s = slope[b] > 0.0 ? 1 : -1;
+    if (ramps.empty() || ramps.back().sign != s) ramps.push_back({s, 0, b, b});
+    ++ramps.back().count;
+    ramps.back().last = b;
+  }
+  std::erase_if(ramps, [](const Ramp& r) { return r.count < kShortestRamp; });
+  for (std::size_t i = 1; i < ramps.size(); ++i) {
+    if (ramps[i].sign == ramps[i - 1].sign) continue;
+    const std::size_t between = (ramps[i - 1].last + ramps[i].first + 1) / 2;
+    turns.push_back({static_cast<std::int64_t>(between * n / kBlocks),
+                     ramps[i].sign - ramps[i - 1].sign > 0 ? 1 : -1});
+  }
+  return turns;
+}
+
+// Whether two or more steps each lie within 3 blocks of 256 of a temperature turn, and each
+// against that turn's change of dT/dt the same way (BiasSteps::at_temperature_turns).
+bool steps_at_turns(const BiasSteps& steps, const std::vector<TemperatureTurn>& turns,
+                    std::size_t samples) {
+  if (steps.indices.size() < 2 || turns.empty()) return false;
+  const auto tolerance = static_cast<std::int64_t>(3 * samples / 256);
+  int way = 0;
+  for (std::size_t i = 0; i < steps.indices.size(); ++i) {
+    const auto nearest = std::ranges::min_element(
+        turns, {}, [&](const TemperatureTurn& t) { return std::abs(t.sample - steps.indices[i]); });
+    if (std::abs(nearest->sample - steps.indices[i]) > tolerance) return false;
+    const int w = (steps.sizes_deg_h[i] > 0.0 ? 1 : -1) * nearest->rate_change;
+    if (way != 0 && w != way) return false;
+    way = w;
+  }
+  return true;
+}
+
 // N rests on the white noise's sample variance, whose relative variance is
 // (2 + g) / n for n samples of excess kurtosis g; the fit's interval counts
 // the Gaussian 2 / n. Under heavy-tailed noise (spikes.h) the rest, g / n,
@@ -513,6 +600,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
   const OutputQuantisation& word = r.output_quantisation;
   const double lsb = word.detected ? word.lsb_deg_h : 0.0;
   r.spikes = find_spikes(rate_deg_h, options.spikes, lsb);
+  std::vector<TemperatureTurn> turns;  // of a thermal cycle
   {
     // The steps are looked for on top of the temperature law (a first
     // least-squares fit; the spikes are out, the steps are still in, and a
@@ -540,6 +628,25 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     }
     r.steps = find_steps(rate_deg_h, step_options, word.detected && !word.noise_like ? lsb : 0.0,
                          gaps, law);
+    // Jumps at the temperature's turns are the temperature's rate, not a random process:
+    // levelled (in a cycle of ramps dT/dt is a square wave, and so is the bias it drives).
+    if (!temperature_c.empty()) {
+      turns = temperature_turns(temperature_c, options.systematic.min_span_c);
+      r.steps.at_temperature_turns = steps_at_turns(r.steps, turns, rate_deg_h.size());
+      // (all of them: not when more lie beyond the search's limit)
+      if (r.steps.at_temperature_turns && r.steps.left_as_noise() &&
+          r.steps.left_as_noise_because != BiasSteps::AsNoise::beyond_limit &&
+          options.steps.remove) {
+        for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
+          const auto from = static_cast<std::size_t>(r.steps.indices[i]);
+          for (std::size_t k = from; k < rate_deg_h.size(); ++k) {
+            rate_deg_h[k] -= r.steps.sizes_deg_h[i];
+          }
+        }
+        r.steps.left_as_noise_because = BiasSteps::AsNoise::none;
+        r.steps.removed = true;
+      }
+    }
   }
   if (!r.steps.indices.empty()) {
     std::vector<Message> list;
@@ -549,6 +656,10 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
     }
     r.notes.emplace_back(Text::note_steps, r.steps.indices.size(), std::move(list),
                          options.steps.threshold, steps_treatment(r.steps));
+    if (r.steps.at_temperature_turns) {
+      r.notes.emplace_back(Text::note_steps_at_temperature_turns, r.steps.indices.size(),
+                           turns.size());
+    }
   }
   if (std::ranges::any_of(r.steps.across_gaps, &GapJump::significant)) {
     std::vector<Message> list;

@@ -352,6 +352,76 @@ TEST(Analysis, ATelegraphBiasIsAGaussMarkovProcessNotSteps) {
   EXPECT_GE(tc_covered, 2);  // 95 % intervals: all three hold 50 s in 86 % of runs
 }
 
+// A thermal cycle (not a ramp): 20 -> 60 degC at 1 degC/min, then between 60 and -20 degC,
+// 8 h; its rate of change is +-1 degC/min, turning at 2400 s and every 4800 s after.
+sim::TemperatureProfile thermal_cycle() {
+  sim::TemperatureProfile t;
+  t.kind = sim::TemperatureKind::file;
+  t.profile_time_s = {0.0, 2400.0};
+  t.profile_temperature_c = {20.0, 60.0};
+  while (t.profile_time_s.back() < 8.0 * 3600.0) {
+    t.profile_time_s.push_back(t.profile_time_s.back() + 4800.0);
+    t.profile_temperature_c.push_back(t.profile_temperature_c.back() > 0.0 ? -20.0 : 60.0);
+  }
+  return t;
+}
+
+TEST(Analysis, ABiasThatFollowsTheTemperaturesRateIsSaidToAtItsTurns) {
+  // A navigation-grade FOG in a thermal cycle whose bias also follows dT/dt (the Shupe
+  // effect; not in foglab's generator or its temperature law) by 0.05 deg/h per degC/min:
+  // a jump of 0.1 deg/h at every turn of the temperature. The jumps had been taken for a
+  // random telegraph noise and left in (K doubled); they are said to be the temperature's
+  // rate and levelled, which leaves the noise model of the same record without them.
+  const double fs = 10.0;
+  sim::ErrorModel m;
+  m.noise.N = 0.01;
+  m.noise.B = 0.004;
+  m.noise.K = 0.0004;
+  m.temp_coefs = {0.01};
+  const sim::TemperatureProfile cycle = thermal_cycle();
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    sim::Recording rec =
+        sim::generate(m, cycle, {.sample_rate_hz = fs, .duration_s = 8.0 * 3600.0, .seed = seed});
+    const std::vector<double> rec_without = rec.rate_deg_h;
+    for (std::size_t k = 0; k < rec.rate_deg_h.size(); ++k) {
+      const double t = rec.time_s[k];
+      const double rising = t < 2400.0 || static_cast<int>((t - 2400.0) / 4800.0) % 2 == 1;
+      rec.rate_deg_h[k] += 0.05 * (rising ? 1.0 : -1.0);  // deg/h per degC/min x +-1 degC/min
+    }
+    std::vector<double> without = rec_without;
+    const AnalysisResult r = analyze(rec.rate_deg_h, rec.temperature_c, fs);
+    EXPECT_GE(r.steps.indices.size(), 4u) << seed;
+    EXPECT_TRUE(r.steps.at_temperature_turns) << seed;
+    EXPECT_TRUE(r.steps.removed) << seed;
+    EXPECT_TRUE(contains(r.notes, "dT/dt")) << seed;
+    // levelled, the jumps leave the noise model of the record without them
+    const AnalysisResult base = analyze(without, rec.temperature_c, fs);
+    EXPECT_NEAR(r.noise.model.K / base.noise.model.K, 1.0, 0.1) << seed;
+    EXPECT_NEAR(r.noise.model.B / base.noise.model.B, 1.0, 0.05) << seed;
+  }
+  // The same record with jumps of the same size between the turns: no such note
+  sim::Recording rec =
+      sim::generate(m, cycle, {.sample_rate_hz = fs, .duration_s = 8.0 * 3600.0, .seed = 3});
+  for (std::size_t k = 0; k < rec.rate_deg_h.size(); ++k) {
+    const double t = rec.time_s[k];
+    rec.rate_deg_h[k] += (t > 4000.0 && t < 9000.0) || (t > 15000.0 && t < 21000.0) ? 0.1 : 0.0;
+  }
+  const AnalysisResult r = analyze(rec.rate_deg_h, rec.temperature_c, fs);
+  EXPECT_GE(r.steps.indices.size(), 2u);
+  EXPECT_FALSE(r.steps.at_temperature_turns);
+  EXPECT_FALSE(contains(r.notes, "dT/dt"));
+  // and a thermostat whose reading jitters by 0.2 degC has no turns for two steps to lie at
+  sim::TemperatureProfile thermostat;
+  thermostat.jitter_c = 0.2;
+  rec = sim::generate(m, thermostat, {.sample_rate_hz = fs, .duration_s = 8.0 * 3600.0, .seed = 4});
+  for (std::size_t k = 0; k < rec.rate_deg_h.size(); ++k) {
+    rec.rate_deg_h[k] += rec.time_s[k] > 10000.0 && rec.time_s[k] < 20000.0 ? 0.1 : 0.0;
+  }
+  const AnalysisResult held = analyze(rec.rate_deg_h, rec.temperature_c, fs);
+  EXPECT_EQ(held.steps.indices.size(), 2u);
+  EXPECT_FALSE(held.steps.at_temperature_turns);
+}
+
 TEST(Analysis, AHeavyTailedWhiteNoiseKeepsItsLevel) {
   // White noise drawn from Student's t with 3 degrees of freedom (unit
   // variance kept; not in foglab's generator), N 0.3 deg/h/sqrt(Hz) at

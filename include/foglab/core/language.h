@@ -579,13 +579,14 @@ enum class Text {
   note_steps,      ///< {count} {list} {threshold} {levelled or kept}
   note_steps_levelled,
   note_steps_kept,
-  note_steps_as_noise,      ///< {why}: the jumps left in as the bias's process
-  note_steps_beyond_limit,  ///< {limit}: more jumps than the search takes
-  note_steps_wander,        ///< levelling them makes the record wander more
-  note_steps_two_levels,    ///< they go back and forth between two levels
-  note_gap_jump_item,       ///< one jump across a gap: {size} {resumes at} {significance}
-  note_gap_jumps,           ///< {count} {list} {threshold}
-  note_spikes,              ///< {count} {threshold} {sds} {replaced or kept}
+  note_steps_as_noise,              ///< {why}: the jumps left in as the bias's process
+  note_steps_beyond_limit,          ///< {limit}: more jumps than the search takes
+  note_steps_wander,                ///< levelling them makes the record wander more
+  note_steps_two_levels,            ///< they go back and forth between two levels
+  note_steps_at_temperature_turns,  ///< {count} {turns}
+  note_gap_jump_item,               ///< one jump across a gap: {size} {resumes at} {significance}
+  note_gap_jumps,                   ///< {count} {list} {threshold}
+  note_spikes,                      ///< {count} {threshold} {sds} {replaced or kept}
   note_spikes_replaced,
   note_spikes_kept,
   note_heavy_tail,  ///< {shoulder count} {Gaussian's} {alpha} {threshold} {excess kurtosis}

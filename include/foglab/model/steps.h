@@ -82,6 +82,12 @@ struct BiasSteps {
   enum class AsNoise { none, beyond_limit, wander, two_levels };
   AsNoise left_as_noise_because = AsNoise::none;
   bool left_as_noise() const { return left_as_noise_because != AsNoise::none; }
+  /// Set by analyze() (analysis.h): two or more jumps, each at a turn of the record's
+  /// temperature (where its rate of change changes sign), all one way against the change of
+  /// that rate: a bias that follows dT/dt (a FOG coil's Shupe effect), which the polynomial
+  /// temperature law does not take out. Such jumps are levelled (with StepOptions::remove)
+  /// even where they go back and forth between two levels.
+  bool at_temperature_turns = false;
   /// Each gap whose stretches either side hold a window (64 samples or
   /// more, as for the steps), in time order.
   std::vector<GapJump> across_gaps;
