@@ -236,7 +236,8 @@ TimeAxis TimeAxisCheck::jittered_axis() {
       faults_ >= kFewestFaults &&
       static_cast<double>(faults_) >= kLeastFaultFraction * static_cast<double>(steps);
   if (!many || !times_fit_) refuse("");
-  const StampGrid grid = fit_stamp_grid(times_ns);
+  const double median_s = median_step_s(times_ns);
+  const StampGrid grid = fit_stamp_grid(times_ns, median_s);
   if (!(grid.step_s > 0.0) || grid.scatter_rms_steps > kMostScatterSteps) {
     refuse(
         fmt::format(", and the times do not scatter about a uniform grid either (rms {:.2f} "
@@ -258,9 +259,8 @@ TimeAxis TimeAxisCheck::jittered_axis() {
   axis.gaps = grid.gaps;
   axis.start_s = first_s_;
   axis.dropped = grid.dropped;
-  axis.jitter = TimeJitter{irregular_steps_,   steps,
-                           grid.median_step_s, grid.jitter_rms_s,
-                           grid.jitter_max_s,  grid.dropped.size()};
+  axis.jitter = TimeJitter{
+      irregular_steps_, steps, median_s, grid.jitter_rms_s, grid.jitter_max_s, grid.dropped.size()};
   return axis;
 }
 

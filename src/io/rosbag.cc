@@ -468,7 +468,7 @@ ImuRecord read_imu_bag(const std::string& path, const BagReadOptions& options) {
   }
 
   // The grid (stamp_grid.h), then the samples kept on it, compacted in place.
-  internal::StampGrid grid = internal::fit_stamp_grid(stamps_ns);
+  internal::StampGrid grid = internal::fit_stamp_grid(stamps_ns, record.timing.median_step_s);
   if (grid.scatter_rms_steps > internal::kMostScatterSteps) {
     throw_data_error(
         path, fmt::format("topic '{}': the {}s scatter {:.2f} of a step about the uniform grid "

@@ -43,60 +43,6 @@ double cycles(double sum_cos, double sum_sin) { return std::atan2(sum_sin, sum_c
 // `x` minus the nearest integer: in [-0.5, 0.5].
 double wrap(double x) { return x - std::round(x); }
 
-// The median of the positive steps between consecutive stamps [s], exact, without a copy of
-// all of them (10^7 steps: a second of page faults on a virtual machine): a strided sample
-// brackets the median, one pass counts the steps below the bracket and keeps those inside it,
-// and the median is the right one of those. Should the bracket miss it (a sample that does not
-// represent the record), every step is copied.
-double median_step_s_of(std::span<const std::int64_t> stamps_ns) {
-  const std::size_t n = stamps_ns.size();
-  auto step = [&](std::size_t k) { return stamps_ns[k] - stamps_ns[k - 1]; };
-  auto select = [](std::vector<std::int64_t>& v, std::size_t rank) {
-    const auto at = v.begin() + static_cast<std::ptrdiff_t>(rank);
-    std::nth_element(v.begin(), at, v.end());
-    return static_cast<double>(*at) * 1e-9;
-  };
-  std::size_t positive = 0;
-  for (std::size_t k = 1; k < n; ++k) positive += step(k) > 0 ? 1 : 0;
-  if (positive == 0) return 0.0;
-  const std::size_t rank = (positive - 1) / 2;  // of the median, among the positive steps
-
-  constexpr std::size_t kSample = std::size_t{1} << 16;
-  if (positive > 16 * kSample) {
-    std::vector<std::int64_t> sample;
-    sample.reserve(kSample + 1);
-    const std::size_t stride = (n - 1) / kSample;
-    for (std::size_t k = 1; k < n; k += stride) {
-      if (step(k) > 0) sample.push_back(step(k));
-    }
-    std::sort(sample.begin(), sample.end());
-    // A bracket of +-2 % of the sample about its median: wide against the sample's error in
-    // rank (about 0.2 % of the steps for 65,536 samples).
-    const std::size_t margin = sample.size() / 50;
-    const std::int64_t low = sample[sample.size() / 2 - margin];
-    const std::int64_t high = sample[sample.size() / 2 + margin];
-    std::size_t below = 0;
-    std::vector<std::int64_t> inside;
-    inside.reserve(positive / 10);
-    for (std::size_t k = 1; k < n; ++k) {
-      const std::int64_t d = step(k);
-      if (d <= 0) continue;
-      if (d < low) {
-        ++below;
-      } else if (d <= high) {
-        inside.push_back(d);
-      }
-    }
-    if (rank >= below && rank - below < inside.size()) return select(inside, rank - below);
-  }
-  std::vector<std::int64_t> steps;
-  steps.reserve(positive);
-  for (std::size_t k = 1; k < n; ++k) {
-    if (step(k) > 0) steps.push_back(step(k));
-  }
-  return select(steps, rank);
-}
-
 // Step 1 above: the step [s] refined from `step_s` by the phases of blocks of stamps.
 double refine_step_s(std::span<const std::int64_t> stamps_ns, double step_s) {
   constexpr std::size_t kMaxStamps = std::size_t{1} << 18;  // a stage's, spread over the record
@@ -218,18 +164,67 @@ class GridSlots {
 
 }  // namespace
 
+// The median of the positive steps between consecutive stamps [s], exact, without a copy of
+// all of them (10^7 steps: a second of page faults on a virtual machine): a strided sample
+// brackets the median, one pass counts the steps below the bracket and keeps those inside it,
+// and the median is the right one of those. Should the bracket miss it (a sample that does not
+// represent the record), every step is copied.
 double median_step_s(std::span<const std::int64_t> stamps_ns) {
-  return median_step_s_of(stamps_ns);
+  const std::size_t n = stamps_ns.size();
+  auto step = [&](std::size_t k) { return stamps_ns[k] - stamps_ns[k - 1]; };
+  auto select = [](std::vector<std::int64_t>& v, std::size_t rank) {
+    const auto at = v.begin() + static_cast<std::ptrdiff_t>(rank);
+    std::nth_element(v.begin(), at, v.end());
+    return static_cast<double>(*at) * 1e-9;
+  };
+  std::size_t positive = 0;
+  for (std::size_t k = 1; k < n; ++k) positive += step(k) > 0 ? 1 : 0;
+  if (positive == 0) return 0.0;
+  const std::size_t rank = (positive - 1) / 2;  // of the median, among the positive steps
+
+  constexpr std::size_t kSample = std::size_t{1} << 16;
+  if (positive > 16 * kSample) {
+    std::vector<std::int64_t> sample;
+    sample.reserve(kSample + 1);
+    const std::size_t stride = (n - 1) / kSample;
+    for (std::size_t k = 1; k < n; k += stride) {
+      if (step(k) > 0) sample.push_back(step(k));
+    }
+    std::sort(sample.begin(), sample.end());
+    // A bracket of +-2 % of the sample about its median: wide against the sample's error in
+    // rank (about 0.2 % of the steps for 65,536 samples).
+    const std::size_t margin = sample.size() / 50;
+    const std::int64_t low = sample[sample.size() / 2 - margin];
+    const std::int64_t high = sample[sample.size() / 2 + margin];
+    std::size_t below = 0;
+    std::vector<std::int64_t> inside;
+    inside.reserve(positive / 10);
+    for (std::size_t k = 1; k < n; ++k) {
+      const std::int64_t d = step(k);
+      if (d <= 0) continue;
+      if (d < low) {
+        ++below;
+      } else if (d <= high) {
+        inside.push_back(d);
+      }
+    }
+    if (rank >= below && rank - below < inside.size()) return select(inside, rank - below);
+  }
+  std::vector<std::int64_t> steps;
+  steps.reserve(positive);
+  for (std::size_t k = 1; k < n; ++k) {
+    if (step(k) > 0) steps.push_back(step(k));
+  }
+  return select(steps, rank);
 }
 
-StampGrid fit_stamp_grid(std::span<const std::int64_t> stamps_ns) {
+StampGrid fit_stamp_grid(std::span<const std::int64_t> stamps_ns, double median_s) {
   StampGrid fit;
-  fit.median_step_s = median_step_s_of(stamps_ns);
   const std::size_t n = stamps_ns.size();
-  if (n < 2 || !(fit.median_step_s > 0.0)) return fit;
+  if (n < 2 || !(median_s > 0.0)) return fit;
 
   // The grid, then the stamps kept on it and their gaps (step 3 above).
-  const GridSlots grid(stamps_ns, refine_step_s(stamps_ns, fit.median_step_s));
+  const GridSlots grid(stamps_ns, refine_step_s(stamps_ns, median_s));
   std::int64_t last_slot = 0;
   std::size_t kept = 1;
   double scatter = 0.0;

@@ -22,7 +22,6 @@ namespace foglab::io::internal {
 
 /// Where the stamps of a record sit on their grid.
 struct StampGrid {
-  double median_step_s = 0.0;  ///< [s] median of the positive steps between stamps
   /// [s] the grid's step: the least-squares slope of stamp against slot over the samples kept
   double step_s = 0.0;
   double jitter_rms_s = 0.0;  ///< [s] rms of stamp minus the fitted line of stamp against slot
@@ -46,9 +45,11 @@ inline constexpr double kMostScatterSteps = 0.25;
 /// positive.
 double median_step_s(std::span<const std::int64_t> stamps_ns);
 
-/// Places `stamps_ns` (in the order of the samples; at least two, with a positive median step)
-/// on their grid. step_s is 0 when the samples kept give no positive slope.
-StampGrid fit_stamp_grid(std::span<const std::int64_t> stamps_ns);
+/// Places `stamps_ns` (in the order of the samples) on their grid, from `median_s`
+/// (median_step_s(stamps_ns), which the caller has already). step_s is 0 when there are fewer
+/// than two stamps, the median step is not positive or the samples kept give no positive
+/// slope.
+StampGrid fit_stamp_grid(std::span<const std::int64_t> stamps_ns, double median_s);
 
 /// `values` without the entries at `dropped` (increasing indexes), in place.
 void drop_entries(std::vector<double>& values, const std::vector<std::size_t>& dropped);

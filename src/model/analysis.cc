@@ -637,12 +637,7 @@ AnalysisResult analyze(std::vector<double>& rate_deg_h, std::span<const double> 
       if (r.steps.at_temperature_turns && r.steps.left_as_noise() &&
           r.steps.left_as_noise_because != BiasSteps::AsNoise::beyond_limit &&
           options.steps.remove) {
-        for (std::size_t i = 0; i < r.steps.indices.size(); ++i) {
-          const auto from = static_cast<std::size_t>(r.steps.indices[i]);
-          for (std::size_t k = from; k < rate_deg_h.size(); ++k) {
-            rate_deg_h[k] -= r.steps.sizes_deg_h[i];
-          }
-        }
+        level_steps(rate_deg_h, r.steps);
         r.steps.left_as_noise_because = BiasSteps::AsNoise::none;
         r.steps.removed = true;
       }

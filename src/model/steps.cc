@@ -306,7 +306,19 @@ bool between_two_levels(std::span<const double> sizes) {
   return 4 * returns >= 3 * (sizes.size() - 1);
 }
 
+// Adds `sign` times each step's size to every sample from the step on (-1: levels them).
+void shift_after_steps(std::span<double> y, const BiasSteps& steps, double sign) {
+  for (std::size_t i = 0; i < steps.indices.size(); ++i) {
+    const double by = sign * steps.sizes_deg_h[i];
+    for (std::size_t k = static_cast<std::size_t>(steps.indices[i]); k < y.size(); ++k) y[k] += by;
+  }
+}
+
 }  // namespace
+
+void level_steps(std::span<double> rate_deg_h, const BiasSteps& steps) {
+  shift_after_steps(rate_deg_h, steps, -1.0);
+}
 
 BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb_deg_h,
                      std::span<const Gap> gaps, std::span<const double> baseline_deg_h) {
@@ -385,13 +397,7 @@ BiasSteps find_steps(std::span<double> y, const StepOptions& options, double lsb
     sorted.window_samples.push_back(steps.window_samples[i]);
     sorted.significance.push_back(steps.significance[i]);
   }
-  const auto put_back = [&] {
-    for (std::size_t i = 0; i < sorted.indices.size(); ++i) {
-      for (std::int64_t k = sorted.indices[i]; k < n; ++k) {
-        y[static_cast<std::size_t>(k)] += sorted.sizes_deg_h[i];
-      }
-    }
-  };
+  const auto put_back = [&] { shift_after_steps(y, sorted, +1.0); };
   // More jumps than max_steps, levelling that makes the record wander
   // more, or jumps back and forth between two levels: the bias jumps as a
   // process (a random telegraph or popcorn noise), not at a few glitches;

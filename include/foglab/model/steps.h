@@ -106,4 +106,8 @@ BiasSteps find_steps(std::span<double> rate_deg_h, const StepOptions& options = 
                      double lsb_deg_h = 0.0, std::span<const Gap> gaps = {},
                      std::span<const double> baseline_deg_h = {});
 
+/// Levels `rate_deg_h` at `steps`: each step's size subtracted from every sample from its
+/// index on (what find_steps() does with StepOptions::remove).
+void level_steps(std::span<double> rate_deg_h, const BiasSteps& steps);
+
 }  // namespace foglab::model
